@@ -1,0 +1,230 @@
+//! Locomotion attributes (KLAW 1989 §2.1: "up to 28 attributes individualize the walk"): the
+//! table of defaults, units and valid ranges in `models/attributes.toml`, user overrides from
+//! attribute files, and the typed, SI-unit values the engine reads.
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use crate::error::{Error, Result};
+
+/// The bundled attribute table.
+pub const BUILTIN_TABLE: &str = include_str!("../models/attributes.toml");
+
+/// One row of the attribute table: default, unit, valid range, meaning and source.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AttributeSpec {
+    pub symbol: String,
+    pub unit: String,
+    pub default: f64,
+    pub min: f64,
+    pub max: f64,
+    pub doc: String,
+    pub source: String,
+}
+
+/// The attribute table, by name.
+#[derive(Clone, Debug)]
+pub struct AttributeTable(pub BTreeMap<String, AttributeSpec>);
+
+impl AttributeTable {
+    /// The bundled table.
+    pub fn builtin() -> Self {
+        Self::parse(BUILTIN_TABLE, Path::new("models/attributes.toml"))
+            .expect("the bundled attribute table parses (tested)")
+    }
+
+    /// Parse a table; every attribute the engine reads must be present, with
+    /// min ≤ default ≤ max.
+    pub fn parse(text: &str, path: &Path) -> Result<Self> {
+        let malformed = |reason: String| Error::Malformed {
+            what: "attribute table",
+            path: path.to_path_buf(),
+            reason,
+        };
+        let rows: BTreeMap<String, AttributeSpec> =
+            toml::from_str(text).map_err(|e| malformed(e.to_string()))?;
+        for name in Attributes::NAMES {
+            let spec = rows
+                .get(*name)
+                .ok_or_else(|| malformed(format!("attribute `{name}` is missing")))?;
+            if !(spec.min <= spec.default && spec.default <= spec.max) {
+                return Err(malformed(format!(
+                    "attribute `{name}`: default {} is outside [{}, {}]",
+                    spec.default, spec.min, spec.max
+                )));
+            }
+        }
+        if let Some(extra) = rows.keys().find(|k| !Attributes::NAMES.contains(&k.as_str())) {
+            return Err(malformed(format!("attribute `{extra}` is not read by the engine")));
+        }
+        Ok(AttributeTable(rows))
+    }
+
+    /// Attributes with every default, then `overrides` (user units) applied by name.
+    pub fn resolve(&self, overrides: &BTreeMap<String, f64>, source_name: &str) -> Result<Attributes> {
+        let mut values = BTreeMap::new();
+        for (name, spec) in &self.0 {
+            values.insert(name.as_str(), spec.default);
+        }
+        for (name, &value) in overrides {
+            let spec = self.0.get(name).ok_or_else(|| Error::UnknownAttribute {
+                name: name.clone(),
+                source_name: source_name.to_string(),
+                known: Attributes::NAMES.join(", "),
+            })?;
+            Error::check_range(name, value, spec.min, spec.max, &spec.unit)?;
+            values.insert(name.as_str(), value);
+        }
+        let si = |name: &str| {
+            let v = values[name];
+            if self.0[name].unit == "deg" { v.to_radians() } else { v }
+        };
+        Ok(Attributes::from_fn(si))
+    }
+
+    /// The defaults.
+    pub fn defaults(&self) -> Attributes {
+        self.resolve(&BTreeMap::new(), "defaults").expect("defaults lie in their ranges (checked at parse)")
+    }
+}
+
+/// Read an attribute file: a flat TOML table `name = number` (user units; an optional
+/// `description = "…"` is ignored). Later files override earlier ones.
+pub fn parse_overrides(text: &str, path: &Path) -> Result<BTreeMap<String, f64>> {
+    let malformed = |reason: String| Error::Malformed {
+        what: "attribute file",
+        path: path.to_path_buf(),
+        reason,
+    };
+    let table: toml::Table = toml::from_str(text).map_err(|e| malformed(e.to_string()))?;
+    let mut out = BTreeMap::new();
+    for (key, value) in table {
+        if key == "description" {
+            continue;
+        }
+        let number = match value {
+            toml::Value::Float(f) => f,
+            toml::Value::Integer(i) => i as f64,
+            other => {
+                return Err(malformed(format!(
+                    "`{key}` must be a number, found {}",
+                    other.type_str()
+                )));
+            }
+        };
+        out.insert(key, number);
+    }
+    Ok(out)
+}
+
+macro_rules! attribute_struct {
+    ($($(#[$doc:meta])* $field:ident),* $(,)?) => {
+        /// Resolved locomotion attributes in SI units (angles in radians). Field names are the
+        /// attribute names of `models/attributes.toml`, where units, ranges and sources are.
+        #[derive(Clone, Debug, PartialEq, serde::Serialize)]
+        pub struct Attributes { $($(#[$doc])* pub $field: f64,)* }
+
+        impl Attributes {
+            /// Every attribute name the engine reads.
+            pub const NAMES: &'static [&'static str] = &[$(stringify!($field)),*];
+
+            fn from_fn(get: impl Fn(&str) -> f64) -> Self {
+                Attributes { $($field: get(stringify!($field)),)* }
+            }
+        }
+    };
+}
+
+attribute_struct! {
+    /// δ_hs: ankle dorsiflexion at heel strike (rad).
+    heel_strike_ankle,
+    /// κ_hs: knee flexion at heel strike (rad).
+    heel_strike_knee,
+    /// ε: hip excursion as a fraction of the step's height budget.
+    bounciness,
+    /// θ2_ref: forward lean of the upper body (rad).
+    trunk_lean,
+    /// f_w (Hz): leg axis spring k_w = m2 (2π f_w)².
+    leg_frequency,
+    /// ζ_w: leg axis damper d_w = 2 ζ_w m2 (2π f_w).
+    leg_damping_ratio,
+    /// f_2 (Hz): trunk balance spring k_2 = J2 (2π f_2)².
+    trunk_frequency,
+    /// ζ_2: trunk balance damper.
+    trunk_damping_ratio,
+    /// f_h (Hz): swing2 hip servo spring.
+    swing_hip_frequency,
+    /// ζ_h: swing2 hip servo damper.
+    swing_hip_damping_ratio,
+    /// κ_TO: knee flexion at toe-off (rad).
+    toe_off_knee,
+    /// θ6_max: metatarsal dorsiflexion limit (rad).
+    metatarsal_limit,
+    /// Expected minimum toe clearance in swing (m).
+    toe_clearance,
+    /// sf_max (steps/min).
+    step_frequency_max,
+    /// sf_min (steps/min).
+    step_frequency_min,
+    /// v_min (m/s).
+    velocity_min,
+    /// v_max (m/s).
+    velocity_max,
+    /// sl_min as a fraction of the leg length.
+    step_length_min,
+    /// sl_max as a fraction of the leg length.
+    step_length_max,
+    /// Relative tolerance of v = sl·sf/60.
+    consistency_tolerance,
+}
+
+impl Default for Attributes {
+    fn default() -> Self {
+        AttributeTable::builtin().defaults()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn builtin_table_covers_every_attribute_with_a_source() {
+        let t = AttributeTable::builtin();
+        assert_eq!(t.0.len(), Attributes::NAMES.len());
+        for (name, spec) in &t.0 {
+            assert!(!spec.doc.is_empty() && !spec.source.is_empty(), "{name}");
+        }
+    }
+
+    #[test]
+    fn degrees_become_radians() {
+        let t = AttributeTable::builtin();
+        let mut o = BTreeMap::new();
+        o.insert("heel_strike_knee".to_string(), 90.0);
+        o.insert("toe_off_knee".to_string(), 30.0);
+        let a = t.resolve(&o, "test").unwrap_err();
+        assert!(a.to_string().contains("[0, 15]"), "{a}");
+        o.insert("heel_strike_knee".to_string(), 6.0);
+        let a = t.resolve(&o, "test").unwrap();
+        assert!((a.heel_strike_knee - 6.0_f64.to_radians()).abs() < 1e-15);
+        assert!((a.toe_off_knee - std::f64::consts::PI / 6.0).abs() < 1e-15);
+        assert_eq!(a.bounciness, 0.8);
+    }
+
+    #[test]
+    fn bad_attribute_files_are_named() {
+        let p = Path::new("a.toml");
+        let e = parse_overrides("bounciness = \"high\"", p).unwrap_err().to_string();
+        assert!(e.contains("bounciness") && e.contains("number"), "{e}");
+        let e = parse_overrides("bounciness = ", p).unwrap_err();
+        assert!(matches!(e, Error::Malformed { .. }));
+        let o = parse_overrides("bouncyness = 0.5", p).unwrap();
+        let e = AttributeTable::builtin().resolve(&o, "a.toml").unwrap_err().to_string();
+        assert!(e.contains("bouncyness") && e.contains("bounciness"), "{e}");
+        let o = parse_overrides("bounciness = nan", p).unwrap();
+        let e = AttributeTable::builtin().resolve(&o, "a.toml").unwrap_err().to_string();
+        assert!(e.contains("finite"), "{e}");
+    }
+}

@@ -1,0 +1,279 @@
+//! Anthropometry: segment lengths, masses, centres of mass and inertias for a body of height H
+//! and mass M, from a body table in `models/` (KLAW 1989, Appendix B, Table B-1).
+use serde::Deserialize;
+use std::path::Path;
+
+use crate::error::{Error, Result};
+
+/// The table bundled with klaw: Winter's (Dempster's) data as printed in Table B-1.
+pub const BUILTIN_TABLE: &str = include_str!("../models/body-winter.toml");
+
+/// A segment row of the body table (fractions of H and M).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SegmentRow {
+    /// Length as a fraction of body height.
+    #[serde(default)]
+    pub length: f64,
+    /// Mass as a fraction of body mass.
+    #[serde(default)]
+    pub mass: f64,
+    /// Centre of mass from the proximal end (whole leg: distal end), fraction of the length.
+    #[serde(default)]
+    pub r: f64,
+    /// Radius of gyration about the centre of mass, fraction of the length.
+    #[serde(default)]
+    pub gamma: f64,
+}
+
+/// Foot distances of Table B-1 (fractions of H).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FootRow {
+    pub mid_foot: f64,
+    pub toe: f64,
+    pub hind_foot: f64,
+    pub ankle_height: f64,
+    pub heel_to_ankle: f64,
+    pub ankle_to_metatarsal: f64,
+    pub metatarsal_to_toe: f64,
+}
+
+/// Bodies a table is valid for.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Limits {
+    pub height: [f64; 2],
+    pub mass: [f64; 2],
+}
+
+/// A body table as stored in `models/*.toml`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodyTable {
+    pub name: String,
+    pub pelvis: SegmentRow,
+    pub leg: SegmentRow,
+    pub upper_body: SegmentRow,
+    pub thigh: SegmentRow,
+    pub shank: SegmentRow,
+    pub foot: FootRow,
+    pub limits: Limits,
+}
+
+impl BodyTable {
+    /// The bundled table.
+    pub fn builtin() -> Self {
+        Self::parse(BUILTIN_TABLE, Path::new("models/body-winter.toml"))
+            .expect("the bundled body table parses (tested)")
+    }
+
+    /// Parse a table from TOML text; `path` only names the source in errors.
+    pub fn parse(text: &str, path: &Path) -> Result<Self> {
+        let table: BodyTable = toml::from_str(text).map_err(|e| Error::Malformed {
+            what: "body table",
+            path: path.to_path_buf(),
+            reason: e.to_string(),
+        })?;
+        let rows = [
+            ("pelvis.length", table.pelvis.length),
+            ("leg.r", table.leg.r),
+            ("leg.gamma", table.leg.gamma),
+            ("upper_body.length", table.upper_body.length),
+            ("upper_body.mass", table.upper_body.mass),
+            ("upper_body.r", table.upper_body.r),
+            ("upper_body.gamma", table.upper_body.gamma),
+            ("thigh.length", table.thigh.length),
+            ("thigh.mass", table.thigh.mass),
+            ("thigh.r", table.thigh.r),
+            ("thigh.gamma", table.thigh.gamma),
+            ("shank.length", table.shank.length),
+            ("shank.mass", table.shank.mass),
+            ("shank.r", table.shank.r),
+            ("shank.gamma", table.shank.gamma),
+            ("foot.hind_foot", table.foot.hind_foot),
+            ("foot.ankle_height", table.foot.ankle_height),
+            ("foot.heel_to_ankle", table.foot.heel_to_ankle),
+            ("foot.ankle_to_metatarsal", table.foot.ankle_to_metatarsal),
+            ("foot.metatarsal_to_toe", table.foot.metatarsal_to_toe),
+        ];
+        for (name, v) in rows {
+            Error::check_range(name, v, 1e-6, 1.0, "(fraction)").map_err(|e| Error::Malformed {
+                what: "body table",
+                path: path.to_path_buf(),
+                reason: e.to_string(),
+            })?;
+        }
+        if table.foot.ankle_to_metatarsal <= table.foot.ankle_height {
+            return Err(Error::Malformed {
+                what: "body table",
+                path: path.to_path_buf(),
+                reason: "foot.ankle_to_metatarsal must exceed foot.ankle_height".into(),
+            });
+        }
+        Ok(table)
+    }
+}
+
+/// A body of height H and mass M in SI units. Names follow Table B-1: l_i lengths, m_i masses,
+/// `r_i` centre-of-mass distances in metres (r1 from the ankle, r2 from the hip, r3 from the hip,
+/// r4 from the knee), `i_i` moments of inertia about the centre of mass, I = m (γ l)².
+#[derive(Clone, Debug, PartialEq)]
+pub struct Body {
+    pub height: f64,
+    pub mass: f64,
+    /// Pelvis width, hip joint to hip joint.
+    pub l0: f64,
+    /// Whole leg, l3 + l4.
+    pub l1: f64,
+    pub l2: f64,
+    pub l3: f64,
+    pub l4: f64,
+    /// Hind foot: heel to ankle, horizontal.
+    pub l8: f64,
+    /// Ankle height with the foot flat.
+    pub l9: f64,
+    /// Heel to ankle, √(l8² + l9²).
+    pub l11: f64,
+    /// Ankle to 1st metatarsal joint.
+    pub l12: f64,
+    /// 1st metatarsal joint to toe tip.
+    pub l13: f64,
+    pub m1: f64,
+    pub m2: f64,
+    pub m3: f64,
+    pub m4: f64,
+    pub r1: f64,
+    pub r2: f64,
+    pub r3: f64,
+    pub r4: f64,
+    pub i1: f64,
+    pub i2: f64,
+    pub i3: f64,
+    pub i4: f64,
+}
+
+impl Body {
+    /// Scale `table` to height `height` (m) and mass `mass` (kg), checking both against the
+    /// table's limits.
+    pub fn new(table: &BodyTable, height: f64, mass: f64) -> Result<Self> {
+        let [hmin, hmax] = table.limits.height;
+        let [mmin, mmax] = table.limits.mass;
+        Error::check_range("height", height, hmin, hmax, "m")?;
+        Error::check_range("mass", mass, mmin, mmax, "kg")?;
+        let (h, m) = (height, mass);
+        let l3 = table.thigh.length * h;
+        let l4 = table.shank.length * h;
+        let l1 = l3 + l4;
+        let m3 = table.thigh.mass * m;
+        let m4 = table.shank.mass * m;
+        let m1 = m3 + m4;
+        let l2 = table.upper_body.length * h;
+        let m2 = table.upper_body.mass * m;
+        let inertia = |mass: f64, gamma: f64, length: f64| mass * (gamma * length).powi(2);
+        Ok(Body {
+            height,
+            mass,
+            l0: table.pelvis.length * h,
+            l1,
+            l2,
+            l3,
+            l4,
+            l8: table.foot.hind_foot * h,
+            l9: table.foot.ankle_height * h,
+            // the table's l11 = 0.04853 H agrees with √(l8² + l9²) to 4e-6 H; the heel is placed
+            // by (l8, l9) everywhere, so l11 is derived from them to keep the foot one rigid shape
+            l11: table.foot.hind_foot.hypot(table.foot.ankle_height) * h,
+            l12: table.foot.ankle_to_metatarsal * h,
+            l13: table.foot.metatarsal_to_toe * h,
+            m1,
+            m2,
+            m3,
+            m4,
+            r1: table.leg.r * l1,
+            r2: table.upper_body.r * l2,
+            r3: table.thigh.r * l3,
+            r4: table.shank.r * l4,
+            i1: inertia(m1, table.leg.gamma, l1),
+            i2: inertia(m2, table.upper_body.gamma, l2),
+            i3: inertia(m3, table.thigh.gamma, l3),
+            i4: inertia(m4, table.shank.gamma, l4),
+        })
+    }
+
+    /// The bundled table scaled to `height` and `mass`.
+    pub fn standard(height: f64, mass: f64) -> Result<Self> {
+        Self::new(&BodyTable::builtin(), height, mass)
+    }
+
+    /// Horizontal distance from the ankle to the 1st metatarsal joint with the foot flat
+    /// (the metatarsal joint on the ground): √(l12² − l9²).
+    pub fn ankle_to_metatarsal_horizontal(&self) -> f64 {
+        (self.l12 * self.l12 - self.l9 * self.l9).sqrt()
+    }
+
+    /// Hip–ankle distance of a leg whose knee is flexed by `knee` (rad), by the cosine law:
+    /// a² = l3² + l4² + 2 l3 l4 cos κ.
+    pub fn hip_ankle_distance(&self, knee: f64) -> f64 {
+        (self.l3 * self.l3 + self.l4 * self.l4 + 2.0 * self.l3 * self.l4 * knee.cos()).sqrt()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The paper's own example (Appendix B): H = 1.8 m, M = 80 kg gives m3 = 8 kg,
+    /// l3 = 0.426 m, γ3·l3 = 0.138 m, r3·l3 = 0.184 m; I3 = m (γ l)² = 0.1515 kg m² (spec §2).
+    #[test]
+    fn paper_example_thigh() {
+        let b = Body::standard(1.8, 80.0).unwrap();
+        assert!((b.m3 - 8.0).abs() < 1e-12);
+        assert!((b.l3 - 0.426).abs() < 5e-4);
+        assert!((b.r3 - 0.184).abs() < 5e-4);
+        assert!((b.i3 / b.m3).sqrt() - 0.138 < 5e-4);
+        assert!((b.i3 - 0.1515).abs() < 5e-4);
+    }
+
+    /// l8² + l9² ≈ l11²: hind foot, ankle height and heel–ankle form a right triangle (spec §2).
+    #[test]
+    fn hind_foot_right_triangle() {
+        let t = BodyTable::builtin();
+        let f = &t.foot;
+        assert!((f.hind_foot.hypot(f.ankle_height) - f.heel_to_ankle).abs() < 5e-6);
+        let b = Body::new(&t, 1.5, 70.0).unwrap();
+        assert!((b.l8.hypot(b.l9) - b.l11).abs() < 1e-15);
+    }
+
+    /// Segment masses of the whole body: upper body + 2 legs = 100 % of M.
+    #[test]
+    fn masses_add_up_to_the_body() {
+        let b = Body::standard(1.75, 70.0).unwrap();
+        assert!((b.m2 + 2.0 * b.m1 - b.mass).abs() < 1e-9);
+    }
+
+    #[test]
+    fn hip_ankle_distance_limits() {
+        let b = Body::standard(1.8, 80.0).unwrap();
+        assert!((b.hip_ankle_distance(0.0) - b.l1).abs() < 1e-12);
+        let right = (b.l3.powi(2) + b.l4.powi(2)).sqrt();
+        assert!((b.hip_ankle_distance(std::f64::consts::FRAC_PI_2) - right).abs() < 1e-12);
+    }
+
+    #[test]
+    fn out_of_range_bodies_are_named_errors() {
+        let e = Body::standard(3.0, 80.0).unwrap_err().to_string();
+        assert!(e.contains("height") && e.contains("[1.2, 2.2]"), "{e}");
+        let e = Body::standard(1.8, f64::NAN).unwrap_err().to_string();
+        assert!(e.contains("mass") && e.contains("NaN"), "{e}");
+    }
+
+    #[test]
+    fn malformed_tables_are_rejected() {
+        let bad = BUILTIN_TABLE.replace("length = 0.23669", "length = -0.2");
+        let e = BodyTable::parse(&bad, Path::new("x.toml")).unwrap_err().to_string();
+        assert!(e.contains("thigh.length"), "{e}");
+        let e = BodyTable::parse("name = 3", Path::new("y.toml")).unwrap_err();
+        assert!(matches!(e, Error::Malformed { .. }));
+    }
+}

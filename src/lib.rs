@@ -1,0 +1,14 @@
+//! klaw: goal-directed, dynamically simulated human walking after Bruderlin & Calvert,
+//! "Goal-directed, dynamic animation of human walking" (SIGGRAPH 1989).
+pub mod attributes;
+pub mod body;
+pub mod control;
+pub mod error;
+
+pub use attributes::{AttributeTable, Attributes};
+pub use body::Body;
+pub use error::{Error, Result};
+pub mod params;
+pub mod plan;
+pub use params::{Gait, GaitRequest};
+pub use plan::{StepConstraints, Timing};

@@ -1,0 +1,190 @@
+//! Locomotion parameters: completion of velocity, step length and step frequency by the
+//! normalizing formula (KLAW 1989 eq. 1, after Inman: sl = 0.004 · sf · H, v = sl · sf / 60) and
+//! the anatomical limits checked before anything is simulated.
+use serde::{Deserialize, Serialize};
+
+use crate::attributes::Attributes;
+use crate::body::Body;
+use crate::error::{Error, Result};
+
+/// Normalizing constant of eq. 1: metres of step per (step/min · m of body height).
+pub const NORMALIZING_CONSTANT: f64 = 0.004;
+
+/// What the user asked for: any of v (m/s), sl (m), sf (steps/min).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct GaitRequest {
+    pub velocity: Option<f64>,
+    pub step_length: Option<f64>,
+    pub step_frequency: Option<f64>,
+}
+
+/// A complete, checked gait: v = sl · sf / 60.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Gait {
+    /// m/s
+    pub velocity: f64,
+    /// m
+    pub step_length: f64,
+    /// steps/min
+    pub step_frequency: f64,
+}
+
+impl GaitRequest {
+    /// Complete the request by the normalizing formula and check it against the anatomical
+    /// limits of `attrs` (KLAW 1989 §3.1): only v → sf = √(15000 v / H), sl = 60 v / sf;
+    /// only sf → sl = 0.004 sf H; only sl → sf = sl / (0.004 H); two given → the third from
+    /// v = sl sf / 60; all three → they must agree within `consistency_tolerance`.
+    pub fn complete(&self, body: &Body, attrs: &Attributes) -> Result<Gait> {
+        for (name, value) in [
+            ("velocity", self.velocity),
+            ("step_length", self.step_length),
+            ("step_frequency", self.step_frequency),
+        ] {
+            if let Some(v) = value {
+                if !v.is_finite() {
+                    return Err(Error::NotFinite { name: name.into(), value: v });
+                }
+                if v <= 0.0 {
+                    return Err(Error::OutOfRange {
+                        name: name.into(),
+                        value: v,
+                        min: f64::MIN_POSITIVE,
+                        max: f64::INFINITY,
+                        unit: String::new(),
+                    });
+                }
+            }
+        }
+        let h = body.height;
+        let k = NORMALIZING_CONSTANT;
+        let (v, sl, sf) = match (self.velocity, self.step_length, self.step_frequency) {
+            (None, None, None) => return Err(Error::MissingGait),
+            (Some(v), None, None) => {
+                let sf = (60.0 * v / (k * h)).sqrt();
+                (v, 60.0 * v / sf, sf)
+            }
+            (None, None, Some(sf)) => (k * sf * h * sf / 60.0, k * sf * h, sf),
+            (None, Some(sl), None) => {
+                let sf = sl / (k * h);
+                (sl * sf / 60.0, sl, sf)
+            }
+            (Some(v), Some(sl), None) => (v, sl, 60.0 * v / sl),
+            (Some(v), None, Some(sf)) => (v, 60.0 * v / sf, sf),
+            (None, Some(sl), Some(sf)) => (sl * sf / 60.0, sl, sf),
+            (Some(v), Some(sl), Some(sf)) => {
+                let implied = sl * sf / 60.0;
+                if (implied - v).abs() > attrs.consistency_tolerance * v {
+                    return Err(Error::Inconsistent {
+                        velocity: v,
+                        step_length: sl,
+                        step_frequency: sf,
+                        implied,
+                        tolerance_pct: attrs.consistency_tolerance * 100.0,
+                    });
+                }
+                (v, sl, sf)
+            }
+        };
+        let checks = [
+            ("velocity", v, attrs.velocity_min, attrs.velocity_max, "m/s", self.velocity),
+            (
+                "step_length",
+                sl,
+                round4(attrs.step_length_min * body.l1),
+                round4(attrs.step_length_max * body.l1),
+                "m",
+                self.step_length,
+            ),
+            (
+                "step_frequency",
+                sf,
+                attrs.step_frequency_min,
+                attrs.step_frequency_max,
+                "steps/min",
+                self.step_frequency,
+            ),
+        ];
+        // what the user gave is named first, what was derived from it after
+        for given in [true, false] {
+            for (name, value, min, max, unit, asked) in checks {
+                if asked.is_some() == given {
+                    Error::check_range(name, value, min, max, unit)?;
+                }
+            }
+        }
+        Ok(Gait { velocity: v, step_length: sl, step_frequency: sf })
+    }
+}
+
+fn round4(x: f64) -> f64 {
+    (x * 1e4).round() / 1e4
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn setup() -> (Body, Attributes) {
+        (Body::standard(1.8, 80.0).unwrap(), Attributes::default())
+    }
+
+    fn req(v: Option<f64>, sl: Option<f64>, sf: Option<f64>) -> GaitRequest {
+        GaitRequest { velocity: v, step_length: sl, step_frequency: sf }
+    }
+
+    /// Hand computation: sf = √(15000 · 1.4 / 1.8) = √11666.67 = 108.012; sl = 84 / 108.012 = 0.7777.
+    #[test]
+    fn velocity_only_worked_example() {
+        let (b, a) = setup();
+        let g = req(Some(1.4), None, None).complete(&b, &a).unwrap();
+        assert!((g.step_frequency - 108.0123).abs() < 1e-3, "{g:?}");
+        assert!((g.step_length - 0.77769).abs() < 1e-4, "{g:?}");
+        // the normalizing relation holds for the completed pair
+        assert!((g.step_length - 0.004 * g.step_frequency * 1.8).abs() < 1e-12);
+    }
+
+    #[test]
+    fn every_completion_rule_satisfies_v_equals_sl_sf() {
+        let (b, a) = setup();
+        let cases = [
+            req(None, None, Some(100.0)),  // sl = 0.72, v = 1.2
+            req(None, Some(0.72), None),   // sf = 100
+            req(Some(1.2), Some(0.72), None),
+            req(Some(1.2), None, Some(100.0)),
+            req(None, Some(0.72), Some(100.0)),
+            req(Some(1.2), Some(0.72), Some(100.0)),
+        ];
+        for c in cases {
+            let g = c.complete(&b, &a).unwrap();
+            assert!((g.velocity - 1.2).abs() < 1e-12, "{c:?} → {g:?}");
+            assert!((g.step_length - 0.72).abs() < 1e-12, "{c:?} → {g:?}");
+            assert!((g.step_frequency - 100.0).abs() < 1e-9, "{c:?} → {g:?}");
+        }
+    }
+
+    #[test]
+    fn inconsistent_triple_is_an_error_naming_the_implied_speed() {
+        let (b, a) = setup();
+        let e = req(Some(1.4), Some(0.6), Some(100.0)).complete(&b, &a).unwrap_err();
+        let msg = e.to_string();
+        assert!(matches!(e, Error::Inconsistent { .. }) && msg.contains("1.0000 m/s"), "{msg}");
+        assert_eq!(e.exit_code(), 2);
+    }
+
+    #[test]
+    fn limits_name_the_value_and_range() {
+        let (b, a) = setup();
+        let e = req(None, None, Some(190.0)).complete(&b, &a).unwrap_err().to_string();
+        assert!(e.contains("step_frequency = 190") && e.contains("182"), "{e}");
+        let e = req(Some(3.5), None, None).complete(&b, &a).unwrap_err().to_string();
+        assert!(e.contains("velocity = 3.5") && e.contains("[0.4, 2.5]"), "{e}");
+        let e = req(Some(1.0), Some(1.5), None).complete(&b, &a).unwrap_err().to_string();
+        // sl_max = 1.3 l1 = 1.3 · (0.23669 + 0.24556) · 1.8 = 1.1285 m
+        assert!(e.contains("step_length = 1.5") && e.contains("1.1285"), "{e}");
+        let e = req(Some(f64::NAN), None, None).complete(&b, &a).unwrap_err();
+        assert!(matches!(e, Error::NotFinite { .. }));
+        let e = req(Some(-1.0), None, None).complete(&b, &a).unwrap_err();
+        assert!(matches!(e, Error::OutOfRange { .. }));
+        assert!(matches!(req(None, None, None).complete(&b, &a), Err(Error::MissingGait)));
+    }
+}

@@ -1,0 +1,218 @@
+//! The high level of the control hierarchy: from a gait to the **step constraints** — state-phase
+//! timings (KLAW 1989 eq. 2) and the final conditions of a step from step symmetry (eq. 3 and
+//! Figures 4–5, made precise in the spec §3).
+use serde::Serialize;
+
+use crate::attributes::Attributes;
+use crate::body::Body;
+use crate::error::{Error, Result};
+use crate::params::Gait;
+
+/// Standard gravity (m/s²).
+pub const GRAVITY: f64 = 9.81;
+
+/// State-phase timings of one step (s), KLAW 1989 eq. 2.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Timing {
+    pub t_step: f64,
+    pub t_cycle: f64,
+    /// Double support: t_ds = (−0.16 sf + 29.08) · t_cycle / 100.
+    pub t_ds: f64,
+    pub t_stance: f64,
+    pub t_swing: f64,
+}
+
+impl Timing {
+    /// Eq. 2 for a step frequency in steps/min. Fails when double support vanishes
+    /// (sf ≥ 181.75: running).
+    pub fn new(step_frequency: f64) -> Result<Self> {
+        let t_step = 60.0 / step_frequency;
+        let t_cycle = 2.0 * t_step;
+        let t_ds = (-0.16 * step_frequency + 29.08) * t_cycle / 100.0;
+        if t_ds <= 0.0 {
+            return Err(Error::NoDoubleSupport { step_frequency, t_ds });
+        }
+        Ok(Timing { t_step, t_cycle, t_ds, t_stance: t_step + t_ds, t_swing: t_step - t_ds })
+    }
+}
+
+/// Everything the lower levels must achieve in one step. Positions are relative to the step's
+/// stance ankle pivot (x = 0, y = l9); heights are absolute (ground at y = 0).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct StepConstraints {
+    pub gait: Gait,
+    pub timing: Timing,
+    /// θ1*: stance leg angle at the end of the step (rad, hip ahead of the ankle +).
+    pub theta1: f64,
+    /// w*: telescopic leg length at the end of the step (m).
+    pub w: f64,
+    /// θ3*: swing thigh angle at heel strike (rad, negative: knee ahead of the hip).
+    pub theta3: f64,
+    /// θ4* = κ_hs: swing knee flexion at heel strike (rad).
+    pub theta4: f64,
+    /// Hip at heel strike: (sl/2, y_hs).
+    pub hip: [f64; 2],
+    /// Heel of the striking foot at impact: (sl − l8, 0).
+    pub heel_x: f64,
+    /// Sole angle of the striking foot, toe up (rad).
+    pub sole_angle: f64,
+    /// Ankle dorsiflexion at impact δ_hs (rad).
+    pub ankle: f64,
+    /// Height budget E = l1 + l9 − y_hs (m).
+    pub height_budget: f64,
+    /// Bounce e = min(ε E, g t_step² / 4π²) (m): the hip's rise above y_hs at mid-stance.
+    pub bounce: f64,
+}
+
+impl StepConstraints {
+    /// Step symmetry, spec §3 steps 1–4: at heel strike the hip is midway between the stance
+    /// ankle (0, l9) and the flat-foot position of the swing ankle (sl, l9); the swing leg
+    /// (hip–ankle distance a1 for knee flexion κ_hs) reaches the heel at (sl − l8, 0) with ankle
+    /// dorsiflexion δ_hs. Cosine law: r² = a1² + l11² + 2 a1 l11 cos(ω8 − δ_hs + α), cos ω8 = l9/l11,
+    /// where α = κ − β is the angle between shank and hip–ankle line (0 for a straight knee, the
+    /// paper's case; the spec's formula omits it and misses the ground by 0.75 mm at κ = 4°).
+    pub fn new(body: &Body, attrs: &Attributes, gait: Gait) -> Result<Self> {
+        let timing = Timing::new(gait.step_frequency)?;
+        let sl = gait.step_length;
+        let kappa = attrs.heel_strike_knee;
+        let delta = attrs.heel_strike_ankle;
+        let a1 = body.hip_ankle_distance(kappa);
+        let omega8 = (body.l9 / body.l11).acos();
+        // triangle hip–knee–ankle: the thigh is ahead of the hip–ankle line by β, the shank
+        // behind it by α = κ − β; δ_hs is relative to the shank, so relative to the line the
+        // foot is dorsiflexed by δ_hs − α
+        let beta = (body.l4 * kappa.sin() / a1).asin();
+        let alpha = kappa - beta;
+        let r2 =
+            a1 * a1 + body.l11 * body.l11 + 2.0 * a1 * body.l11 * (omega8 - delta + alpha).cos();
+        let r = r2.sqrt();
+        let heel_x = sl - body.l8;
+        let x_h = sl / 2.0;
+        let dx = heel_x - x_h;
+        if dx.abs() >= r {
+            return Err(Error::Geometry {
+                what: format!("step length {sl} m: the swing heel cannot reach the ground"),
+            });
+        }
+        let y_h = (r2 - dx * dx).sqrt();
+        let w = ((y_h - body.l9).powi(2) + x_h * x_h).sqrt();
+        let theta1 = (x_h / w).asin();
+        let omega3 = ((a1 * a1 + r2 - body.l11 * body.l11) / (2.0 * a1 * r)).acos();
+        // angle of the hip–ankle line from the downward vertical (negative: ankle ahead)
+        let line = -(omega3 + (dx / r).asin());
+        let theta3 = line - beta;
+        let shank = theta3 + kappa;
+        let height_budget = body.l1 + body.l9 - y_h;
+        let cap = GRAVITY * timing.t_step.powi(2) / (4.0 * std::f64::consts::PI.powi(2));
+        Ok(StepConstraints {
+            gait,
+            timing,
+            theta1,
+            w,
+            theta3,
+            theta4: kappa,
+            hip: [x_h, y_h],
+            heel_x,
+            sole_angle: -shank + delta,
+            ankle: delta,
+            height_budget,
+            bounce: (attrs.bounciness * height_budget).min(cap),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::params::GaitRequest;
+
+    fn worked(kappa_deg: f64, delta_deg: f64) -> (Body, StepConstraints) {
+        let body = Body::standard(1.8, 80.0).unwrap();
+        let mut attrs = Attributes::default();
+        attrs.heel_strike_knee = kappa_deg.to_radians();
+        attrs.heel_strike_ankle = delta_deg.to_radians();
+        let gait = GaitRequest { velocity: Some(1.4), ..Default::default() }
+            .complete(&body, &attrs)
+            .unwrap();
+        let c = StepConstraints::new(&body, &attrs, gait).unwrap();
+        (body, c)
+    }
+
+    /// Spec §3 worked example, recomputed by hand: sf = 108.01, t_step = 60/108.01 = 0.5555 s,
+    /// t_ds = (−0.16·108.01 + 29.08)·1.1110/100 = 0.1311 s.
+    #[test]
+    fn timings_of_the_worked_example() {
+        let (_, c) = worked(0.0, 0.0);
+        let t = c.timing;
+        assert!((t.t_step - 0.5555).abs() < 1e-4);
+        assert!((t.t_ds - 0.1311).abs() < 1e-4);
+        assert!((t.t_stance - 0.6866).abs() < 1e-4);
+        assert!((t.t_swing - 0.4244).abs() < 1e-4);
+        assert!((t.t_cycle - 2.0 * t.t_step).abs() < 1e-15);
+    }
+
+    /// Spec §3 worked example: hip = (0.3888, 0.8768), w* = 0.8963, θ1* = 25.71°,
+    /// θ3* = −24.20°, E = 6.05 cm, sole angle 24.2°.
+    #[test]
+    fn final_conditions_of_the_worked_example() {
+        let (_, c) = worked(0.0, 0.0);
+        assert!((c.hip[0] - 0.3888).abs() < 1e-4, "{c:?}");
+        assert!((c.hip[1] - 0.8768).abs() < 1e-4, "{c:?}");
+        assert!((c.w - 0.8963).abs() < 1e-4);
+        assert!((c.theta1.to_degrees() - 25.71).abs() < 0.01);
+        assert!((c.theta3.to_degrees() + 24.20).abs() < 0.01);
+        assert!((c.height_budget - 0.0605).abs() < 1e-4);
+        assert!((c.sole_angle.to_degrees() - 24.20).abs() < 0.01);
+    }
+
+    /// Spec §3: with δ_hs = −4.645° the sole angle is 20°, w* = 0.8922 m, θ1* = 25.84°, θ3* = −24.64°.
+    #[test]
+    fn final_conditions_with_plantarflexed_ankle() {
+        let (_, c) = worked(0.0, -4.645);
+        assert!((c.sole_angle.to_degrees() - 20.0).abs() < 0.01, "{c:?}");
+        assert!((c.w - 0.8922).abs() < 1e-4);
+        assert!((c.theta1.to_degrees() - 25.84).abs() < 0.01);
+        assert!((c.theta3.to_degrees() + 24.64).abs() < 0.01);
+    }
+
+    /// Independent check of the cosine-law construction for a flexed knee: forward kinematics of
+    /// thigh (θ3*), shank (θ3* + κ) and a foot pitched by (shank − δ_hs) puts the heel on the
+    /// ground at sl − l8, and the hip–stance-ankle distance is w*.
+    #[test]
+    fn forward_kinematics_lands_the_heel() {
+        for (kappa, delta) in [(4.0, 0.0), (10.0, -5.0), (0.0, 5.0)] {
+            let (b, c) = worked(kappa, delta);
+            let [xh, yh] = c.hip;
+            let shank = c.theta3 + c.theta4;
+            let knee = [xh - b.l3 * c.theta3.sin(), yh - b.l3 * c.theta3.cos()];
+            let ankle = [knee[0] - b.l4 * shank.sin(), knee[1] - b.l4 * shank.cos()];
+            let p = shank - c.ankle; // foot pitch, heel up +
+            let heel = [
+                ankle[0] - b.l8 * p.cos() - b.l9 * p.sin(),
+                ankle[1] + b.l8 * p.sin() - b.l9 * p.cos(),
+            ];
+            assert!(heel[1].abs() < 1e-12, "κ {kappa} δ {delta}: heel {heel:?}");
+            assert!((heel[0] - c.heel_x).abs() < 1e-12, "κ {kappa} δ {delta}: heel {heel:?}");
+            let w = ((xh).powi(2) + (yh - b.l9).powi(2)).sqrt();
+            assert!((w - c.w).abs() < 1e-12);
+            assert!((c.sole_angle + p).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn running_is_refused() {
+        let e = Timing::new(181.9).unwrap_err();
+        assert!(e.to_string().contains("181.75"), "{e}");
+        assert!(Timing::new(181.7).is_ok());
+    }
+
+    /// The bounce is capped so that the reference never asks for more than g/2 downward:
+    /// e ≤ g t_step² / 4π².
+    #[test]
+    fn bounce_is_epsilon_e_or_capped() {
+        let (_, c) = worked(4.0, 0.0);
+        assert!((c.bounce - 0.8 * c.height_budget).abs() < 1e-15);
+        let cap = GRAVITY * c.timing.t_step.powi(2) / (4.0 * std::f64::consts::PI.powi(2));
+        assert!(c.bounce <= cap);
+    }
+}
