@@ -118,7 +118,7 @@ impl BodyTable {
 /// A body of height H and mass M in SI units. Names follow Table B-1: l_i lengths, m_i masses,
 /// `r_i` centre-of-mass distances in metres (r1 from the ankle, r2 from the hip, r3 from the hip,
 /// r4 from the knee), `i_i` moments of inertia about the centre of mass, I = m (γ l)².
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Body {
     pub height: f64,
     pub mass: f64,

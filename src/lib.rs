@@ -4,6 +4,7 @@ pub mod attributes;
 pub mod body;
 pub mod control;
 pub mod error;
+pub mod ode;
 
 pub use attributes::{AttributeTable, Attributes};
 pub use body::Body;
@@ -12,3 +13,6 @@ pub mod params;
 pub mod plan;
 pub use params::{Gait, GaitRequest};
 pub use plan::{StepConstraints, Timing};
+pub mod dynamics;
+pub mod walk;
+pub mod report;

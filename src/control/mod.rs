@@ -1,3 +1,4 @@
 //! The middle level of the control hierarchy: subphase state machines, force and torque
 //! profiles, and the shooting solvers that find their magnitudes.
 pub mod shooting;
+pub mod stance;

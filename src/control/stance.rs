@@ -1,0 +1,211 @@
+//! Stance control (KLAW 1989 §4.2, spec §4): the forces of the telescopic stance model — the leg
+//! torque step τ1, the upper-body balance torque, the leg axis force with its position actuator
+//! pa — the telescopic / locked subphases, and one trial integration of a step's stance.
+use nalgebra::{SVector, Vector2, Vector3};
+use std::f64::consts::PI;
+
+use crate::dynamics::StanceModel;
+use crate::dynamics::impact;
+use crate::ode::{self, Phase, Segment};
+
+/// State (w, θ1, θ2, ẇ, θ̇1, θ̇2).
+pub type StanceState = SVector<f64, 6>;
+
+/// Fraction of the step after which the leg torque τ1 is switched off (paper: EMG shows the
+/// hip-extensor push only early in stance).
+pub const TORQUE_OFF: f64 = 0.4;
+/// A trial stops when |θ1| exceeds this (rad): the residual of a wild guess (spec §4).
+pub const THETA1_ABORT: f64 = PI / 3.0;
+
+/// Everything about one step's stance that does not change between shooting trials.
+#[derive(Clone, Copy, Debug)]
+pub struct StanceSetup {
+    pub model: StanceModel,
+    /// Leg length l1 (m).
+    pub l1: f64,
+    /// Leg axis spring and damper (N/m, N s/m).
+    pub k_w: f64,
+    pub d_w: f64,
+    /// Balance spring and damper (N m/rad, N m s/rad) and the forward-lean reference (rad).
+    pub k_2: f64,
+    pub d_2: f64,
+    pub theta2_ref: f64,
+    pub t_step: f64,
+    /// |θ1| at the start of the step (the previous step's θ1*) and θ1* at its end.
+    pub theta1_start: f64,
+    pub theta1_end: f64,
+    /// w* at the end of the step.
+    pub w_end: f64,
+    /// Hip heights at the two heel strikes (m).
+    pub y_start: f64,
+    pub y_end: f64,
+    /// Bounce e of the hip reference (m).
+    pub bounce: f64,
+}
+
+/// The hip height reference and its derivative with respect to θ1, spec §4 [ours]:
+/// y_ref = ȳ(u) + (e/2)(1 + cos πu), u = sin θ1 / sin θ1^± clipped to [−1, 1], with ȳ blending
+/// the two heel-strike heights (ȳ = y_hs when they are equal).
+pub fn hip_reference(s: &StanceSetup, theta1: f64) -> (f64, f64) {
+    let denom = if theta1 < 0.0 { s.theta1_start.sin() } else { s.theta1_end.sin() };
+    let raw = theta1.sin() / denom;
+    let (u, du) = if raw.abs() >= 1.0 { (raw.signum(), 0.0) } else { (raw, theta1.cos() / denom) };
+    let half = 0.5 * PI * (1.0 + u);
+    let dy = s.y_end - s.y_start;
+    let base = s.y_start + dy * 0.5 * (1.0 - half.cos());
+    let dbase = dy * 0.25 * PI * half.sin();
+    let bump = 0.5 * s.bounce * (1.0 + (PI * u).cos());
+    let dbump = -0.5 * s.bounce * PI * (PI * u).sin();
+    (base + bump, (dbase + dbump) * du)
+}
+
+/// smoothstep(x) = 3x² − 2x³ on [0, 1], clamped.
+pub fn smoothstep(x: f64) -> f64 {
+    let x = x.clamp(0.0, 1.0);
+    x * x * (3.0 - 2.0 * x)
+}
+
+/// One stance trial: the unknown magnitudes (τ1, p) and the subphase.
+#[derive(Clone, Copy, Debug)]
+pub struct StanceForces<'a> {
+    pub setup: &'a StanceSetup,
+    /// Leg torque magnitude τ1 (N m), on for t < 0.4 t_step.
+    pub tau1: f64,
+    /// Leg extension p (m) of the position actuator, blended in over the second half-step.
+    pub p: f64,
+    pub locked: bool,
+}
+
+impl StanceForces<'_> {
+    /// Generalized forces Q = (F_w, F_θ1 − F_θ2, F_θ2) at (t, y).
+    pub fn generalized(&self, t: f64, y: &StanceState) -> Vector3<f64> {
+        let s = self.setup;
+        let (w, th1, th2, wd, th1d, th2d) = (y[0], y[1], y[2], y[3], y[4], y[5]);
+        let f2 = -s.k_2 * (th2 - s.theta2_ref) - s.d_2 * th2d;
+        let f1 = if t < TORQUE_OFF * s.t_step { self.tau1 } else { 0.0 };
+        let fw = if self.locked {
+            0.0
+        } else {
+            // pa = w_ref − l1 + (m2 g cos θ1 + d_w ẇ_ref)/k_w + p s(t), F_w = k_w (l1 + pa − w) − d_w ẇ ≥ 0
+            let (c1, s1) = (th1.cos(), th1.sin());
+            let (y_ref, dy_ref) = hip_reference(s, th1);
+            let w_ref = (y_ref - s.model.l9) / c1;
+            let dw_ref = dy_ref / c1 + (y_ref - s.model.l9) * s1 / (c1 * c1);
+            let wd_ref = dw_ref * th1d;
+            let blend = smoothstep((t - 0.5 * s.t_step) / (0.5 * s.t_step));
+            let f = s.k_w * (w_ref - w + self.p * blend)
+                + s.model.m2 * s.model.g * c1
+                + s.d_w * (wd_ref - wd);
+            f.max(0.0)
+        };
+        Vector3::new(fw, f1 - f2, f2)
+    }
+
+    /// q̈ at (t, y).
+    pub fn accelerations(&self, t: f64, y: &StanceState) -> Vector3<f64> {
+        let q = Vector3::new(y[0], y[1], y[2]);
+        let qd = Vector3::new(y[3], y[4], y[5]);
+        self.setup.model.accelerations(&q, &qd, &self.generalized(t, y), self.locked)
+    }
+}
+
+/// Events: 0 lock / release, 1 |θ1| too large, 2 leg collapsed.
+impl Phase<6, 3> for StanceForces<'_> {
+    fn rhs(&self, t: f64, y: &StanceState) -> StanceState {
+        let a = self.accelerations(t, y);
+        StanceState::from([y[3], y[4], y[5], a[0], a[1], a[2]])
+    }
+
+    fn events(&self, _t: f64, y: &StanceState) -> [f64; 3] {
+        let (w, th1) = (y[0], y[1]);
+        let switch = if self.locked {
+            -th1 // release when the leg passes the vertical
+        } else if th1 < 0.0 {
+            self.setup.l1 - w // lock when w crosses l1 upward while θ1 < 0
+        } else {
+            1.0
+        };
+        [switch, THETA1_ABORT - th1.abs(), w - 0.5 * self.setup.l1]
+    }
+}
+
+/// The dense record of one stance trial.
+#[derive(Clone, Debug)]
+pub struct StanceRun {
+    pub tau1: f64,
+    pub p: f64,
+    /// Integration segments with their subphase (`true` = locked leg).
+    pub segments: Vec<(Segment<6>, bool)>,
+    /// The trial stopped early (|θ1| > 60° or w < l1/2).
+    pub aborted: bool,
+    /// End-condition residual (θ1 − θ1*, w − w*) at the end (or where it stopped).
+    pub residual: Vector2<f64>,
+    /// Right-hand-side evaluations spent.
+    pub evaluations: u32,
+}
+
+impl StanceRun {
+    /// One trial integration of the stance from `y0` over [0, t_step] with magnitudes (τ1, p).
+    pub fn simulate(setup: &StanceSetup, y0: StanceState, tau1: f64, p: f64) -> Result<Self, String> {
+        let breaks = [TORQUE_OFF * setup.t_step, 0.5 * setup.t_step, setup.t_step];
+        let mut run = StanceRun {
+            tau1,
+            p,
+            segments: Vec::with_capacity(4),
+            aborted: false,
+            residual: Vector2::zeros(),
+            evaluations: 0,
+        };
+        let (mut t, mut y, mut locked) = (0.0, y0, false);
+        'outer: for t_break in breaks {
+            while t < t_break {
+                let forces = StanceForces { setup, tau1, p, locked };
+                let out = ode::integrate(&forces, t, y, t_break)?;
+                run.evaluations += out.evaluations;
+                t = out.segment.t1;
+                y = out.segment.y1;
+                run.segments.push((out.segment, locked));
+                match out.event {
+                    None => {}
+                    Some(0) if locked => locked = false,
+                    Some(0) => {
+                        // the knee locks: a plastic impulse along the leg stops ẇ
+                        let q = Vector3::new(y[0], y[1], y[2]);
+                        let (qd, _) = impact::heel_strike(&setup.model, &q, &Vector3::new(y[3], y[4], y[5]));
+                        y = StanceState::from([y[0], y[1], y[2], 0.0, qd[1], qd[2]]);
+                        locked = true;
+                    }
+                    Some(_) => {
+                        run.aborted = true;
+                        break 'outer;
+                    }
+                }
+            }
+        }
+        run.residual = Vector2::new(y[1] - setup.theta1_end, y[0] - setup.w_end);
+        Ok(run)
+    }
+
+    /// End time of the record (t_step unless aborted).
+    pub fn t_end(&self) -> f64 {
+        self.segments.last().map_or(0.0, |(s, _)| s.t1)
+    }
+
+    /// The state and subphase at time t.
+    pub fn state(&self, t: f64) -> (StanceState, bool) {
+        let i = self.segments.partition_point(|(s, _)| s.t1 < t).min(self.segments.len() - 1);
+        let (seg, locked) = &self.segments[i];
+        (seg.state(t), *locked)
+    }
+
+    /// Hip position, velocity and acceleration at t (relative to the stance ankle's x).
+    pub fn hip(&self, setup: &StanceSetup, t: f64) -> [[f64; 2]; 3] {
+        let (y, locked) = self.state(t);
+        let q = Vector3::new(y[0], y[1], y[2]);
+        let qd = Vector3::new(y[3], y[4], y[5]);
+        let forces = StanceForces { setup, tau1: self.tau1, p: self.p, locked };
+        let qdd = forces.accelerations(t, &y);
+        let m = &setup.model;
+        [m.hip(&q), m.hip_velocity(&q, &qd), m.hip_acceleration(&q, &qd, &qdd)]
+    }
+}

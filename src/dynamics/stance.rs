@@ -1,0 +1,159 @@
+//! Stance model (KLAW 1989 §2.3, Appendix A.1, Figure 2): an inverted pendulum with a telescopic
+//! leg of length w pivoting at the ankle, and the upper body (head, arms, trunk) on top at the hip.
+//! Generalized coordinates q = (w, θ1, θ2): θ1 the leg from the upward vertical (hip ahead of the
+//! ankle +), θ2 the upper body from the upward vertical (leaning forward +).
+//!
+//! With s = sin, c = cos, s12 = sin(θ1 − θ2), c12 = cos(θ1 − θ2), a = r2 (hip to upper-body
+//! centre of mass), J1 = m1 r1² + I1 (leg about the ankle), J2 = m2 a² + I2 (upper body about the
+//! hip), the Lagrangian L = T − V with
+//!   T = ½ J1 θ̇1² + ½ m2 (ẇ² + w² θ̇1² + a² θ̇2² + 2 a ẇ θ̇2 s12 + 2 a w θ̇1 θ̇2 c12) + ½ I2 θ̇2²,
+//!   V = m1 g (l9 + r1 c1) + m2 g (l9 + w c1 + a c2)
+//! gives M q̈ + b = Q with
+//!   M = [[m2, 0, m2 a s12], [0, J1 + m2 w², m2 a w c12], [m2 a s12, m2 a w c12, J2]],
+//!   b1 = −m2 w θ̇1² − m2 a c12 θ̇2² + m2 g c1,
+//!   b2 = 2 m2 w ẇ θ̇1 + m2 a w s12 θ̇2² − (m1 r1 + m2 w) g s1,
+//!   b3 = 2 m2 a c12 ẇ θ̇1 − m2 a w s12 θ̇1² − m2 g a s2.
+use nalgebra::{Matrix2, Matrix3, Vector2, Vector3};
+
+use crate::body::Body;
+use crate::plan::GRAVITY;
+
+/// Inertial parameters of the stance model.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StanceModel {
+    /// Leg mass m1 = m3 + m4 (kg).
+    pub m1: f64,
+    /// Upper-body mass m2 (kg).
+    pub m2: f64,
+    /// Leg centre of mass from the ankle, r1 (m).
+    pub r1: f64,
+    /// Leg moment of inertia about the ankle, J1 = m1 r1² + I1 (kg m²).
+    pub j1: f64,
+    /// Hip to upper-body centre of mass, a = r2 (m).
+    pub a: f64,
+    /// Upper-body moment of inertia about its centre of mass, I2 (kg m²).
+    pub i2: f64,
+    /// Ankle pivot height l9 (m).
+    pub l9: f64,
+    /// Gravity (m/s²).
+    pub g: f64,
+}
+
+impl StanceModel {
+    pub fn new(body: &Body) -> Self {
+        StanceModel {
+            m1: body.m1,
+            m2: body.m2,
+            r1: body.r1,
+            j1: body.m1 * body.r1 * body.r1 + body.i1,
+            a: body.r2,
+            i2: body.i2,
+            l9: body.l9,
+            g: GRAVITY,
+        }
+    }
+
+    /// Upper-body moment of inertia about the hip, J2 = m2 a² + I2.
+    pub fn trunk_inertia(&self) -> f64 {
+        self.m2 * self.a * self.a + self.i2
+    }
+
+    /// Mass matrix M(q) of the telescopic model.
+    pub fn mass_matrix(&self, q: &Vector3<f64>) -> Matrix3<f64> {
+        let (w, d) = (q[0], q[1] - q[2]);
+        let (s12, c12) = d.sin_cos();
+        let m2a = self.m2 * self.a;
+        Matrix3::new(
+            self.m2,
+            0.0,
+            m2a * s12,
+            0.0,
+            self.j1 + self.m2 * w * w,
+            m2a * w * c12,
+            m2a * s12,
+            m2a * w * c12,
+            self.trunk_inertia(),
+        )
+    }
+
+    /// Bias terms b(q, q̇): centrifugal, Coriolis and gravity, M q̈ + b = Q.
+    pub fn bias(&self, q: &Vector3<f64>, qd: &Vector3<f64>) -> Vector3<f64> {
+        let (w, t1, t2) = (q[0], q[1], q[2]);
+        let (wd, t1d, t2d) = (qd[0], qd[1], qd[2]);
+        let (s1, c1) = t1.sin_cos();
+        let s2 = t2.sin();
+        let (s12, c12) = (t1 - t2).sin_cos();
+        let (m2, a, g) = (self.m2, self.a, self.g);
+        Vector3::new(
+            -m2 * w * t1d * t1d - m2 * a * c12 * t2d * t2d + m2 * g * c1,
+            2.0 * m2 * w * wd * t1d + m2 * a * w * s12 * t2d * t2d - (self.m1 * self.r1 + m2 * w) * g * s1,
+            2.0 * m2 * a * c12 * wd * t1d - m2 * a * w * s12 * t1d * t1d - m2 * g * a * s2,
+        )
+    }
+
+    /// Accelerations q̈ = M⁻¹ (Q − b). With `locked` the leg length is held (ẇ = ẅ = 0; the
+    /// paper's locked-leg edit: the w row and column drop out) and q̈[0] = 0.
+    pub fn accelerations(&self, q: &Vector3<f64>, qd: &Vector3<f64>, force: &Vector3<f64>, locked: bool) -> Vector3<f64> {
+        let m = self.mass_matrix(q);
+        let rhs = force - self.bias(q, qd);
+        if locked {
+            let m2 = Matrix2::new(m[(1, 1)], m[(1, 2)], m[(2, 1)], m[(2, 2)]);
+            let acc = solve2(&m2, &Vector2::new(rhs[1], rhs[2]));
+            Vector3::new(0.0, acc[0], acc[1])
+        } else {
+            solve3(&m, &rhs)
+        }
+    }
+
+    /// Kinetic energy T(q, q̇).
+    pub fn kinetic_energy(&self, q: &Vector3<f64>, qd: &Vector3<f64>) -> f64 {
+        0.5 * qd.dot(&(self.mass_matrix(q) * qd))
+    }
+
+    /// Gravitational potential energy V(q), ground at y = 0.
+    pub fn potential_energy(&self, q: &Vector3<f64>) -> f64 {
+        let (w, c1, c2) = (q[0], q[1].cos(), q[2].cos());
+        self.g * (self.m1 * (self.l9 + self.r1 * c1) + self.m2 * (self.l9 + w * c1 + self.a * c2))
+    }
+
+    /// Hip relative to the ankle pivot's x, absolute height: (w sin θ1, l9 + w cos θ1).
+    pub fn hip(&self, q: &Vector3<f64>) -> [f64; 2] {
+        let (s1, c1) = q[1].sin_cos();
+        [q[0] * s1, self.l9 + q[0] * c1]
+    }
+
+    /// Hip velocity ẇ (s1, c1) + w θ̇1 (c1, −s1).
+    pub fn hip_velocity(&self, q: &Vector3<f64>, qd: &Vector3<f64>) -> [f64; 2] {
+        let (s1, c1) = q[1].sin_cos();
+        [qd[0] * s1 + q[0] * qd[1] * c1, qd[0] * c1 - q[0] * qd[1] * s1]
+    }
+
+    /// Hip acceleration from q, q̇ and q̈ (second derivative of [`Self::hip`]).
+    pub fn hip_acceleration(&self, q: &Vector3<f64>, qd: &Vector3<f64>, qdd: &Vector3<f64>) -> [f64; 2] {
+        let (w, wd, wdd) = (q[0], qd[0], qdd[0]);
+        let (t1d, t1dd) = (qd[1], qdd[1]);
+        let (s1, c1) = q[1].sin_cos();
+        [
+            wdd * s1 + 2.0 * wd * t1d * c1 + w * t1dd * c1 - w * t1d * t1d * s1,
+            wdd * c1 - 2.0 * wd * t1d * s1 - w * t1dd * s1 - w * t1d * t1d * c1,
+        ]
+    }
+}
+
+/// Solve a symmetric positive definite 3×3 system (stack only: the right-hand side of the
+/// integrator must not allocate).
+pub(crate) fn solve3(m: &Matrix3<f64>, rhs: &Vector3<f64>) -> Vector3<f64> {
+    match m.cholesky() {
+        Some(ch) => ch.solve(rhs),
+        None => Vector3::repeat(f64::NAN),
+    }
+}
+
+/// Solve a 2×2 system by Cramer's rule.
+pub(crate) fn solve2(m: &Matrix2<f64>, rhs: &Vector2<f64>) -> Vector2<f64> {
+    let det = m[(0, 0)] * m[(1, 1)] - m[(0, 1)] * m[(1, 0)];
+    Vector2::new(
+        (rhs[0] * m[(1, 1)] - m[(0, 1)] * rhs[1]) / det,
+        (m[(0, 0)] * rhs[1] - m[(1, 0)] * rhs[0]) / det,
+    )
+}

@@ -1,0 +1,89 @@
+//! What a walk produces besides its motion: per-frame records (the CSV rows) and the per-step
+//! report (targets, achievements, shooting statistics). Plain data, serialized by `io`.
+use serde::Serialize;
+
+use crate::walk::SolveRecord;
+
+/// One output frame. Field names are the CSV header; positions are world coordinates (x forward
+/// from the first stance ankle, y up from the ground), angles in degrees.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Frame {
+    pub time_s: f64,
+    pub step: usize,
+    /// `double_support`, `swing1`, `swing2` or `swing3` (the swing leg's subphase).
+    pub phase: &'static str,
+    /// `right` or `left`: the stance leg (step 0 stands on the right leg).
+    pub stance_side: &'static str,
+    /// `telescopic` or `locked`.
+    pub stance_mode: &'static str,
+    pub w_m: f64,
+    pub theta1_deg: f64,
+    pub theta2_deg: f64,
+    pub theta3_deg: f64,
+    pub theta4_deg: f64,
+    pub hip_x_m: f64,
+    pub hip_y_m: f64,
+    pub stance_ankle_x_m: f64,
+    pub stance_ankle_y_m: f64,
+    pub swing_knee_x_m: f64,
+    pub swing_knee_y_m: f64,
+    pub swing_ankle_x_m: f64,
+    pub swing_ankle_y_m: f64,
+    pub swing_heel_x_m: f64,
+    pub swing_heel_y_m: f64,
+    pub swing_toe_x_m: f64,
+    pub swing_toe_y_m: f64,
+}
+
+/// Target of a step (SI; step frequency in steps/min).
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct Target {
+    pub velocity: f64,
+    pub step_length: f64,
+    pub step_frequency: f64,
+}
+
+/// What a step achieved.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct Achieved {
+    /// step_length / duration (m/s).
+    pub velocity: f64,
+    /// Heel landing + l8: flat-foot ankle to flat-foot ankle (m).
+    pub step_length: f64,
+    /// Heel strike to heel strike (s).
+    pub duration: f64,
+}
+
+/// The report of one step.
+#[derive(Clone, Debug, Serialize)]
+pub struct StepReport {
+    pub index: usize,
+    pub target: Target,
+    pub achieved: Achieved,
+    pub solves: Vec<SolveRecord>,
+    /// Largest |end-condition error| of the step: θ1, w, θ3, θ4 at heel strike (rad or m).
+    pub end_condition_error: f64,
+    /// Height of the heel above the ground at heel strike (m).
+    pub heel_height_at_strike: f64,
+    /// Hip rise above its heel-strike height during the stance (m), and the reference e.
+    pub hip_excursion: f64,
+    pub bounce_reference: f64,
+    /// Lowest hip height minus the lower heel-strike height (m; ≥ −1e-6 by invariant).
+    pub hip_min_margin: f64,
+    /// Hip speed after / before the heel strike.
+    pub impact_speed_ratio: f64,
+    /// Lowest point of the swing foot over the whole swing (m), and the lowest toe height in
+    /// mid swing (25–75 %).
+    pub min_foot_height: f64,
+    pub min_toe_clearance: f64,
+    /// Heel vertical velocity at contact (m/s, ≤ 0).
+    pub heel_contact_velocity: f64,
+}
+
+/// The report of a walk.
+#[derive(Clone, Debug, Serialize)]
+pub struct Report {
+    pub height: f64,
+    pub mass: f64,
+    pub steps: Vec<StepReport>,
+}
