@@ -1,6 +1,6 @@
 use klaw::*;
 fn main() {
-    let body = Body::standard(1.8, 80.0).unwrap();
+    let body = Body::standard(std::env::args().nth(2).map(|s| s.parse().unwrap()).unwrap_or(1.8), 80.0).unwrap();
     let attrs = Attributes::default();
     let v: f64 = std::env::args().nth(1).map(|s| s.parse().unwrap()).unwrap_or(1.4);
     let gait = GaitRequest { velocity: Some(v), ..Default::default() }.complete(&body, &attrs).unwrap();
@@ -8,10 +8,9 @@ fn main() {
     for _ in 0..10 {
         match w.step(gait) {
             Ok(s) => {
-                let st = &s.stance;
-                let mut ymax: f64 = 0.0; let mut ymin: f64 = 9.0;
-                for i in 0..=200 { let t = st.t_end()*i as f64/200.0; let h = st.hip(&s.stance_setup, t); ymax = ymax.max(h[0][1]); ymin = ymin.min(h[0][1]); }
-                println!("step {} tau1 {:.3} p {:.5} {:?} impact {:.3} exc {:.4} (e {:.4}) below {:.2e} segs {}", s.index, st.tau1, st.p, s.solves[0].report, s.impact.speed_ratio, ymax - s.constraints.hip[1], s.constraints.bounce, s.constraints.hip[1].min(s.stance_setup.y_start) - ymin, st.segments.len());
+                let r = &s.report;
+                for so in &s.solves { print!("{}:{}{} ", so.phase, so.report.iterations, if so.report.converged {""} else {"X"}); }
+                println!("| end {:.1e} heel {:.1e} sl {:.5}/{:.5} exc {:.4}/{:.4} margin {:.1e} low {:.2e} mid {:.4} hv {:.3}", r.end_condition_error, r.heel_height_at_strike, r.achieved.step_length, r.target.step_length, r.hip_excursion, r.bounce_reference, r.hip_min_margin, r.min_foot_height, r.min_toe_clearance, r.heel_contact_velocity);
             }
             Err(e) => { println!("error {e}"); break; }
         }

@@ -4,6 +4,7 @@ pub mod attributes;
 pub mod body;
 pub mod control;
 pub mod error;
+pub mod kinematics;
 pub mod ode;
 
 pub use attributes::{AttributeTable, Attributes};
@@ -16,3 +17,4 @@ pub use plan::{StepConstraints, Timing};
 pub mod dynamics;
 pub mod walk;
 pub mod report;
+pub mod io;

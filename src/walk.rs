@@ -7,13 +7,26 @@ use std::f64::consts::PI;
 
 use crate::attributes::Attributes;
 use crate::body::Body;
-use crate::control::shooting::{self, Memory2, Options, SolveReport, Start2};
+use crate::control::shooting::{self, Memory1, Memory2, Options, SolveReport, Start1, Start2};
 use crate::control::stance::{StanceRun, StanceSetup, StanceState};
+use crate::control::swing::{self, Subphase, SwingSetup, SwingState, SwingTrial};
+use crate::kinematics::foot::{Foot, FootPoints};
+use crate::report::{Achieved, Frame, Report, StepReport, Target};
+use crate::kinematics::hind_leg::HindLeg;
+use crate::ode::Segment;
 use crate::dynamics::impact::{self, ImpactReport};
 use crate::dynamics::{StanceModel, SwingModel};
 use crate::error::{Error, Result};
 use crate::params::Gait;
 use crate::plan::StepConstraints;
+
+/// Shooting tolerance on every end condition (rad or m): 100× inside the 1e-6 the walk promises,
+/// 10× above the residual noise of the 1e-10 integrator tolerance (measured ≈ 1e-9).
+pub const SOLVE_TOLERANCE: f64 = 1e-8;
+/// Trial integrations allowed per solve.
+pub const MAX_ITERATIONS: usize = 25;
+/// Fraction of swing1 at which the swing ankle is back at neutral.
+pub const ANKLE_NEUTRAL: f64 = 0.8;
 
 /// One shooting solve in the report.
 #[derive(Clone, Copy, Debug, Serialize)]
@@ -36,6 +49,17 @@ pub struct Step {
     pub stance: StanceRun,
     pub impact: ImpactReport,
     pub solves: Vec<SolveRecord>,
+    /// The hind leg's kinematic completion during double support.
+    pub hind: HindLeg,
+    /// The swing subphases, in order.
+    pub swing: Vec<(Subphase, Segment<4>)>,
+    /// Swing foot: ankle dorsiflexion and toe angle at toe-off (rad).
+    pub theta5_off: f64,
+    pub theta6_off: f64,
+    /// Toe clearance attribute (m).
+    pub toe_clearance: f64,
+    /// Measurements of the step (targets, achievements, invariants).
+    pub report: StepReport,
 }
 
 /// Walks step after step, carrying the state and the warm starts.
@@ -43,11 +67,13 @@ pub struct Walker {
     pub body: Body,
     pub attrs: Attributes,
     stance_model: StanceModel,
-    #[allow(dead_code)]
     swing_model: SwingModel,
     options: Options,
     prev: Option<(StepConstraints, StanceState)>,
     stance_memory: Option<Memory2>,
+    swing1_memory: Option<Memory2>,
+    swing2_memory: Option<Memory1>,
+    swing3_memory: Option<Memory1>,
     t: f64,
     x_ankle: f64,
     index: usize,
@@ -60,9 +86,12 @@ impl Walker {
             swing_model: SwingModel::new(&body),
             body,
             attrs,
-            options: Options { tol: 1e-9, max_iterations: 25 },
+            options: Options { tol: SOLVE_TOLERANCE, max_iterations: MAX_ITERATIONS },
             prev: None,
             stance_memory: None,
+            swing1_memory: None,
+            swing2_memory: None,
+            swing3_memory: None,
             t: 0.0,
             x_ankle: 0.0,
             index: 0,
@@ -143,6 +172,99 @@ impl Walker {
         }
         debug_assert!(stance.tau1 == x[0] && stance.p == x[1]);
         self.stance_memory = Some(memory);
+        let mut solves = vec![SolveRecord { phase: "stance", report }];
+
+        // double support: the hind leg (flat foot at −sl of the previous step) completes its stance
+        let t = c.timing;
+        let foot = Foot::new(&self.body);
+        let hind = HindLeg::new(
+            &self.body,
+            -prev_c.gait.step_length + foot.h12,
+            self.attrs.heel_strike_knee,
+            self.attrs.toe_off_knee,
+            t.t_ds,
+            self.attrs.metatarsal_limit,
+        );
+        let geometry = |what: String| Error::Invariant { step: index, phase: "double_support", what };
+        let hind_pose = |tt: f64| hind.pose(stance.hip(&setup, tt)[0], tt);
+        let off = hind_pose(t.t_ds).map_err(geometry)?;
+        let h = 1e-4 * t.t_ds;
+        let theta3_at = |tt: f64| hind_pose(tt).map(|p| p.theta3);
+        let d3 = (-theta3_at(t.t_ds + 2.0 * h).map_err(geometry)? + 8.0 * theta3_at(t.t_ds + h).map_err(geometry)?
+            - 8.0 * theta3_at(t.t_ds - h).map_err(geometry)?
+            + theta3_at(t.t_ds - 2.0 * h).map_err(geometry)?)
+            / (12.0 * h);
+        let y_off = SwingState::from([off.theta3, off.theta4, d3, hind.knee(t.t_ds).1]);
+
+        // swing: three subphases, each solved by shooting
+        let a11 = self.swing_model.mass_matrix(&Vector2::new(0.0, c.theta4))[(0, 0)];
+        let wh = 2.0 * PI * self.attrs.swing_hip_frequency;
+        let sw = SwingSetup {
+            model: self.swing_model,
+            stance: &stance,
+            stance_setup: &setup,
+            t_off: t.t_ds,
+            t1: t.t_ds + swing::SWING1_END * t.t_swing,
+            t2: t.t_ds + swing::SWING2_END * t.t_swing,
+            t_end: t.t_step,
+            theta3_target: c.theta3,
+            kappa_hs: c.theta4,
+            k_h: a11 * wh * wh,
+            d_h: 2.0 * self.attrs.swing_hip_damping_ratio * a11 * wh,
+        };
+        let torque_scale = self.body.mass * self.body.l1 * 0.01;
+        let fail = |phase: &'static str| move |reason: String| Error::Integration { step: index, phase, reason };
+        let not_converged = |phase: &'static str, r: &SolveReport| Error::NotConverged {
+            step: index,
+            phase,
+            residual: r.residual,
+            iterations: r.iterations,
+        };
+        // swing1: (A, B) together
+        let best1 = std::cell::RefCell::new(None::<SwingTrial>);
+        let start = match self.swing1_memory {
+            Some(m) => Start2::Warm(m),
+            None => Start2::Cold { x0: Vector2::zeros(), h: Vector2::new(torque_scale, 0.5 * torque_scale) },
+        };
+        let (_, rep1, mem1) = shooting::solve2(
+            |x: Vector2<f64>| {
+                let trial = SwingTrial::simulate(&sw, Subphase::Swing1 { hip: x[0], knee: x[1] }, sw.t_off, y_off)?;
+                let r = trial.residual;
+                keep_best(&best1, trial);
+                Ok(r)
+            },
+            start,
+            &self.options,
+        )
+        .map_err(fail("swing1"))?;
+        solves.push(SolveRecord { phase: "swing1", report: rep1 });
+        if !rep1.converged {
+            return Err(not_converged("swing1", &rep1));
+        }
+        self.swing1_memory = Some(mem1);
+        let s1 = best1.into_inner().expect("a trial ran");
+        // swing2: knee torque C
+        let y1 = s1.segment.y1;
+        let (s2, rep2, mem2) = self.solve_1d(&sw, self.swing2_memory, torque_scale, |x| Subphase::Swing2 { knee: x }, sw.t1, y1)
+            .map_err(fail("swing2"))?;
+        solves.push(SolveRecord { phase: "swing2", report: rep2 });
+        if !rep2.converged {
+            return Err(not_converged("swing2", &rep2));
+        }
+        self.swing2_memory = Some(mem2);
+        // knee lock, then swing3: hip moment D
+        let y2 = s2.segment.y1;
+        let q2 = Vector2::new(y2[0], y2[1]);
+        let qd2 = impact::knee_lock(&self.swing_model, &q2, &Vector2::new(y2[2], y2[3]));
+        let y2 = SwingState::from([y2[0], c.theta4, qd2[0], 0.0]);
+        let (s3, rep3, mem3) = self.solve_1d(&sw, self.swing3_memory, torque_scale, |x| Subphase::Swing3 { hip: x }, sw.t2, y2)
+            .map_err(fail("swing3"))?;
+        solves.push(SolveRecord { phase: "swing3", report: rep3 });
+        if !rep3.converged {
+            return Err(not_converged("swing3", &rep3));
+        }
+        self.swing3_memory = Some(mem3);
+
         let step = Step {
             index,
             t_start: self.t,
@@ -150,15 +272,78 @@ impl Walker {
             constraints: c,
             stance_setup: setup,
             impact,
-            solves: vec![SolveRecord { phase: "stance", report }],
+            solves,
+            hind,
+            swing: vec![(s1.sub, s1.segment), (s2.sub, s2.segment), (s3.sub, s3.segment)],
+            theta5_off: off.theta3 + off.theta4 - off.pitch,
+            theta6_off: off.theta6,
+            toe_clearance: self.attrs.toe_clearance,
             stance,
+            report: StepReport {
+                index,
+                target: Target {
+                    velocity: gait.velocity,
+                    step_length: gait.step_length,
+                    step_frequency: gait.step_frequency,
+                },
+                achieved: Achieved { velocity: f64::NAN, step_length: f64::NAN, duration: t.t_step },
+                solves: Vec::new(),
+                end_condition_error: f64::NAN,
+                heel_height_at_strike: f64::NAN,
+                hip_excursion: f64::NAN,
+                bounce_reference: c.bounce,
+                hip_min_margin: f64::NAN,
+                impact_speed_ratio: impact.speed_ratio,
+                min_foot_height: f64::NAN,
+                min_toe_clearance: f64::NAN,
+                heel_contact_velocity: f64::NAN,
+            },
         };
+        let mut step = step;
+        step.measure(&self.swing_model, &foot);
+        step.check_invariants()?;
         let y_end = step.stance.segments.last().expect("a converged run has segments").0.y1;
         self.prev = Some((c, y_end));
         self.t += c.timing.t_step;
         self.x_ankle += gait.step_length;
         self.index += 1;
         Ok(step)
+    }
+
+    /// A 1-D swing solve (bisection then secant), warm-started from `memory`.
+    fn solve_1d(
+        &self,
+        sw: &SwingSetup,
+        memory: Option<Memory1>,
+        scale: f64,
+        sub: impl Fn(f64) -> Subphase,
+        t0: f64,
+        y0: SwingState,
+    ) -> std::result::Result<(SwingTrial, SolveReport, Memory1), String> {
+        let best = std::cell::RefCell::new(None::<SwingTrial>);
+        let start = match memory {
+            Some(m) => Start1::Warm(m),
+            None => Start1::Cold { x0: 0.0, dx: 10.0 * scale },
+        };
+        let (_, report, mem) = shooting::solve1(
+            |x| {
+                let trial = SwingTrial::simulate(sw, sub(x), t0, y0)?;
+                let r = trial.residual[0];
+                keep_best(&best, trial);
+                Ok(r)
+            },
+            start,
+            &self.options,
+        )?;
+        Ok((best.into_inner().ok_or("no trial ran")?, report, mem))
+    }
+}
+
+/// Keep the trial with the smallest residual (the one the solver returns).
+fn keep_best(best: &std::cell::RefCell<Option<SwingTrial>>, trial: SwingTrial) {
+    let mut b = best.borrow_mut();
+    if b.as_ref().is_none_or(|o| trial.residual.amax() < o.residual.amax()) {
+        *b = Some(trial);
     }
 }
 
@@ -182,13 +367,189 @@ impl Walk {
         self.steps.iter().map(|s| s.constraints.timing.t_step).sum()
     }
 
-    /// Frames at `fps` frames per second from t = 0 to the last heel strike.
-    pub fn frames(&self, _fps: f64) -> Vec<crate::report::Frame> {
-        Vec::new() // TODO(engine): sampled in the next commit
+    /// Frames at `fps` frames per second from t = 0 to the last heel strike (inclusive).
+    pub fn frames(&self, fps: f64) -> Vec<Frame> {
+        let swing_model = SwingModel::new(&self.body);
+        let foot = Foot::new(&self.body);
+        let n = (self.duration() * fps + 1e-9).floor() as usize;
+        let mut frames = Vec::with_capacity(n + 1);
+        let mut i = 0;
+        for k in 0..=n {
+            let t = k as f64 / fps;
+            while i + 1 < self.steps.len() && t >= self.steps[i + 1].t_start {
+                i += 1;
+            }
+            if let Some(step) = self.steps.get(i) {
+                frames.push(step.frame(t, &swing_model, &foot));
+            }
+        }
+        frames
     }
 
     /// The per-step report.
-    pub fn report(&self) -> crate::report::Report {
-        crate::report::Report { height: self.body.height, mass: self.body.mass, steps: Vec::new() }
+    pub fn report(&self) -> Report {
+        Report {
+            height: self.body.height,
+            mass: self.body.mass,
+            steps: self.steps.iter().map(|s| s.report.clone()).collect(),
+        }
+    }
+}
+
+
+/// The swing leg at one instant: subphase, coordinates and points (relative to the stance ankle x).
+#[derive(Clone, Copy, Debug)]
+pub struct SwingPose {
+    pub phase: &'static str,
+    pub theta3: f64,
+    pub theta4: f64,
+    pub knee: [f64; 2],
+    pub ankle: [f64; 2],
+    pub foot: FootPoints,
+}
+
+impl Step {
+    /// Hip (relative to the stance ankle x) and stance state at step time τ.
+    pub fn hip(&self, tau: f64) -> [f64; 2] {
+        self.stance.hip(&self.stance_setup, tau)[0]
+    }
+
+    /// The swing foot's ankle dorsiflexion θ5 and toe angle θ6 at step time τ ≥ t_ds (spec §5
+    /// [ours]): θ5 linear from its toe-off value to 0 over the first 80 % of swing1 (the spec
+    /// says all of swing1; the toe needs the neutral ankle earlier), then to δ_hs at heel strike
+    /// on a smoothstep; θ6 back to 0 on a half-cosine (no toe velocity jump at toe-off).
+    pub fn swing_foot_angles(&self, tau: f64) -> (f64, f64) {
+        let t = self.constraints.timing;
+        let t1 = t.t_ds + swing::SWING1_END * t.t_swing;
+        if tau < t1 {
+            let s = ((tau - t.t_ds) / (ANKLE_NEUTRAL * (t1 - t.t_ds))).clamp(0.0, 1.0);
+            (self.theta5_off * (1.0 - s), self.theta6_off * 0.5 * (1.0 + (PI * s).cos()))
+        } else {
+            let s = ((tau - t1) / (t.t_step - t1)).clamp(0.0, 1.0);
+            (self.constraints.ankle * crate::control::stance::smoothstep(s), 0.0)
+        }
+    }
+
+    /// The swing (or, in double support, hind) leg at step time τ.
+    pub fn swing_pose(&self, tau: f64, model: &SwingModel, foot: &Foot) -> SwingPose {
+        let hip = self.hip(tau);
+        let t = self.constraints.timing;
+        if tau < t.t_ds {
+            if let Ok(p) = self.hind.pose(hip, tau) {
+                return SwingPose {
+                    phase: "double_support",
+                    theta3: p.theta3,
+                    theta4: p.theta4,
+                    knee: p.knee,
+                    ankle: p.ankle,
+                    foot: p.foot,
+                };
+            }
+        }
+        let i = self.swing.partition_point(|(_, s)| s.t1 < tau).min(self.swing.len() - 1);
+        let (sub, seg) = &self.swing[i];
+        let y = seg.state(tau);
+        let q = Vector2::new(y[0], y[1]);
+        let (knee, ankle) = model.joints(hip, &q);
+        let (theta5, theta6) = self.swing_foot_angles(tau);
+        // [ours] the ankle dorsiflexes beyond its rule when the rule would put the toe below a
+        // floor rising from 0 at toe-off to the toe-clearance attribute at mid swing and back to
+        // 0 at heel strike: the foot's mass is in the shank, so this is kinematic only
+        let t = self.constraints.timing;
+        let s = ((tau - t.t_ds) / t.t_swing).clamp(0.0, 1.0);
+        let floor = self.toe_clearance * (PI * s).sin().powi(2);
+        let pitch = (y[0] + y[1] - theta5).min(foot.max_pitch(ankle[1], theta6, floor));
+        SwingPose { phase: sub.name(), theta3: y[0], theta4: y[1], knee, ankle, foot: foot.points(ankle, pitch, theta6) }
+    }
+
+    /// The frame at world time t.
+    pub fn frame(&self, t: f64, model: &SwingModel, foot: &Foot) -> Frame {
+        let tau = (t - self.t_start).clamp(0.0, self.constraints.timing.t_step);
+        let (y, locked) = self.stance.state(tau);
+        let hip = self.hip(tau);
+        let sw = self.swing_pose(tau, model, foot);
+        let x0 = self.x_ankle;
+        Frame {
+            time_s: t,
+            step: self.index,
+            phase: sw.phase,
+            stance_side: if self.index % 2 == 0 { "right" } else { "left" },
+            stance_mode: if locked { "locked" } else { "telescopic" },
+            w_m: y[0],
+            theta1_deg: y[1].to_degrees(),
+            theta2_deg: y[2].to_degrees(),
+            theta3_deg: sw.theta3.to_degrees(),
+            theta4_deg: sw.theta4.to_degrees(),
+            hip_x_m: x0 + hip[0],
+            hip_y_m: hip[1],
+            stance_ankle_x_m: x0,
+            stance_ankle_y_m: self.stance_setup.model.l9,
+            swing_knee_x_m: x0 + sw.knee[0],
+            swing_knee_y_m: sw.knee[1],
+            swing_ankle_x_m: x0 + sw.ankle[0],
+            swing_ankle_y_m: sw.ankle[1],
+            swing_heel_x_m: x0 + sw.foot.heel[0],
+            swing_heel_y_m: sw.foot.heel[1],
+            swing_toe_x_m: x0 + sw.foot.toe[0],
+            swing_toe_y_m: sw.foot.toe[1],
+        }
+    }
+
+    /// Fill the report: end conditions, step length achieved, hip excursion, foot clearance.
+    fn measure(&mut self, model: &SwingModel, foot: &Foot) {
+        let c = self.constraints;
+        let t = c.timing;
+        let y_end = self.stance.segments.last().expect("converged").0.y1;
+        let sw_end = self.swing.last().expect("converged").1.y1;
+        let end_error = [y_end[1] - c.theta1, y_end[0] - c.w, sw_end[0] - c.theta3, sw_end[1] - c.theta4]
+            .iter()
+            .fold(0.0_f64, |m, e| m.max(e.abs()));
+        let strike = self.swing_pose(t.t_step, model, foot);
+        let dt = 1e-6;
+        let before = self.swing_pose(t.t_step - dt, model, foot);
+        let step_length = strike.foot.heel[0] + foot.l8;
+        // hip: sampled densely through the stance
+        const SAMPLES: usize = 400;
+        let (mut y_max, mut y_min) = (f64::NEG_INFINITY, f64::INFINITY);
+        for k in 0..=SAMPLES {
+            let y = self.hip(t.t_step * k as f64 / SAMPLES as f64)[1];
+            y_max = y_max.max(y);
+            y_min = y_min.min(y);
+        }
+        let s = &self.stance_setup;
+        // swing foot: lowest point over the swing, and in mid swing
+        let (mut lowest, mut mid) = (f64::INFINITY, f64::INFINITY);
+        for k in 0..=SAMPLES {
+            let frac = k as f64 / SAMPLES as f64;
+            let h = self.swing_pose(t.t_ds + frac * t.t_swing, model, foot).foot.lowest();
+            lowest = lowest.min(h);
+            if (0.25..=0.75).contains(&frac) {
+                mid = mid.min(h);
+            }
+        }
+        let r = &mut self.report;
+        r.solves = self.solves.clone();
+        r.achieved = Achieved { velocity: step_length / t.t_step, step_length, duration: t.t_step };
+        r.end_condition_error = end_error;
+        r.heel_height_at_strike = strike.foot.heel[1];
+        r.heel_contact_velocity = (strike.foot.heel[1] - before.foot.heel[1]) / dt;
+        r.hip_excursion = y_max - s.y_end;
+        r.hip_min_margin = y_min - s.y_start.min(s.y_end);
+        r.min_foot_height = lowest;
+        r.min_toe_clearance = mid;
+    }
+
+    /// Invariants of a converged step (spec §4, §5): the hip never below its heel-strike height,
+    /// no point of the swing foot under the ground.
+    fn check_invariants(&self) -> Result<()> {
+        let r = &self.report;
+        let fail = |phase: &'static str, what: String| Err(Error::Invariant { step: self.index, phase, what });
+        if r.hip_min_margin < -1e-6 {
+            return fail("stance", format!("the hip drops {:.3e} m below its heel-strike height", -r.hip_min_margin));
+        }
+        if r.min_foot_height < -1e-6 {
+            return fail("swing", format!("the swing foot goes {:.3e} m under the ground", -r.min_foot_height));
+        }
+        Ok(())
     }
 }

@@ -21,7 +21,10 @@ const FD_TOL: f64 = 1e-6;
 
 /// The bodies used: the paper's example and a small body at the other end of the table.
 fn bodies() -> [Body; 2] {
-    [Body::standard(1.8, 80.0).unwrap(), Body::standard(1.55, 52.0).unwrap()]
+    [
+        Body::standard(1.8, 80.0).unwrap(),
+        Body::standard(1.55, 52.0).unwrap(),
+    ]
 }
 
 /// Deterministic SplitMix64 generator.
@@ -70,7 +73,16 @@ struct StanceGeo {
 
 impl StanceGeo {
     fn new(b: &Body, g: f64) -> Self {
-        StanceGeo { m1: b.m1, m2: b.m2, r1: b.r1, i1: b.i1, a: b.r2, i2: b.i2, l9: b.l9, g }
+        StanceGeo {
+            m1: b.m1,
+            m2: b.m2,
+            r1: b.r1,
+            i1: b.i1,
+            a: b.r2,
+            i2: b.i2,
+            l9: b.l9,
+            g,
+        }
     }
     /// (leg CoM, hip, trunk CoM).
     fn points(&self, q: &Vector3<f64>) -> [[f64; 2]; 3] {
@@ -91,7 +103,10 @@ impl StanceGeo {
     }
     fn kinetic(&self, q: &Vector3<f64>, qd: &Vector3<f64>) -> f64 {
         let [vl, _, vt] = self.velocities(q, qd);
-        0.5 * (self.m1 * norm2(vl) + self.i1 * qd[1] * qd[1] + self.m2 * norm2(vt) + self.i2 * qd[2] * qd[2])
+        0.5 * (self.m1 * norm2(vl)
+            + self.i1 * qd[1] * qd[1]
+            + self.m2 * norm2(vt)
+            + self.i2 * qd[2] * qd[2])
     }
     fn potential(&self, q: &Vector3<f64>) -> f64 {
         let [leg, _, trunk] = self.points(q);
@@ -115,7 +130,16 @@ struct SwingGeo {
 
 impl SwingGeo {
     fn new(b: &Body, g: f64) -> Self {
-        SwingGeo { m3: b.m3, m4: b.m4, l3: b.l3, r3: b.r3, r4: b.r4, i3: b.i3, i4: b.i4, g }
+        SwingGeo {
+            m3: b.m3,
+            m4: b.m4,
+            l3: b.l3,
+            r3: b.r3,
+            r4: b.r4,
+            i3: b.i3,
+            i4: b.i4,
+            g,
+        }
     }
     /// (thigh CoM, shank CoM) relative to the hip.
     fn points(&self, q: &Vector2<f64>) -> [[f64; 2]; 2] {
@@ -129,7 +153,10 @@ impl SwingGeo {
         let ((s3, c3), (sp, cp)) = (q[0].sin_cos(), (q[0] + q[1]).sin_cos());
         let (t3d, pd) = (qd[0], qd[0] + qd[1]);
         let thigh = [-self.r3 * c3 * t3d, self.r3 * s3 * t3d];
-        let shank = [-self.l3 * c3 * t3d - self.r4 * cp * pd, self.l3 * s3 * t3d + self.r4 * sp * pd];
+        let shank = [
+            -self.l3 * c3 * t3d - self.r4 * cp * pd,
+            self.l3 * s3 * t3d + self.r4 * sp * pd,
+        ];
         [thigh, shank]
     }
     /// T with the hip moving at `hip_vel` (absolute velocities = hip_vel + relative ones).
@@ -137,7 +164,10 @@ impl SwingGeo {
         let [v3, v4] = self.velocities(q, qd);
         let abs = |v: [f64; 2]| [v[0] + hip_vel[0], v[1] + hip_vel[1]];
         let pd = qd[0] + qd[1];
-        0.5 * (self.m3 * norm2(abs(v3)) + self.i3 * qd[0] * qd[0] + self.m4 * norm2(abs(v4)) + self.i4 * pd * pd)
+        0.5 * (self.m3 * norm2(abs(v3))
+            + self.i3 * qd[0] * qd[0]
+            + self.m4 * norm2(abs(v4))
+            + self.i4 * pd * pd)
     }
     fn kinetic(&self, q: &Vector2<f64>, qd: &Vector2<f64>) -> f64 {
         self.kinetic_moving(q, qd, [0.0, 0.0])
@@ -153,7 +183,8 @@ impl SwingGeo {
     fn angular_momentum_about_hip(&self, q: &Vector2<f64>, qd: &Vector2<f64>) -> f64 {
         let [p3, p4] = self.points(q);
         let [v3, v4] = self.velocities(q, qd);
-        self.m3 * cross(p3, v3) - self.i3 * qd[0] + self.m4 * cross(p4, v4) - self.i4 * (qd[0] + qd[1])
+        self.m3 * cross(p3, v3) - self.i3 * qd[0] + self.m4 * cross(p4, v4)
+            - self.i4 * (qd[0] + qd[1])
     }
 }
 
@@ -167,6 +198,9 @@ const H_RATE: f64 = 0.5;
 /// Step in the coordinates.
 const H_COORD: f64 = 1e-5;
 
+/// Kinetic energy T(q, q̇, s) as the finite-difference helper takes it.
+type Kinetic<'a, const N: usize> = dyn Fn(&SVector<f64, N>, &SVector<f64, N>, f64) -> f64 + 'a;
+
 fn unit<const N: usize>(i: usize) -> SVector<f64, N> {
     let mut e = SVector::<f64, N>::zeros();
     e[i] = 1.0;
@@ -177,7 +211,7 @@ fn unit<const N: usize>(i: usize) -> SVector<f64, N> {
 /// `t(q, q̇, s)` is the kinetic energy with the explicit time dependence (the hip's velocity,
 /// swing model) advanced by s seconds at the hip acceleration (s is ignored for stance).
 fn lagrange_fd<const N: usize>(
-    t: &dyn Fn(&SVector<f64, N>, &SVector<f64, N>, f64) -> f64,
+    t: &Kinetic<N>,
     v: &dyn Fn(&SVector<f64, N>) -> f64,
     q: &SVector<f64, N>,
     qd: &SVector<f64, N>,
@@ -187,7 +221,9 @@ fn lagrange_fd<const N: usize>(
     for i in 0..N {
         for j in 0..N {
             let (ei, ej) = (unit::<N>(i) * hr, unit::<N>(j) * hr);
-            m[(i, j)] = (t(q, &(qd + ei + ej), 0.0) - t(q, &(qd + ei - ej), 0.0) - t(q, &(qd - ei + ej), 0.0)
+            m[(i, j)] = (t(q, &(qd + ei + ej), 0.0)
+                - t(q, &(qd + ei - ej), 0.0)
+                - t(q, &(qd - ei + ej), 0.0)
                 + t(q, &(qd - ei - ej), 0.0))
                 / (4.0 * hr * hr);
         }
@@ -215,8 +251,16 @@ fn lagrange_fd<const N: usize>(
 }
 
 fn random_stance_state(rng: &mut Rng) -> (Vector3<f64>, Vector3<f64>) {
-    let q = Vector3::new(rng.uniform(0.7, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0));
-    let qd = Vector3::new(rng.uniform(-3.0, 3.0), rng.uniform(-3.0, 3.0), rng.uniform(-3.0, 3.0));
+    let q = Vector3::new(
+        rng.uniform(0.7, 1.0),
+        rng.uniform(-1.0, 1.0),
+        rng.uniform(-1.0, 1.0),
+    );
+    let qd = Vector3::new(
+        rng.uniform(-3.0, 3.0),
+        rng.uniform(-3.0, 3.0),
+        rng.uniform(-3.0, 3.0),
+    );
     (q, qd)
 }
 
@@ -233,7 +277,10 @@ fn rel_errors<const N: usize>(
     m_fd: &SMatrix<f64, N, N>,
     b_fd: &SVector<f64, N>,
 ) -> (f64, f64) {
-    (max_abs(&(m - m_fd)) / max_abs(m_fd), max_abs(&(b - b_fd)) / max_abs(b_fd))
+    (
+        max_abs(&(m - m_fd)) / max_abs(m_fd),
+        max_abs(&(b - b_fd)) / max_abs(b_fd),
+    )
 }
 
 /// The point velocities used for T are the time derivatives of the points used for V.
@@ -249,14 +296,20 @@ fn independent_velocities_differentiate_the_positions() {
             let (pp, pm) = (st.points(&(q + qd * h)), st.points(&(q - qd * h)));
             for (k, v) in st.velocities(&q, &qd).iter().enumerate() {
                 for c in 0..2 {
-                    assert!(((pp[k][c] - pm[k][c]) / (2.0 * h) - v[c]).abs() < 1e-7, "stance point {k}");
+                    assert!(
+                        ((pp[k][c] - pm[k][c]) / (2.0 * h) - v[c]).abs() < 1e-7,
+                        "stance point {k}"
+                    );
                 }
             }
             let (q, qd) = random_swing_state(&mut rng);
             let (pp, pm) = (sw.points(&(q + qd * h)), sw.points(&(q - qd * h)));
             for (k, v) in sw.velocities(&q, &qd).iter().enumerate() {
                 for c in 0..2 {
-                    assert!(((pp[k][c] - pm[k][c]) / (2.0 * h) - v[c]).abs() < 1e-7, "swing point {k}");
+                    assert!(
+                        ((pp[k][c] - pm[k][c]) / (2.0 * h) - v[c]).abs() < 1e-7,
+                        "swing point {k}"
+                    );
                 }
             }
         }
@@ -268,7 +321,8 @@ fn independent_velocities_differentiate_the_positions() {
 #[test]
 fn stance_mass_matrix_and_bias_match_the_lagrangian() {
     let mut rng = Rng(1);
-    let (mut worst_m, mut worst_b, mut mutant_b, mut mutant_m) = (0.0_f64, 0.0_f64, 0.0_f64, 0.0_f64);
+    let (mut worst_m, mut worst_b, mut mutant_b, mut mutant_m) =
+        (0.0_f64, 0.0_f64, 0.0_f64, 0.0_f64);
     for body in bodies() {
         let model = StanceModel::new(&body);
         let geo = StanceGeo::new(&body, model.g);
@@ -279,8 +333,14 @@ fn stance_mass_matrix_and_bias_match_the_lagrangian() {
             let (m_fd, b_fd) = lagrange_fd(&t, &v, &q, &qd);
             let (m, b) = (model.mass_matrix(&q), model.bias(&q, &qd));
             let (em, eb) = rel_errors(&m, &b, &m_fd, &b_fd);
-            assert!(em < FD_TOL, "stance M off by {em:e} at q={q:?}\nM={m}\nM_fd={m_fd}");
-            assert!(eb < FD_TOL, "stance b off by {eb:e} at q={q:?} q̇={qd:?}\nb={b}\nb_fd={b_fd}");
+            assert!(
+                em < FD_TOL,
+                "stance M off by {em:e} at q={q:?}\nM={m}\nM_fd={m_fd}"
+            );
+            assert!(
+                eb < FD_TOL,
+                "stance b off by {eb:e} at q={q:?} q̇={qd:?}\nb={b}\nb_fd={b_fd}"
+            );
             worst_m = worst_m.max(em);
             worst_b = worst_b.max(eb);
             // The check has power: a Coriolis term with its factor 2 lost (2 m2 w ẇ θ̇1 → m2 w ẇ θ̇1)
@@ -294,7 +354,9 @@ fn stance_mass_matrix_and_bias_match_the_lagrangian() {
             mutant_m = mutant_m.max(rel_errors(&m_bad, &b, &m_fd, &b_fd).0);
         }
     }
-    eprintln!("stance FD check: worst rel. error M {worst_m:.2e}, b {worst_b:.2e}; mutants {mutant_m:.2e}, {mutant_b:.2e}");
+    eprintln!(
+        "stance FD check: worst rel. error M {worst_m:.2e}, b {worst_b:.2e}; mutants {mutant_m:.2e}, {mutant_b:.2e}"
+    );
     assert!(mutant_b > 1e3 * FD_TOL && mutant_m > 1e3 * FD_TOL);
 }
 
@@ -314,8 +376,14 @@ fn swing_mass_matrix_and_bias_match_the_lagrangian() {
             let (m_fd, b_fd) = lagrange_fd(&t, &v, &q, &qd);
             let (m, b) = (model.mass_matrix(&q), model.bias(&q, &qd, [0.0, 0.0]));
             let (em, eb) = rel_errors(&m, &b, &m_fd, &b_fd);
-            assert!(em < FD_TOL, "swing M off by {em:e} at q={q:?}\nM={m}\nM_fd={m_fd}");
-            assert!(eb < FD_TOL, "swing b off by {eb:e} at q={q:?} q̇={qd:?}\nb={b}\nb_fd={b_fd}");
+            assert!(
+                em < FD_TOL,
+                "swing M off by {em:e} at q={q:?}\nM={m}\nM_fd={m_fd}"
+            );
+            assert!(
+                eb < FD_TOL,
+                "swing b off by {eb:e} at q={q:?} q̇={qd:?}\nb={b}\nb_fd={b_fd}"
+            );
             worst_m = worst_m.max(em);
             worst_b = worst_b.max(eb);
             // power: b1 with the 2 θ̇3 θ̇4 Coriolis term dropped
@@ -324,7 +392,9 @@ fn swing_mass_matrix_and_bias_match_the_lagrangian() {
             mutant = mutant.max(rel_errors(&m, &b_bad, &m_fd, &b_fd).1);
         }
     }
-    eprintln!("swing FD check (hip at rest): worst rel. error M {worst_m:.2e}, b {worst_b:.2e}; mutant {mutant:.2e}");
+    eprintln!(
+        "swing FD check (hip at rest): worst rel. error M {worst_m:.2e}, b {worst_b:.2e}; mutant {mutant:.2e}"
+    );
     assert!(mutant > 1e3 * FD_TOL);
 }
 
@@ -350,7 +420,10 @@ fn swing_hip_forcing_matches_the_moving_hip_lagrangian() {
             let (_, b_fd) = lagrange_fd(&t, &v, &q, &qd);
             let b = model.bias(&q, &qd, ah);
             let e = max_abs(&(b - b_fd)) / max_abs(&b_fd);
-            assert!(e < FD_TOL, "swing b with hip acc {ah:?} off by {e:e}: b={b} b_fd={b_fd}");
+            assert!(
+                e < FD_TOL,
+                "swing b with hip acc {ah:?} off by {e:e}: b={b} b_fd={b_fd}"
+            );
             worst = worst.max(e);
         }
     }
@@ -378,7 +451,10 @@ fn swing_straight_leg_trails_a_horizontally_accelerating_hip() {
             if a != 0.0 {
                 // the mirrored angle is not an equilibrium: the sign convention is tested
                 let b = model.bias(&Vector2::new(-theta3, 0.0), &zero, [a, 0.0]);
-                assert!(b.amax() > 1e-3 * scale, "a = {a}: mirrored leg also balanced, b = {b}");
+                assert!(
+                    b.amax() > 1e-3 * scale,
+                    "a = {a}: mirrored leg also balanced, b = {b}"
+                );
             }
             // a bent knee is not an equilibrium either (the shank is pulled straight)
             let b = model.bias(&Vector2::new(theta3, 0.3), &zero, [a, 0.0]);
@@ -404,14 +480,25 @@ fn swing_vertical_hip_acceleration_is_extra_gravity() {
             let zero = Vector2::zeros();
             let b0 = model.bias(&q, &zero, [0.0, 0.0]);
             let b1 = model.bias(&q, &zero, [0.0, ydd]);
-            assert!((b1 - b0 * ((g + ydd) / g)).amax() < 1e-12 * b0.amax().max(1.0), "{b0} {b1}");
+            assert!(
+                (b1 - b0 * ((g + ydd) / g)).amax() < 1e-12 * b0.amax().max(1.0),
+                "{b0} {b1}"
+            );
             let h = 1e-6;
             let dv = Vector2::new(
-                (geo.potential(&(q + Vector2::new(h, 0.0))) - geo.potential(&(q - Vector2::new(h, 0.0)))) / (2.0 * h),
-                (geo.potential(&(q + Vector2::new(0.0, h))) - geo.potential(&(q - Vector2::new(0.0, h)))) / (2.0 * h),
+                (geo.potential(&(q + Vector2::new(h, 0.0)))
+                    - geo.potential(&(q - Vector2::new(h, 0.0))))
+                    / (2.0 * h),
+                (geo.potential(&(q + Vector2::new(0.0, h)))
+                    - geo.potential(&(q - Vector2::new(0.0, h))))
+                    / (2.0 * h),
             );
             let diff = model.bias(&q, &qd, [0.0, ydd]) - model.bias(&q, &qd, [0.0, 0.0]);
-            assert!((diff - dv * (ydd / g)).amax() < 1e-8 * dv.amax(), "{diff} vs {}", dv * (ydd / g));
+            assert!(
+                (diff - dv * (ydd / g)).amax() < 1e-8 * dv.amax(),
+                "{diff} vs {}",
+                dv * (ydd / g)
+            );
             // the scan's forcing term, on the right-hand side
             let xdd = rng.uniform(-8.0, 8.0);
             let (s3, c3) = q[0].sin_cos();
@@ -431,11 +518,16 @@ fn swing_vertical_hip_acceleration_is_extra_gravity() {
 fn swing_a11_is_the_scanned_appendix_value() {
     for body in bodies() {
         let model = SwingModel::new(&body);
-        let (m3, m4, l3, r3, r4, i3, i4) = (body.m3, body.m4, body.l3, body.r3, body.r4, body.i3, body.i4);
+        let (m3, m4, l3, r3, r4, i3, i4) = (
+            body.m3, body.m4, body.l3, body.r3, body.r4, body.i3, body.i4,
+        );
         let straight = i3 + m3 * r3 * r3 + m4 * l3 * l3 + i4 + m4 * r4 * r4 + 2.0 * m4 * l3 * r4;
         for t3 in [-0.6, 0.0, 0.4] {
             let a11 = model.mass_matrix(&Vector2::new(t3, 0.0))[(0, 0)];
-            assert!((a11 - straight).abs() < 1e-12 * straight, "{a11} vs {straight}");
+            assert!(
+                (a11 - straight).abs() < 1e-12 * straight,
+                "{a11} vs {straight}"
+            );
         }
         // a straight leg is one rigid body: its inertia about the hip from the parallel axis theorem
         let com = (m3 * r3 + m4 * (l3 + r4)) / (m3 + m4);
@@ -443,7 +535,12 @@ fn swing_a11_is_the_scanned_appendix_value() {
         assert!((about_com + (m3 + m4) * com * com - straight).abs() < 1e-12 * straight);
         for t4 in [-0.2, 0.5, 1.2] {
             let a11 = model.mass_matrix(&Vector2::new(0.1, t4))[(0, 0)];
-            let scan = i3 + m3 * r3 * r3 + m4 * l3 * l3 + i4 + m4 * r4 * r4 + 2.0 * m4 * l3 * r4 * f64::cos(t4);
+            let scan = i3
+                + m3 * r3 * r3
+                + m4 * l3 * l3
+                + i4
+                + m4 * r4 * r4
+                + 2.0 * m4 * l3 * r4 * f64::cos(t4);
             assert!((a11 - scan).abs() < 1e-12 * scan);
         }
     }
@@ -472,8 +569,14 @@ impl System<f64, State6> for StanceSpring {
     fn system(&self, _t: f64, y: &State6, dy: &mut State6) {
         let q = Vector3::new(y[0], y[1], y[2]);
         let qd = Vector3::new(y[3], y[4], y[5]);
-        let fw = if self.locked { 0.0 } else { self.kw * (self.l1 - q[0]) };
-        let acc = self.model.accelerations(&q, &qd, &Vector3::new(fw, 0.0, 0.0), self.locked);
+        let fw = if self.locked {
+            0.0
+        } else {
+            self.kw * (self.l1 - q[0])
+        };
+        let acc = self
+            .model
+            .accelerations(&q, &qd, &Vector3::new(fw, 0.0, 0.0), self.locked);
         dy.fixed_rows_mut::<3>(0).copy_from(&qd);
         dy.fixed_rows_mut::<3>(3).copy_from(&acc);
     }
@@ -488,7 +591,9 @@ struct SwingFree {
 impl System<f64, State4> for SwingFree {
     fn system(&self, _t: f64, y: &State4, dy: &mut State4) {
         let (q, qd) = (Vector2::new(y[0], y[1]), Vector2::new(y[2], y[3]));
-        let acc = self.model.accelerations(&q, &qd, &Vector2::zeros(), [0.0, 0.0], self.locked);
+        let acc = self
+            .model
+            .accelerations(&q, &qd, &Vector2::zeros(), [0.0, 0.0], self.locked);
         dy[0] = qd[0];
         dy[1] = qd[1];
         dy[2] = acc[0];
@@ -496,13 +601,19 @@ impl System<f64, State4> for SwingFree {
     }
 }
 
-/// Integrate with Dopri5 (rtol = atol = 1e-12, dense output every 5 ms) and return the states.
-fn integrate<const N: usize, S: System<f64, SVector<f64, N>>>(sys: S, y0: SVector<f64, N>) -> Vec<SVector<f64, N>> {
+/// Integrate with Dopri5 (rtol = atol = 1e-12) and return the state after every accepted step.
+/// Sparse output on purpose: ode_solvers 0.6.2's `OutputType::Dense` fills its last point
+/// (x_end) by extrapolating the step that produced the point before it (`solution_output`,
+/// "Ensure the last point is added ..."), an error of ~1e-4 that is not the model's.
+fn integrate<const N: usize, S: System<f64, SVector<f64, N>>>(
+    sys: S,
+    y0: SVector<f64, N>,
+) -> Vec<SVector<f64, N>> {
     let mut solver = Dopri5::from_param(
         sys,
         0.0,
         T_END,
-        0.005,
+        T_END,
         y0,
         RTOL,
         RTOL,
@@ -514,7 +625,7 @@ fn integrate<const N: usize, S: System<f64, SVector<f64, N>>>(sys: S, y0: SVecto
         0.0,
         2_000_000,
         1000,
-        OutputType::Dense,
+        OutputType::Sparse,
     );
     let stats = solver.integrate().expect("integration succeeds");
     eprintln!("  dopri5: {} accepted steps", stats.accepted_steps);
@@ -531,7 +642,10 @@ fn stance_with_leg_spring_conserves_energy() {
     let (l1, m2, g) = (body.l1, body.m2, model.g);
     let kw = m2 * (2.0 * std::f64::consts::PI * 5.0).powi(2);
     let energy = |y: &State6| {
-        let (q, qd) = (Vector3::new(y[0], y[1], y[2]), Vector3::new(y[3], y[4], y[5]));
+        let (q, qd) = (
+            Vector3::new(y[0], y[1], y[2]),
+            Vector3::new(y[3], y[4], y[5]),
+        );
         geo.kinetic(&q, &qd) + geo.potential(&q) + 0.5 * kw * (l1 - q[0]).powi(2)
     };
     let starts = [
@@ -541,16 +655,38 @@ fn stance_with_leg_spring_conserves_energy() {
     ];
     for s in starts {
         let y0 = State6::from_row_slice(&s);
-        let (q0, qd0) = (Vector3::new(s[0], s[1], s[2]), Vector3::new(s[3], s[4], s[5]));
+        let (q0, qd0) = (
+            Vector3::new(s[0], s[1], s[2]),
+            Vector3::new(s[3], s[4], s[5]),
+        );
         // the model's own energy functions agree with the independent ones
-        assert!((model.kinetic_energy(&q0, &qd0) - geo.kinetic(&q0, &qd0)).abs() < 1e-12 * geo.kinetic(&q0, &qd0));
-        assert!((model.potential_energy(&q0) - geo.potential(&q0)).abs() < 1e-12 * geo.potential(&q0));
+        assert!(
+            (model.kinetic_energy(&q0, &qd0) - geo.kinetic(&q0, &qd0)).abs()
+                < 1e-12 * geo.kinetic(&q0, &qd0)
+        );
+        assert!(
+            (model.potential_energy(&q0) - geo.potential(&q0)).abs() < 1e-12 * geo.potential(&q0)
+        );
         let norm = geo.kinetic(&q0, &qd0) + m2 * g * l1;
         let e0 = energy(&y0);
-        let ys = integrate(StanceSpring { model, kw, l1, locked: false }, y0);
-        let drift = ys.iter().map(|y| (energy(y) - e0).abs()).fold(0.0, f64::max) / norm;
+        let ys = integrate(
+            StanceSpring {
+                model,
+                kw,
+                l1,
+                locked: false,
+            },
+            y0,
+        );
+        let drift = ys
+            .iter()
+            .map(|y| (energy(y) - e0).abs())
+            .fold(0.0, f64::max)
+            / norm;
         let moved = ys.iter().map(|y| (y[1] - s[1]).abs()).fold(0.0, f64::max);
-        eprintln!("stance spring from {s:?}: max |ΔE|/(T0 + m2 g l1) = {drift:.2e} over {T_END} s (θ1 moved {moved:.2} rad)");
+        eprintln!(
+            "stance spring from {s:?}: max |ΔE|/(T0 + m2 g l1) = {drift:.2e} over {T_END} s (θ1 moved {moved:.2} rad)"
+        );
         assert!(drift <= ENERGY_TOL, "energy drift {drift:e}");
         assert!(moved > 0.1, "the test must exercise the dynamics");
     }
@@ -564,16 +700,40 @@ fn locked_stance_conserves_energy() {
     let geo = StanceGeo::new(&body, model.g);
     let (l1, m2, g) = (body.l1, body.m2, model.g);
     let energy = |y: &State6| {
-        let (q, qd) = (Vector3::new(y[0], y[1], y[2]), Vector3::new(y[3], y[4], y[5]));
+        let (q, qd) = (
+            Vector3::new(y[0], y[1], y[2]),
+            Vector3::new(y[3], y[4], y[5]),
+        );
         geo.kinetic(&q, &qd) + geo.potential(&q)
     };
-    for s in [[l1, -0.3, 0.05, 0.0, 1.5, 0.0], [l1, 0.1, -0.2, 0.0, -0.5, 2.0]] {
+    for s in [
+        [l1, -0.3, 0.05, 0.0, 1.5, 0.0],
+        [l1, 0.1, -0.2, 0.0, -0.5, 2.0],
+    ] {
         let y0 = State6::from_row_slice(&s);
-        let norm = geo.kinetic(&Vector3::new(s[0], s[1], s[2]), &Vector3::new(0.0, s[4], s[5])) + m2 * g * l1;
+        let norm = geo.kinetic(
+            &Vector3::new(s[0], s[1], s[2]),
+            &Vector3::new(0.0, s[4], s[5]),
+        ) + m2 * g * l1;
         let e0 = energy(&y0);
-        let ys = integrate(StanceSpring { model, kw: 0.0, l1, locked: true }, y0);
-        let drift = ys.iter().map(|y| (energy(y) - e0).abs()).fold(0.0, f64::max) / norm;
-        let w_moved = ys.iter().map(|y| (y[0] - l1).abs().max(y[3].abs())).fold(0.0, f64::max);
+        let ys = integrate(
+            StanceSpring {
+                model,
+                kw: 0.0,
+                l1,
+                locked: true,
+            },
+            y0,
+        );
+        let drift = ys
+            .iter()
+            .map(|y| (energy(y) - e0).abs())
+            .fold(0.0, f64::max)
+            / norm;
+        let w_moved = ys
+            .iter()
+            .map(|y| (y[0] - l1).abs().max(y[3].abs()))
+            .fold(0.0, f64::max);
         eprintln!("locked stance from {s:?}: max |ΔE|/(T0 + m2 g l1) = {drift:.2e}");
         assert!(drift <= ENERGY_TOL, "energy drift {drift:e}");
         assert_eq!(w_moved, 0.0, "the locked leg changed length");
@@ -591,20 +751,39 @@ fn free_swing_conserves_energy() {
         let (q, qd) = (Vector2::new(y[0], y[1]), Vector2::new(y[2], y[3]));
         geo.kinetic(&q, &qd) + geo.potential(&q)
     };
-    for (s, locked) in [([-0.5, 0.8, 0.0, 0.0], false), ([0.3, 0.2, -2.0, 4.0], false), ([-0.5, 0.07, 1.0, 0.0], true)] {
+    for (s, locked) in [
+        ([-0.5, 0.8, 0.0, 0.0], false),
+        ([0.3, 0.2, -2.0, 4.0], false),
+        ([-0.5, 0.07, 1.0, 0.0], true),
+    ] {
         let y0 = State4::from_row_slice(&s);
         let (q0, qd0) = (Vector2::new(s[0], s[1]), Vector2::new(s[2], s[3]));
-        assert!((model.kinetic_energy(&q0, &qd0) - geo.kinetic(&q0, &qd0)).abs() < 1e-12 * (1.0 + geo.kinetic(&q0, &qd0)));
-        assert!((model.potential_energy(&q0) - geo.potential(&q0)).abs() < 1e-12 * geo.potential(&q0).abs());
+        assert!(
+            (model.kinetic_energy(&q0, &qd0) - geo.kinetic(&q0, &qd0)).abs()
+                < 1e-12 * (1.0 + geo.kinetic(&q0, &qd0))
+        );
+        assert!(
+            (model.potential_energy(&q0) - geo.potential(&q0)).abs()
+                < 1e-12 * geo.potential(&q0).abs()
+        );
         let norm = geo.kinetic(&q0, &qd0) + m2 * g * l1;
         let e0 = energy(&y0);
         let ys = integrate(SwingFree { model, locked }, y0);
-        let drift = ys.iter().map(|y| (energy(y) - e0).abs()).fold(0.0, f64::max) / norm;
+        let drift = ys
+            .iter()
+            .map(|y| (energy(y) - e0).abs())
+            .fold(0.0, f64::max)
+            / norm;
         // relative to the leg's own energy scale too (m2 g l1 is the trunk's, spec §10)
         let leg_scale = geo.kinetic(&q0, &qd0) + (body.m3 + body.m4) * g * l1;
         let drift_leg = drift * norm / leg_scale;
-        eprintln!("free swing from {s:?} (knee locked: {locked}): max |ΔE|/(T0 + m2 g l1) = {drift:.2e}, /(T0 + m1 g l1) = {drift_leg:.2e}");
-        assert!(drift <= ENERGY_TOL && drift_leg <= ENERGY_TOL, "energy drift {drift:e}");
+        eprintln!(
+            "free swing from {s:?} (knee locked: {locked}): max |ΔE|/(T0 + m2 g l1) = {drift:.2e}, /(T0 + m1 g l1) = {drift_leg:.2e}"
+        );
+        assert!(
+            drift <= ENERGY_TOL && drift_leg <= ENERGY_TOL,
+            "energy drift {drift:e}"
+        );
     }
 }
 
@@ -637,7 +816,10 @@ fn heel_strike_stops_the_leg_axis_and_keeps_the_angular_momenta() {
             let (q, qd_minus) = random_stance_state(&mut rng);
             let (qd_plus, report) = impact::heel_strike(&model, &q, &qd_minus);
             assert!(qd_plus[0].abs() <= 1e-12, "ẇ⁺ = {}", qd_plus[0]);
-            let (p0, p1) = (stance_momenta(&geo, &q, &qd_minus), stance_momenta(&geo, &q, &qd_plus));
+            let (p0, p1) = (
+                stance_momenta(&geo, &q, &qd_minus),
+                stance_momenta(&geo, &q, &qd_plus),
+            );
             let scale = p0.amax();
             for i in 1..3 {
                 let e = (p1[i] - p0[i]).abs() / scale;
@@ -648,7 +830,11 @@ fn heel_strike_stops_the_leg_axis_and_keeps_the_angular_momenta() {
             let lost = t0 - t1;
             assert!(lost >= -1e-12 * t0, "heel strike created energy: {lost}");
             let e = (lost - report.energy_lost).abs() / t0;
-            assert!(e <= 1e-10, "energy lost {lost} vs reported {}", report.energy_lost);
+            assert!(
+                e <= 1e-10,
+                "energy lost {lost} vs reported {}",
+                report.energy_lost
+            );
             worst_e = worst_e.max(e);
             min_lost = min_lost.min(lost / t0);
             let [_, vh0, _] = geo.velocities(&q, &qd_minus);
@@ -656,7 +842,9 @@ fn heel_strike_stops_the_leg_axis_and_keeps_the_angular_momenta() {
             assert!((report.speed_ratio - speed(vh1) / speed(vh0)).abs() < 1e-12);
         }
     }
-    eprintln!("heel strike: worst rel. change of p_θ1, p_θ2 {worst_p:.2e}; worst energy mismatch {worst_e:.2e}; min fraction lost {min_lost:.2e}");
+    eprintln!(
+        "heel strike: worst rel. change of p_θ1, p_θ2 {worst_p:.2e}; worst energy mismatch {worst_e:.2e}; min fraction lost {min_lost:.2e}"
+    );
 }
 
 /// `rates_about_pivot` reproduces the given hip velocity through the independent geometry.
@@ -671,15 +859,105 @@ fn rates_about_pivot_reproduce_the_hip_velocity() {
         let trunk = rng.uniform(-3.0, 3.0);
         let qd = impact::rates_about_pivot(&q, v, trunk);
         let [_, vh, _] = geo.velocities(&q, &qd);
-        assert!((vh[0] - v[0]).abs() < 1e-13 && (vh[1] - v[1]).abs() < 1e-13, "{vh:?} vs {v:?}");
+        assert!(
+            (vh[0] - v[0]).abs() < 1e-13 && (vh[1] - v[1]).abs() < 1e-13,
+            "{vh:?} vs {v:?}"
+        );
         assert_eq!(qd[2], trunk);
     }
 }
 
-/// A compass-gait-like collision: the body moves rigidly with the hip velocity V (cos θ, −sin θ)
-/// of the old leg at angle θ = 0.45 rad (perpendicular to it), trunk upright and not turning;
-/// the new leg is at −θ. The surviving hip-speed ratio lies between cos 2θ (a point mass at the
-/// hip: only the velocity component across the new leg survives) and cos θ (spec §7).
+/// Newton–Euler solution of the heel-strike impulse, independent of M: the trunk (m2, J_c = I2)
+/// receives the impulse P at the hip from the leg; the leg (J1 about the pivot; its telescopic
+/// part massless) receives −P at the hip, whose axial part goes straight to the ground; after
+/// the impact the hip moves as the leg's tip, v_h⁺ = ω1⁺ × r_h (no velocity along the leg).
+/// Unknowns (Px, Py, ω1⁺, Δω2, Δv_cx, Δv_cy), angular rates counter-clockwise (ω = −θ̇).
+/// Returns (hip velocity after, trunk rate θ̇2 after).
+fn heel_strike_newton_euler(
+    body: &Body,
+    q: &Vector3<f64>,
+    hip_vel: [f64; 2],
+    trunk_rate: f64,
+) -> ([f64; 2], f64) {
+    let geo = StanceGeo::new(body, 9.81);
+    let [_, hip, trunk] = geo.points(q);
+    let rh = [hip[0], hip[1] - body.l9]; // hip from the pivot
+    let d = [hip[0] - trunk[0], hip[1] - trunk[1]]; // hip from the trunk CoM
+    let (w, u) = (q[0], [q[1].sin(), q[1].cos()]);
+    // pre-impact leg rate: the transverse part of the hip velocity
+    let omega1_minus = cross(rh, hip_vel) / (w * w);
+    let j1 = body.m1 * body.r1 * body.r1 + body.i1;
+    let mut a = SMatrix::<f64, 6, 6>::zeros();
+    let mut rhs = SVector::<f64, 6>::zeros();
+    // m2 Δv_c − P = 0
+    a[(0, 4)] = body.m2;
+    a[(0, 0)] = -1.0;
+    a[(1, 5)] = body.m2;
+    a[(1, 1)] = -1.0;
+    // I2 Δω2 − d × P = 0
+    a[(2, 3)] = body.i2;
+    a[(2, 0)] = d[1];
+    a[(2, 1)] = -d[0];
+    // J1 (ω1⁺ − ω1⁻) + r_h × P = 0
+    a[(3, 2)] = j1;
+    a[(3, 0)] = -rh[1];
+    a[(3, 1)] = rh[0];
+    rhs[3] = j1 * omega1_minus;
+    // v_h⁻ + Δv_c + Δω2 × d − ω1⁺ × r_h = 0  (ω × r = ω (−r_y, r_x))
+    a[(4, 4)] = 1.0;
+    a[(4, 3)] = -d[1];
+    a[(4, 2)] = rh[1];
+    rhs[4] = -hip_vel[0];
+    a[(5, 5)] = 1.0;
+    a[(5, 3)] = d[0];
+    a[(5, 2)] = -rh[0];
+    rhs[5] = -hip_vel[1];
+    let x = a.lu().solve(&rhs).expect("regular impulse system");
+    let v_after = [-x[2] * rh[1], x[2] * rh[0]];
+    assert!((v_after[0] * u[0] + v_after[1] * u[1]).abs() < 1e-12);
+    (v_after, trunk_rate - x[3])
+}
+
+/// The impulse agrees with the Newton–Euler solution at random states (hip velocity and trunk
+/// rate after the impact).
+#[test]
+fn heel_strike_matches_newton_euler() {
+    let mut rng = Rng(11);
+    let mut worst = 0.0_f64;
+    for body in bodies() {
+        let model = StanceModel::new(&body);
+        let geo = StanceGeo::new(&body, model.g);
+        for _ in 0..50 {
+            let (q, _) = random_stance_state(&mut rng);
+            let v = [rng.uniform(-2.0, 2.0), rng.uniform(-2.0, 2.0)];
+            let trunk = rng.uniform(-3.0, 3.0);
+            let (qd_plus, _) =
+                impact::heel_strike(&model, &q, &impact::rates_about_pivot(&q, v, trunk));
+            let [_, vh, _] = geo.velocities(&q, &qd_plus);
+            let (vh_ne, trunk_ne) = heel_strike_newton_euler(&body, &q, v, trunk);
+            let e = (vh[0] - vh_ne[0])
+                .abs()
+                .max((vh[1] - vh_ne[1]).abs())
+                .max((qd_plus[2] - trunk_ne).abs());
+            assert!(
+                e < 1e-10,
+                "impulse vs Newton–Euler: {vh:?} {} vs {vh_ne:?} {trunk_ne}",
+                qd_plus[2]
+            );
+            worst = worst.max(e);
+        }
+    }
+    eprintln!("heel strike vs Newton–Euler: worst abs. error {worst:.2e}");
+}
+
+/// Compass-gait-like collision (θ = 0.45 rad): the body moves with the hip velocity
+/// V (cos θ, −sin θ) of the old leg (perpendicular to it), trunk upright, trunk rate 0; the new
+/// leg is at −θ. Checked: `rates_about_pivot` (ẇ⁻ = −V sin 2θ, w θ̇1⁻ = V cos 2θ), the surviving
+/// hip-speed ratio against Newton–Euler and against the closed form
+///   ratio = cos 2θ + w sin 2θ · C D / (B E − D²),
+/// B = J1 + m2 w², C = m2 a sin(θ1 − θ2), D = m2 a w cos(θ1 − θ2), E = J2 (docs/dynamics.md),
+/// and its point-mass-trunk limit cos 2θ (a = 0). With the new leg ahead of an upright trunk
+/// C D < 0, so the ratio is below cos 2θ: see `heel_strike_speed_ratio_in_the_spec_band`.
 #[test]
 fn heel_strike_compass_gait_speed_ratio() {
     let theta: f64 = 0.45;
@@ -690,7 +968,6 @@ fn heel_strike_compass_gait_speed_ratio() {
         let v = [big_v * theta.cos(), -big_v * theta.sin()];
         let q = Vector3::new(body.l1, -theta, 0.0);
         let qd_minus = impact::rates_about_pivot(&q, v, 0.0);
-        // independent: in polar coordinates about the new pivot ẇ = −V sin 2θ, w θ̇1 = V cos 2θ
         assert!((qd_minus[0] + big_v * (2.0 * theta).sin()).abs() < 1e-14);
         assert!((qd_minus[1] * body.l1 - big_v * (2.0 * theta).cos()).abs() < 1e-14);
         let [_, vh, _] = geo.velocities(&q, &qd_minus);
@@ -698,6 +975,21 @@ fn heel_strike_compass_gait_speed_ratio() {
         let (qd_plus, report) = impact::heel_strike(&model, &q, &qd_minus);
         let [_, vh_plus, _] = geo.velocities(&q, &qd_plus);
         let ratio = speed(vh_plus) / big_v;
+        assert!((report.speed_ratio - ratio).abs() < 1e-12);
+        let (vh_ne, _) = heel_strike_newton_euler(&body, &q, v, 0.0);
+        assert!((speed(vh_ne) / big_v - ratio).abs() < 1e-12);
+        let (w, a) = (body.l1, body.r2);
+        let b = body.m1 * body.r1 * body.r1 + body.i1 + body.m2 * w * w;
+        let c = body.m2 * a * (-theta).sin();
+        let d = body.m2 * a * w * theta.cos();
+        let e = body.m2 * a * a + body.i2;
+        let closed = (2.0 * theta).cos() + w * (2.0 * theta).sin() * c * d / (b * e - d * d);
+        assert!((closed - ratio).abs() < 1e-12, "{closed} vs {ratio}");
+        // point-mass trunk at the hip: only the velocity across the new leg survives
+        let mut point = model;
+        point.a = 0.0;
+        let (_, r) = impact::heel_strike(&point, &q, &impact::rates_about_pivot(&q, v, 0.0));
+        assert!((r.speed_ratio - (2.0 * theta).cos()).abs() < 1e-12);
         eprintln!(
             "compass gait θ = {theta}: H = {} m, hip speed ratio {ratio:.4} (cos 2θ = {:.4}, cos θ = {:.4}), trunk rate after {:.3} rad/s",
             body.height,
@@ -705,9 +997,27 @@ fn heel_strike_compass_gait_speed_ratio() {
             theta.cos(),
             qd_plus[2]
         );
-        assert!((report.speed_ratio - ratio).abs() < 1e-12);
-        assert!(ratio > (2.0 * theta).cos() && ratio < theta.cos(), "ratio {ratio}");
     }
+}
+
+/// Spec §7: "the fraction of hip speed that survives the impact (between cos 2θ1* and cos θ1*)".
+/// FAILS for this model (ratio 0.397 at θ = 0.45 < cos 2θ = 0.622): the trunk coupling
+/// m2 a sin(θ1 − θ2) makes (M⁻¹)_wθ1 < 0 whenever the new leg is ahead of the trunk, so the
+/// impulse also slows the leg's rotation. Kept, ignored, until the spec's claim is settled.
+#[test]
+#[ignore = "spec §7 band does not hold for this model: ratio 0.397 < cos 2θ (see report)"]
+fn heel_strike_speed_ratio_in_the_spec_band() {
+    let theta: f64 = 0.45;
+    let body = Body::standard(1.8, 80.0).unwrap();
+    let model = StanceModel::new(&body);
+    let v = [theta.cos(), -theta.sin()];
+    let q = Vector3::new(body.l1, -theta, 0.0);
+    let (_, report) = impact::heel_strike(&model, &q, &impact::rates_about_pivot(&q, v, 0.0));
+    let ratio = report.speed_ratio;
+    assert!(
+        ratio > (2.0 * theta).cos() && ratio < theta.cos(),
+        "ratio {ratio}"
+    );
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -728,14 +1038,20 @@ fn knee_lock_keeps_the_angular_momentum_about_the_hip() {
             let l0 = geo.angular_momentum_about_hip(&q, &qd);
             // the first row of M q̇ is this momentum (clockwise +, as θ3 turns)
             let row = (model.mass_matrix(&q) * qd)[0];
-            assert!((row + l0).abs() < 1e-12 * row.abs().max(1.0), "row {row} vs L {l0}");
+            assert!(
+                (row + l0).abs() < 1e-12 * row.abs().max(1.0),
+                "row {row} vs L {l0}"
+            );
             assert_eq!(after[1], 0.0);
             let l1 = geo.angular_momentum_about_hip(&q, &after);
             let e = (l1 - l0).abs() / l0.abs().max(1e-3);
             assert!(e < 1e-12, "angular momentum about the hip changed by {e:e}");
             worst = worst.max(e);
             let (t0, t1) = (geo.kinetic(&q, &qd), geo.kinetic(&q, &after));
-            assert!(t1 <= t0 * (1.0 + 1e-12), "knee lock created energy: {t0} → {t1}");
+            assert!(
+                t1 <= t0 * (1.0 + 1e-12),
+                "knee lock created energy: {t0} → {t1}"
+            );
         }
     }
     eprintln!("knee lock: worst rel. change of the angular momentum about the hip {worst:.2e}");
@@ -758,7 +1074,11 @@ fn stance_hip_acceleration_is_the_second_derivative_of_the_hip() {
     let (mut worst_v, mut worst_a, mut worst_a2) = (0.0_f64, 0.0_f64, 0.0_f64);
     for _ in 0..60 {
         let (q0, qd0) = random_stance_state(&mut rng);
-        let qdd0 = Vector3::new(rng.uniform(-10.0, 10.0), rng.uniform(-10.0, 10.0), rng.uniform(-10.0, 10.0));
+        let qdd0 = Vector3::new(
+            rng.uniform(-10.0, 10.0),
+            rng.uniform(-10.0, 10.0),
+            rng.uniform(-10.0, 10.0),
+        );
         let q = |t: f64| q0 + qd0 * t + qdd0 * (0.5 * t * t);
         let qd = |t: f64| qd0 + qdd0 * t;
         let [_, hip, _] = geo.points(&q0);
@@ -768,7 +1088,10 @@ fn stance_hip_acceleration_is_the_second_derivative_of_the_hip() {
         let v = model.hip_velocity(&q0, &qd0);
         let (pp, pm) = (geo.points(&q(h))[1], geo.points(&q(-h))[1]);
         let a = model.hip_acceleration(&q0, &qd0, &qdd0);
-        let (vp, vm) = (model.hip_velocity(&q(h), &qd(h)), model.hip_velocity(&q(-h), &qd(-h)));
+        let (vp, vm) = (
+            model.hip_velocity(&q(h), &qd(h)),
+            model.hip_velocity(&q(-h), &qd(-h)),
+        );
         let h2 = 1e-4;
         let (pp2, pm2) = (geo.points(&q(h2))[1], geo.points(&q(-h2))[1]);
         let a_scale = speed(a).max(1.0);
@@ -781,7 +1104,9 @@ fn stance_hip_acceleration_is_the_second_derivative_of_the_hip() {
             worst_a2 = worst_a2.max(ea2);
         }
     }
-    eprintln!("hip kinematics: worst rel. error velocity {worst_v:.2e}, acceleration (FD of velocity) {worst_a:.2e}, (2nd FD of position) {worst_a2:.2e}");
+    eprintln!(
+        "hip kinematics: worst rel. error velocity {worst_v:.2e}, acceleration (FD of velocity) {worst_a:.2e}, (2nd FD of position) {worst_a2:.2e}"
+    );
     assert!(worst_v < 1e-8 && worst_a < 1e-8 && worst_a2 < 1e-5);
 }
 
@@ -794,19 +1119,53 @@ fn stance_hip_acceleration_along_a_trajectory() {
     let model = StanceModel::new(&body);
     let l1 = body.l1;
     let kw = body.m2 * (2.0 * std::f64::consts::PI * 5.0).powi(2);
-    let sys = StanceSpring { model, kw, l1, locked: false };
+    let sys = StanceSpring {
+        model,
+        kw,
+        l1,
+        locked: false,
+    };
     let y0 = State6::from_row_slice(&[l1, -0.3, 0.05, 0.0, 1.5, 0.0]);
     let h = 1e-4;
     // three states t − h, t, t + h, from the same start (tight tolerance: FD of the solution)
     let states: Vec<State6> = [0.2 - h, 0.2, 0.2 + h]
         .iter()
         .map(|&t_end| {
-            let mut s = Dopri5::new(StanceSpring { model, kw, l1, locked: false }, 0.0, t_end, t_end, y0, 1e-13, 1e-13);
+            let sys = StanceSpring {
+                model,
+                kw,
+                l1,
+                locked: false,
+            };
+            let mut s = Dopri5::from_param(
+                sys,
+                0.0,
+                t_end,
+                t_end,
+                y0,
+                1e-13,
+                1e-13,
+                0.9,
+                0.04,
+                0.2,
+                10.0,
+                t_end,
+                0.0,
+                100_000,
+                1000,
+                OutputType::Sparse,
+            );
             s.integrate().unwrap();
+            assert_eq!(*s.x_out().last().unwrap(), t_end);
             *s.y_out().last().unwrap()
         })
         .collect();
-    let split = |y: &State6| (Vector3::new(y[0], y[1], y[2]), Vector3::new(y[3], y[4], y[5]));
+    let split = |y: &State6| {
+        (
+            Vector3::new(y[0], y[1], y[2]),
+            Vector3::new(y[3], y[4], y[5]),
+        )
+    };
     let (q, qd) = split(&states[1]);
     let mut dy = State6::zeros();
     sys.system(0.2, &states[1], &mut dy);

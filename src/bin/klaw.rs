@@ -1,1 +1,418 @@
-fn main(){}
+//! The `klaw` command line: parse the flags, call the library, write the files, print a summary.
+//! No physics here. Errors print `error: <message>` and exit with `Error::exit_code()` (2 for bad
+//! input, 1 for a simulation or output failure); clap's usage errors exit 2 as well.
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+use clap::{Args, Parser, Subcommand};
+use klaw::report::Report;
+use klaw::walk::simulate;
+use klaw::{AttributeTable, Attributes, Body, Error, Gait, GaitRequest, Result, io};
+
+const DEFAULT_HEIGHT: f64 = 1.8;
+const DEFAULT_MASS: f64 = 80.0;
+const DEFAULT_VELOCITY: f64 = 1.4;
+const DEFAULT_STEPS: usize = 10;
+const DEFAULT_FPS: f64 = 100.0;
+const MAX_STEPS: usize = 1_000_000;
+const MIN_FPS: f64 = 0.001;
+const MAX_FPS: f64 = 10_000.0;
+const MAX_REPEAT: usize = 100_000;
+/// Frames are held in memory before they are written (≈ 200 bytes each): cap the count.
+const MAX_FRAMES: f64 = 5_000_000.0;
+
+#[derive(Parser)]
+#[command(
+    name = "klaw",
+    version,
+    about = "Goal-directed, dynamically simulated human walking (Bruderlin & Calvert's KLAW, 1989)",
+    long_about = "Goal-directed, dynamically simulated human walking after Bruderlin & Calvert, \"Goal-directed,\n\
+        dynamic animation of human walking\" (SIGGRAPH 1989).\n\
+        \n\
+        `klaw walk` simulates a walk and writes its frames as CSV; `klaw bench` times the default walk.\n\
+        \n\
+        Exit status: 0 on success, 2 for bad input (a flag or file out of range or malformed), 1 when\n\
+        the simulation or writing the output fails."
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Simulate a walk and write its frames (CSV) and optionally a per-step report (JSON)
+    #[command(
+        long_about = "Simulate a walk and write its frames (CSV) and optionally a per-step report (JSON).\n\
+            \n\
+            The gait is given by any of --velocity (v, m/s), --step-length (sl, m) and --step-frequency (sf,\n\
+            steps/min); the others are completed by KLAW's normalizing formula for a body of height H:\n\
+            sl = 0.004 · sf · H and v = sl · sf / 60. Only v → sf = √(15000 · v / H), sl = 60 · v / sf; only\n\
+            sf → sl = 0.004 · sf · H; only sl → sf = sl / (0.004 · H); two given → the third from\n\
+            v = sl · sf / 60; all three → they must agree (v = sl · sf / 60 within the consistency\n\
+            tolerance, 1 % by default). With none, v = 1.4 m/s. The completed gait is checked against the\n\
+            anatomical limits of the attributes (by default v in [0.4, 2.5] m/s, sf in [50, 182] steps/min,\n\
+            sl in [0.2, 1.3] leg lengths, i.e. [0.1736, 1.1285] m for H = 1.8 m).\n\
+            \n\
+            Example: klaw walk --velocity 1.2 --steps 6 --out slow.csv --report slow.json"
+    )]
+    Walk(WalkArgs),
+    /// Time the default walk (v = 1.4 m/s, H = 1.8 m, M = 80 kg), single-threaded
+    #[command(
+        long_about = "Time the default walk (v = 1.4 m/s, H = 1.8 m, M = 80 kg), single-threaded, and print the\n\
+            real-time factor (simulated seconds per wall-clock second), steps per second and mean shooting\n\
+            iterations per solve. Only the simulation is timed; no frames are sampled or written."
+    )]
+    Bench(BenchArgs),
+}
+
+#[derive(Args)]
+struct WalkArgs {
+    /// Walking speed v in m/s, range [0.4, 2.5] [default: 1.4 if no gait flag is given]
+    #[arg(
+        long,
+        value_name = "M/S",
+        allow_negative_numbers = true,
+        long_help = "Walking speed v in m/s; valid range [0.4, 2.5] m/s (attributes velocity_min/max). Given\n\
+            alone, step frequency and step length follow from the normalizing formula:\n\
+            sf = √(15000 · v / H) steps/min, sl = 60 · v / sf. [default: 1.4 when none of\n\
+            --velocity, --step-length, --step-frequency is given]"
+    )]
+    velocity: Option<f64>,
+
+    /// Step length sl in m (heel strike to heel strike of the two feet)
+    #[arg(
+        long,
+        value_name = "M",
+        allow_negative_numbers = true,
+        long_help = "Step length sl in m: the distance the body advances in one step. Its limits are\n\
+            fractions of the leg length (attributes step_length_min/max, by default [0.2, 1.3] leg\n\
+            lengths: [0.1736, 1.1285] m for H = 1.8 m). Given alone, sf = sl / (0.004 · H) and\n\
+            v = sl · sf / 60. [default: from the normalizing formula]"
+    )]
+    step_length: Option<f64>,
+
+    /// Step frequency sf in steps/min, range [50, 182]
+    #[arg(
+        long,
+        value_name = "STEPS/MIN",
+        allow_negative_numbers = true,
+        long_help = "Step frequency sf in steps per minute (each step is 60 / sf s). Valid range [50, 182]\n\
+            steps/min (attributes step_frequency_min/max); walking needs a double-support phase, so\n\
+            sf < 181.75 steps/min. Given alone, sl = 0.004 · sf · H and v = sl · sf / 60. [default:\n\
+            from the normalizing formula]"
+    )]
+    step_frequency: Option<f64>,
+
+    /// Body height H in m, range [1.2, 2.2]
+    #[arg(
+        long,
+        value_name = "M",
+        default_value_t = DEFAULT_HEIGHT,
+        allow_negative_numbers = true,
+        long_help = "Body height H in m; valid range [1.2, 2.2] m. Segment lengths scale with H (Winter's\n\
+            anthropometric table) and H enters the normalizing formula."
+    )]
+    height: f64,
+
+    /// Body mass M in kg, range [25, 200]
+    #[arg(
+        long,
+        value_name = "KG",
+        default_value_t = DEFAULT_MASS,
+        allow_negative_numbers = true,
+        long_help = "Body mass M in kg; valid range [25, 200] kg. Segment masses and inertias scale with M."
+    )]
+    mass: f64,
+
+    /// Number of steps, range [1, 1000000] [default: 10, or the schedule's length]
+    #[arg(
+        long,
+        value_name = "N",
+        long_help = "Number of steps to simulate; valid range [1, 1000000]. With --schedule: the first N rows\n\
+            are used, and if N exceeds the schedule's length the last row is held for the remaining\n\
+            steps. [default: 10, or the schedule's length with --schedule]"
+    )]
+    steps: Option<usize>,
+
+    /// Per-step gait requests from a .toml or .csv file (instead of the gait flags)
+    #[arg(
+        long,
+        value_name = "FILE",
+        conflicts_with_all = ["velocity", "step_length", "step_frequency"],
+        long_help = "Per-step gait requests, one per step, each completed by the normalizing formula like the\n\
+            gait flags (so each row needs at least one value). Either a TOML file of [[step]] tables\n\
+            with any of the keys velocity (m/s), step_length (m), step_frequency (steps/min), or a\n\
+            CSV file (extension .csv) whose header names any of those columns, one row per step,\n\
+            empty cells allowed, # starts a comment line. Cannot be combined with --velocity,\n\
+            --step-length or --step-frequency."
+    )]
+    schedule: Option<PathBuf>,
+
+    /// Locomotion attribute overrides: a TOML file `name = value`
+    #[arg(
+        long,
+        value_name = "FILE",
+        long_help = "Locomotion attribute overrides: a flat TOML file of `name = value` lines in the units of\n\
+            models/attributes.toml (angles in degrees), e.g. `bounciness = 0.5`. Each value is\n\
+            checked against its range; unknown names are an error. Unnamed attributes keep their\n\
+            defaults."
+    )]
+    attributes: Option<PathBuf>,
+
+    /// Output frame rate in frames/s, range [0.001, 10000]
+    #[arg(
+        long,
+        value_name = "HZ",
+        default_value_t = DEFAULT_FPS,
+        allow_negative_numbers = true,
+        long_help = "Frame rate of the CSV output in frames per second; valid range [0.001, 10000]. Frames\n\
+            are sampled from t = 0 to the last heel strike, so a walk of duration T has\n\
+            round(T · fps) + 1 rows."
+    )]
+    fps: f64,
+
+    /// Frame CSV to write
+    #[arg(
+        long,
+        value_name = "FILE.csv",
+        default_value = "walk.csv",
+        long_help = "Frame CSV to write: a header of column names (time_s, step, phase, joint angles in\n\
+            degrees, positions in m), then one row per frame. The file is written whole or not at\n\
+            all; an existing file is replaced only on success."
+    )]
+    out: PathBuf,
+
+    /// Per-step report to write as JSON [default: none]
+    #[arg(
+        long,
+        value_name = "FILE.json",
+        long_help = "Per-step report to write as JSON: target and achieved gait, end-condition errors, and\n\
+            the shooting solves (iterations, residual) of every step. Written whole or not at all.\n\
+            [default: not written]"
+    )]
+    report: Option<PathBuf>,
+}
+
+#[derive(Args)]
+struct BenchArgs {
+    /// Steps per walk, range [1, 1000000]
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_STEPS)]
+    steps: usize,
+    /// Number of walks timed, range [1, 100000]
+    #[arg(long, value_name = "R", default_value_t = 20)]
+    repeat: usize,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Walk(args) => walk(&args),
+        Command::Bench(args) => bench(&args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(1))
+        }
+    }
+}
+
+fn check_count(name: &str, value: usize, min: usize, max: usize, unit: &str) -> Result<usize> {
+    Error::check_range(name, value as f64, min as f64, max as f64, unit)?;
+    Ok(value)
+}
+
+/// Fail before simulating if an output file could not be created: its directory must exist.
+fn check_output_dir(path: &Path) -> Result<()> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    if dir.is_dir() {
+        Ok(())
+    } else {
+        Err(Error::Io {
+            action: "writing",
+            path: path.to_path_buf(),
+            source: std::io::Error::new(
+                std::io::ErrorKind::NotFound,
+                format!("directory {} does not exist", dir.display()),
+            ),
+        })
+    }
+}
+
+/// The gait of every step: the schedule's rows (the last one held) or the flags' one gait.
+fn gaits(args: &WalkArgs, body: &Body, attrs: &Attributes) -> Result<Vec<Gait>> {
+    if let Some(steps) = args.steps {
+        check_count("steps", steps, 1, MAX_STEPS, "steps")?;
+    }
+    match &args.schedule {
+        Some(path) => {
+            let rows = io::read_schedule(path)?;
+            let n = args.steps.unwrap_or(rows.len());
+            check_count("steps", n, 1, MAX_STEPS, "steps")?;
+            let completed = rows
+                .iter()
+                .take(n)
+                .enumerate()
+                .map(|(i, r)| {
+                    r.complete(body, attrs).map_err(|e| Error::Malformed {
+                        what: "schedule",
+                        path: path.clone(),
+                        reason: format!("step {}: {e}", i + 1),
+                    })
+                })
+                .collect::<Result<Vec<_>>>()?;
+            let last = *completed.last().expect("a schedule has at least one step");
+            let mut gaits = completed;
+            gaits.resize(n, last);
+            Ok(gaits)
+        }
+        None => {
+            let mut request = GaitRequest {
+                velocity: args.velocity,
+                step_length: args.step_length,
+                step_frequency: args.step_frequency,
+            };
+            if request == GaitRequest::default() {
+                request.velocity = Some(DEFAULT_VELOCITY);
+            }
+            let gait = request.complete(body, attrs)?;
+            Ok(vec![gait; args.steps.unwrap_or(DEFAULT_STEPS)])
+        }
+    }
+}
+
+fn load_attributes(path: Option<&Path>) -> Result<Attributes> {
+    let table = AttributeTable::builtin();
+    match path {
+        Some(p) => table.resolve(&io::read_attributes(p)?, &p.display().to_string()),
+        None => Ok(table.defaults()),
+    }
+}
+
+/// Mean and max shooting iterations over every solve of the report, and the number of solves.
+fn iteration_stats(report: &Report) -> Option<(f64, usize, usize)> {
+    let iterations: Vec<usize> = report
+        .steps
+        .iter()
+        .flat_map(|s| s.solves.iter().map(|r| r.report.iterations))
+        .collect();
+    let max = *iterations.iter().max()?;
+    let mean = iterations.iter().sum::<usize>() as f64 / iterations.len() as f64;
+    Some((mean, max, iterations.len()))
+}
+
+fn walk(args: &WalkArgs) -> Result<()> {
+    let fps = Error::check_range("fps", args.fps, MIN_FPS, MAX_FPS, "frames/s")?;
+    let body = Body::standard(args.height, args.mass)?;
+    let attrs = load_attributes(args.attributes.as_deref())?;
+    let gaits = gaits(args, &body, &attrs)?;
+    // the walk lasts Σ 60 / sf: refuse a frame count that would not fit in memory
+    let expected_duration: f64 = gaits.iter().map(|g| 60.0 / g.step_frequency).sum();
+    let expected_frames = (expected_duration * fps).round() + 1.0;
+    Error::check_range(
+        "frame count (duration · fps + 1)",
+        expected_frames,
+        1.0,
+        MAX_FRAMES,
+        "frames",
+    )?;
+    check_output_dir(&args.out)?;
+    if let Some(report) = &args.report {
+        check_output_dir(report)?;
+        if report == &args.out {
+            return Err(Error::Malformed {
+                what: "output path",
+                path: report.clone(),
+                reason: "--out and --report name the same file".to_string(),
+            });
+        }
+    }
+
+    let walk = simulate(body, attrs, &gaits)?;
+    let frames = walk.frames(fps);
+    io::write_frames_csv(&args.out, &frames)?;
+    let report = walk.report();
+    if let Some(path) = &args.report {
+        io::write_report_json(path, &report)?;
+    }
+
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(
+        out,
+        "walked {} steps: {:.3} s simulated, {} frames at {} frames/s",
+        walk.steps.len(),
+        walk.duration(),
+        frames.len(),
+        fps
+    );
+    let _ = match iteration_stats(&report) {
+        Some((mean, max, n)) => writeln!(
+            out,
+            "shooting: {n} solves, {mean:.1} iterations per solve on average, {max} at most"
+        ),
+        None => writeln!(out, "shooting: no solves recorded"),
+    };
+    let _ = writeln!(out, "frames: {}", args.out.display());
+    if let Some(path) = &args.report {
+        let _ = writeln!(out, "report: {}", path.display());
+    }
+    Ok(())
+}
+
+fn bench(args: &BenchArgs) -> Result<()> {
+    let steps = check_count("steps", args.steps, 1, MAX_STEPS, "steps")?;
+    let repeat = check_count("repeat", args.repeat, 1, MAX_REPEAT, "walks")?;
+    let body = Body::standard(DEFAULT_HEIGHT, DEFAULT_MASS)?;
+    let attrs = AttributeTable::builtin().defaults();
+    let gait = GaitRequest {
+        velocity: Some(DEFAULT_VELOCITY),
+        ..GaitRequest::default()
+    }
+    .complete(&body, &attrs)?;
+    let gaits = vec![gait; steps];
+
+    let mut wall = 0.0;
+    let mut simulated = 0.0;
+    let mut solves = 0usize;
+    let mut iterations = 0usize;
+    for _ in 0..repeat {
+        let start = Instant::now();
+        let walk = simulate(body, attrs.clone(), &gaits)?;
+        wall += start.elapsed().as_secs_f64();
+        simulated += walk.duration();
+        for s in &walk.report().steps {
+            solves += s.solves.len();
+            iterations += s.solves.iter().map(|r| r.report.iterations).sum::<usize>();
+        }
+    }
+    let total_steps = (steps * repeat) as f64;
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(
+        out,
+        "bench: {repeat} walks of {steps} steps at v = {:.2} m/s ({:.3} s wall)",
+        gait.velocity, wall
+    );
+    let _ = writeln!(
+        out,
+        "real-time factor: {:.2} simulated s per wall s",
+        simulated / wall
+    );
+    let _ = writeln!(out, "steps per second: {:.1}", total_steps / wall);
+    if solves > 0 {
+        let _ = writeln!(
+            out,
+            "iterations per solve: {:.2} ({solves} solves)",
+            iterations as f64 / solves as f64
+        );
+    } else {
+        let _ = writeln!(out, "iterations per solve: n/a (no solves recorded)");
+    }
+    Ok(())
+}

@@ -2,3 +2,4 @@
 //! profiles, and the shooting solvers that find their magnitudes.
 pub mod shooting;
 pub mod stance;
+pub mod swing;

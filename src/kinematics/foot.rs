@@ -1,0 +1,154 @@
+//! The foot as a rigid hind/mid-foot with a toe segment at the 1st metatarsal joint (Table B-1:
+//! l8, l9, l12, l13), and its two rolling rules (spec §7): about the metatarsal joint M while the
+//! pitch is below the metatarsal limit θ6_max, then about the toe tip T.
+use crate::body::Body;
+
+/// Rotate a foot-frame vector (x forward, y up, foot flat) by the pitch p (heel up +).
+pub fn pitch(v: [f64; 2], p: f64) -> [f64; 2] {
+    let (s, c) = p.sin_cos();
+    [v[0] * c + v[1] * s, -v[0] * s + v[1] * c]
+}
+
+fn add(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] + b[0], a[1] + b[1]]
+}
+
+fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+/// Heel, metatarsal joint and toe tip.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FootPoints {
+    pub heel: [f64; 2],
+    pub meta: [f64; 2],
+    pub toe: [f64; 2],
+}
+
+impl FootPoints {
+    /// Lowest height of the foot's sole polygon (heel, M, T).
+    pub fn lowest(&self) -> f64 {
+        self.heel[1].min(self.meta[1]).min(self.toe[1])
+    }
+}
+
+/// Foot dimensions.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Foot {
+    /// Heel behind the ankle (horizontal, foot flat).
+    pub l8: f64,
+    /// Ankle height (foot flat).
+    pub l9: f64,
+    /// Ankle to metatarsal joint, horizontal (foot flat).
+    pub h12: f64,
+    /// Metatarsal joint to toe tip.
+    pub l13: f64,
+}
+
+impl Foot {
+    pub fn new(body: &Body) -> Self {
+        Foot { l8: body.l8, l9: body.l9, h12: body.ankle_to_metatarsal_horizontal(), l13: body.l13 }
+    }
+
+    /// Foot points for an ankle at `ankle`, foot pitch `p` (heel up +) and toe dorsiflexion θ6.
+    pub fn points(&self, ankle: [f64; 2], p: f64, theta6: f64) -> FootPoints {
+        let meta = add(ankle, pitch([self.h12, -self.l9], p));
+        FootPoints {
+            heel: add(ankle, pitch([-self.l8, -self.l9], p)),
+            meta,
+            toe: add(meta, pitch([self.l13, 0.0], p - theta6)),
+        }
+    }
+
+    /// The largest pitch (heel up +) at which the metatarsal joint and the toe tip of a foot with
+    /// its ankle at height `ankle_y` and toe angle θ6 stay at or above `floor` (bisection: both
+    /// heights fall monotonically with the pitch on [−π/2, π/3]).
+    pub fn max_pitch(&self, ankle_y: f64, theta6: f64, floor: f64) -> f64 {
+        let low = |p: f64| {
+            let meta = ankle_y + pitch([self.h12, -self.l9], p)[1];
+            meta.min(meta + pitch([self.l13, 0.0], p - theta6)[1]) - floor
+        };
+        let (mut a, mut b) = (-std::f64::consts::FRAC_PI_2, std::f64::consts::FRAC_PI_3);
+        if low(b) >= 0.0 {
+            return b;
+        }
+        if low(a) < 0.0 {
+            return a;
+        }
+        while b - a > 1e-12 {
+            let m = 0.5 * (a + b);
+            if low(m) >= 0.0 { a = m } else { b = m }
+        }
+        a
+    }
+
+    /// Ankle of a foot rolling over the ground whose metatarsal joint stood at `meta_x` when the
+    /// foot was flat: about M (toe flat, θ6 = p) while p ≤ θ6_max, then about the toe tip with
+    /// θ6 = θ6_max. Returns the ankle and θ6.
+    pub fn rolling_ankle(&self, meta_x: f64, p: f64, theta6_max: f64) -> ([f64; 2], f64) {
+        if p <= theta6_max {
+            (sub([meta_x, 0.0], pitch([self.h12, -self.l9], p)), p)
+        } else {
+            let toe = [meta_x + self.l13, 0.0];
+            let meta = sub(toe, pitch([self.l13, 0.0], p - theta6_max));
+            (sub(meta, pitch([self.h12, -self.l9], p)), theta6_max)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn foot() -> Foot {
+        Foot::new(&Body::standard(1.8, 80.0).unwrap())
+    }
+
+    #[test]
+    fn flat_foot_stands_on_heel_meta_and_toe() {
+        let f = foot();
+        let pts = f.points([0.3, f.l9], 0.0, 0.0);
+        for p in [pts.heel, pts.meta, pts.toe] {
+            assert!(p[1].abs() < 1e-15);
+        }
+        assert!((pts.toe[0] - pts.heel[0] - (f.l8 + f.h12 + f.l13)).abs() < 1e-15);
+    }
+
+    #[test]
+    fn rolling_keeps_the_pivot_on_the_ground_and_is_continuous() {
+        let f = foot();
+        let lim = 0.6;
+        for i in 0..=100 {
+            let p = 1.2 * i as f64 / 100.0;
+            let (ankle, t6) = f.rolling_ankle(0.5, p, lim);
+            let pts = f.points(ankle, p, t6);
+            if p <= lim {
+                assert!((pts.meta[0] - 0.5).abs() < 1e-14 && pts.meta[1].abs() < 1e-14);
+                assert!(pts.toe[1].abs() < 1e-14, "toe flat while rolling about M");
+            } else {
+                assert!((pts.toe[0] - 0.5 - f.l13).abs() < 1e-14 && pts.toe[1].abs() < 1e-14);
+            }
+            // nothing goes below the ground while rolling
+            assert!(pts.lowest() > -1e-14);
+        }
+        let (a, _) = f.rolling_ankle(0.5, lim, lim);
+        let (b, _) = f.rolling_ankle(0.5, lim + 1e-9, lim);
+        assert!((a[0] - b[0]).abs() < 1e-8 && (a[1] - b[1]).abs() < 1e-8);
+    }
+
+    /// Rotating about the heel: the distances between the foot points are those of the body
+    /// table for any pitch (rigid foot).
+    #[test]
+    fn foot_is_rigid() {
+        let f = foot();
+        let b = Body::standard(1.8, 80.0).unwrap();
+        for p in [-0.4, 0.0, 0.3, 1.0] {
+            let a = [0.1, 0.2];
+            let pts = f.points(a, p, 0.0);
+            let d = |u: [f64; 2], v: [f64; 2]| (u[0] - v[0]).hypot(u[1] - v[1]);
+            assert!((d(a, pts.heel) - b.l11).abs() < 1e-14);
+            assert!((d(a, pts.meta) - b.l12).abs() < 1e-14);
+            assert!((d(pts.meta, pts.toe) - b.l13).abs() < 1e-14);
+        }
+    }
+}
