@@ -55,14 +55,23 @@ impl AttributeTable {
                 )));
             }
         }
-        if let Some(extra) = rows.keys().find(|k| !Attributes::NAMES.contains(&k.as_str())) {
-            return Err(malformed(format!("attribute `{extra}` is not read by the engine")));
+        if let Some(extra) = rows
+            .keys()
+            .find(|k| !Attributes::NAMES.contains(&k.as_str()))
+        {
+            return Err(malformed(format!(
+                "attribute `{extra}` is not read by the engine"
+            )));
         }
         Ok(AttributeTable(rows))
     }
 
     /// Attributes with every default, then `overrides` (user units) applied by name.
-    pub fn resolve(&self, overrides: &BTreeMap<String, f64>, source_name: &str) -> Result<Attributes> {
+    pub fn resolve(
+        &self,
+        overrides: &BTreeMap<String, f64>,
+        source_name: &str,
+    ) -> Result<Attributes> {
         let mut values = BTreeMap::new();
         for (name, spec) in &self.0 {
             values.insert(name.as_str(), spec.default);
@@ -73,19 +82,29 @@ impl AttributeTable {
                 source_name: source_name.to_string(),
                 known: Attributes::NAMES.join(", "),
             })?;
-            Error::check_range(name, value, spec.min, spec.max, &spec.unit)?;
+            let unit = if spec.unit == "1" {
+                ""
+            } else {
+                spec.unit.as_str()
+            };
+            Error::check_range(name, value, spec.min, spec.max, unit)?;
             values.insert(name.as_str(), value);
         }
         let si = |name: &str| {
             let v = values[name];
-            if self.0[name].unit == "deg" { v.to_radians() } else { v }
+            if self.0[name].unit == "deg" {
+                v.to_radians()
+            } else {
+                v
+            }
         };
         Ok(Attributes::from_fn(si))
     }
 
     /// The defaults.
     pub fn defaults(&self) -> Attributes {
-        self.resolve(&BTreeMap::new(), "defaults").expect("defaults lie in their ranges (checked at parse)")
+        self.resolve(&BTreeMap::new(), "defaults")
+            .expect("defaults lie in their ranges (checked at parse)")
     }
 }
 
@@ -163,6 +182,8 @@ attribute_struct! {
     metatarsal_limit,
     /// Expected minimum toe clearance in swing (m).
     toe_clearance,
+    /// Downward heel velocity at contact (m/s).
+    heel_strike_velocity,
     /// sf_max (steps/min).
     step_frequency_max,
     /// sf_min (steps/min).
@@ -216,15 +237,23 @@ mod tests {
     #[test]
     fn bad_attribute_files_are_named() {
         let p = Path::new("a.toml");
-        let e = parse_overrides("bounciness = \"high\"", p).unwrap_err().to_string();
+        let e = parse_overrides("bounciness = \"high\"", p)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("bounciness") && e.contains("number"), "{e}");
         let e = parse_overrides("bounciness = ", p).unwrap_err();
         assert!(matches!(e, Error::Malformed { .. }));
         let o = parse_overrides("bouncyness = 0.5", p).unwrap();
-        let e = AttributeTable::builtin().resolve(&o, "a.toml").unwrap_err().to_string();
+        let e = AttributeTable::builtin()
+            .resolve(&o, "a.toml")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("bouncyness") && e.contains("bounciness"), "{e}");
         let o = parse_overrides("bounciness = nan", p).unwrap();
-        let e = AttributeTable::builtin().resolve(&o, "a.toml").unwrap_err().to_string();
+        let e = AttributeTable::builtin()
+            .resolve(&o, "a.toml")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("finite"), "{e}");
     }
 }

@@ -271,7 +271,9 @@ mod tests {
     #[test]
     fn malformed_tables_are_rejected() {
         let bad = BUILTIN_TABLE.replace("length = 0.23669", "length = -0.2");
-        let e = BodyTable::parse(&bad, Path::new("x.toml")).unwrap_err().to_string();
+        let e = BodyTable::parse(&bad, Path::new("x.toml"))
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("thigh.length"), "{e}");
         let e = BodyTable::parse("name = 3", Path::new("y.toml")).unwrap_err();
         assert!(matches!(e, Error::Malformed { .. }));

@@ -15,6 +15,6 @@ pub mod plan;
 pub use params::{Gait, GaitRequest};
 pub use plan::{StepConstraints, Timing};
 pub mod dynamics;
-pub mod walk;
-pub mod report;
 pub mod io;
+pub mod report;
+pub mod walk;

@@ -3,9 +3,9 @@
 //! sign, and the crossing is root-found on the dense output to ~1e-13 s (spec §4: events are
 //! located, not rounded to the nearest solver step).
 use nalgebra::SVector;
-use std::cell::Cell;
 use ode_solvers::continuous_output_model::ContinuousOutputModel;
 use ode_solvers::{Dopri5, System};
+use std::cell::Cell;
 
 /// Relative and absolute integrator tolerance: the shooting residuals must be smooth functions
 /// of the unknowns at the level of the solver tolerance (spec §6: ≤ 1e-10).
@@ -65,15 +65,17 @@ struct Adapter<'a, P, const N: usize, const K: usize> {
     hit: &'a Cell<Option<(usize, f64, f64)>>,
 }
 
-impl<P: Phase<N, K>, const N: usize, const K: usize> System<f64, SVector<f64, N>> for Adapter<'_, P, N, K> {
+impl<P: Phase<N, K>, const N: usize, const K: usize> System<f64, SVector<f64, N>>
+    for Adapter<'_, P, N, K>
+{
     fn system(&self, t: f64, y: &SVector<f64, N>, dy: &mut SVector<f64, N>) {
         *dy = self.phase.rhs(t, y);
     }
 
     fn solout(&mut self, t: f64, y: &SVector<f64, N>, _dy: &SVector<f64, N>) -> bool {
         let g = self.phase.events(t, y);
-        for k in 0..K {
-            if self.last_g[k] > 0.0 && g[k] <= 0.0 {
+        for (k, (&before, &now)) in self.last_g.iter().zip(&g).enumerate() {
+            if before > 0.0 && now <= 0.0 {
                 self.hit.set(Some((k, self.last_t, t)));
                 return true;
             }
@@ -96,17 +98,30 @@ pub fn integrate<P: Phase<N, K>, const N: usize, const K: usize>(
     }
     let g0 = phase.events(t0, &y0);
     let hit = Cell::new(None);
-    let adapter = Adapter { phase, last_t: t0, last_g: g0, hit: &hit };
+    let adapter = Adapter {
+        phase,
+        last_t: t0,
+        last_g: g0,
+        hit: &hit,
+    };
     let mut dense = ContinuousOutputModel::new();
     let (y_last, stats) = {
         let mut stepper = Dopri5::new(adapter, t0, t1, t1 - t0, y0, TOLERANCE, TOLERANCE);
-        let stats = stepper.integrate_with_continuous_output_model(&mut dense).map_err(|e| e.to_string())?;
+        let stats = stepper
+            .integrate_with_continuous_output_model(&mut dense)
+            .map_err(|e| e.to_string())?;
         (*stepper.y_out().last().unwrap_or(&y0), stats)
     };
     if !y_last.iter().all(|v| v.is_finite()) {
         return Err("the state became non-finite".into());
     }
-    let mut segment = Segment { t0, t1, y0, y1: y_last, dense };
+    let mut segment = Segment {
+        t0,
+        t1,
+        y0,
+        y1: y_last,
+        dense,
+    };
     let event = match hit.get() {
         None => None,
         Some((k, mut a, mut b)) => {
@@ -144,7 +159,11 @@ pub fn integrate<P: Phase<N, K>, const N: usize, const K: usize>(
             Some(k)
         }
     };
-    Ok(Outcome { segment, event, evaluations: stats.num_eval })
+    Ok(Outcome {
+        segment,
+        event,
+        evaluations: stats.num_eval,
+    })
 }
 
 impl<P: Phase<N, K>, const N: usize, const K: usize> Phase<N, K> for &P {
@@ -175,7 +194,11 @@ mod tests {
     fn event_is_located_on_the_dense_output() {
         let out = integrate(&Oscillator, 0.0, SVector::<f64, 2>::new(1.0, 0.0), 3.0).unwrap();
         assert_eq!(out.event, Some(0));
-        assert!((out.segment.t1 - std::f64::consts::FRAC_PI_2).abs() < 1e-9, "{}", out.segment.t1);
+        assert!(
+            (out.segment.t1 - std::f64::consts::FRAC_PI_2).abs() < 1e-9,
+            "{}",
+            out.segment.t1
+        );
         assert!(out.segment.y1[0].abs() < 1e-9);
         assert!((out.segment.y1[1] + 1.0).abs() < 1e-9);
     }

@@ -40,19 +40,13 @@ impl GaitRequest {
             ("step_length", self.step_length),
             ("step_frequency", self.step_frequency),
         ] {
-            if let Some(v) = value {
-                if !v.is_finite() {
-                    return Err(Error::NotFinite { name: name.into(), value: v });
-                }
-                if v <= 0.0 {
-                    return Err(Error::OutOfRange {
-                        name: name.into(),
-                        value: v,
-                        min: f64::MIN_POSITIVE,
-                        max: f64::INFINITY,
-                        unit: String::new(),
-                    });
-                }
+            if let Some(v) = value
+                && !v.is_finite()
+            {
+                return Err(Error::NotFinite {
+                    name: name.into(),
+                    value: v,
+                });
             }
         }
         let h = body.height;
@@ -86,7 +80,14 @@ impl GaitRequest {
             }
         };
         let checks = [
-            ("velocity", v, attrs.velocity_min, attrs.velocity_max, "m/s", self.velocity),
+            (
+                "velocity",
+                v,
+                attrs.velocity_min,
+                attrs.velocity_max,
+                "m/s",
+                self.velocity,
+            ),
             (
                 "step_length",
                 sl,
@@ -112,7 +113,11 @@ impl GaitRequest {
                 }
             }
         }
-        Ok(Gait { velocity: v, step_length: sl, step_frequency: sf })
+        Ok(Gait {
+            velocity: v,
+            step_length: sl,
+            step_frequency: sf,
+        })
     }
 }
 
@@ -129,7 +134,11 @@ mod tests {
     }
 
     fn req(v: Option<f64>, sl: Option<f64>, sf: Option<f64>) -> GaitRequest {
-        GaitRequest { velocity: v, step_length: sl, step_frequency: sf }
+        GaitRequest {
+            velocity: v,
+            step_length: sl,
+            step_frequency: sf,
+        }
     }
 
     /// Hand computation: sf = √(15000 · 1.4 / 1.8) = √11666.67 = 108.012; sl = 84 / 108.012 = 0.7777.
@@ -147,8 +156,8 @@ mod tests {
     fn every_completion_rule_satisfies_v_equals_sl_sf() {
         let (b, a) = setup();
         let cases = [
-            req(None, None, Some(100.0)),  // sl = 0.72, v = 1.2
-            req(None, Some(0.72), None),   // sf = 100
+            req(None, None, Some(100.0)), // sl = 0.72, v = 1.2
+            req(None, Some(0.72), None),  // sf = 100
             req(Some(1.2), Some(0.72), None),
             req(Some(1.2), None, Some(100.0)),
             req(None, Some(0.72), Some(100.0)),
@@ -165,26 +174,54 @@ mod tests {
     #[test]
     fn inconsistent_triple_is_an_error_naming_the_implied_speed() {
         let (b, a) = setup();
-        let e = req(Some(1.4), Some(0.6), Some(100.0)).complete(&b, &a).unwrap_err();
+        let e = req(Some(1.4), Some(0.6), Some(100.0))
+            .complete(&b, &a)
+            .unwrap_err();
         let msg = e.to_string();
-        assert!(matches!(e, Error::Inconsistent { .. }) && msg.contains("1.0000 m/s"), "{msg}");
+        assert!(
+            matches!(e, Error::Inconsistent { .. }) && msg.contains("1.0000 m/s"),
+            "{msg}"
+        );
         assert_eq!(e.exit_code(), 2);
     }
 
     #[test]
     fn limits_name_the_value_and_range() {
         let (b, a) = setup();
-        let e = req(None, None, Some(190.0)).complete(&b, &a).unwrap_err().to_string();
-        assert!(e.contains("step_frequency = 190") && e.contains("182"), "{e}");
-        let e = req(Some(3.5), None, None).complete(&b, &a).unwrap_err().to_string();
-        assert!(e.contains("velocity = 3.5") && e.contains("[0.4, 2.5]"), "{e}");
-        let e = req(Some(1.0), Some(1.5), None).complete(&b, &a).unwrap_err().to_string();
+        let e = req(None, None, Some(190.0))
+            .complete(&b, &a)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("step_frequency = 190") && e.contains("182"),
+            "{e}"
+        );
+        let e = req(Some(3.5), None, None)
+            .complete(&b, &a)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("velocity = 3.5") && e.contains("[0.4, 2.5]"),
+            "{e}"
+        );
+        let e = req(Some(1.0), Some(1.5), None)
+            .complete(&b, &a)
+            .unwrap_err()
+            .to_string();
         // sl_max = 1.3 l1 = 1.3 · (0.23669 + 0.24556) · 1.8 = 1.1285 m
-        assert!(e.contains("step_length = 1.5") && e.contains("1.1285"), "{e}");
-        let e = req(Some(f64::NAN), None, None).complete(&b, &a).unwrap_err();
+        assert!(
+            e.contains("step_length = 1.5") && e.contains("1.1285"),
+            "{e}"
+        );
+        let e = req(Some(f64::NAN), None, None)
+            .complete(&b, &a)
+            .unwrap_err();
         assert!(matches!(e, Error::NotFinite { .. }));
         let e = req(Some(-1.0), None, None).complete(&b, &a).unwrap_err();
         assert!(matches!(e, Error::OutOfRange { .. }));
-        assert!(matches!(req(None, None, None).complete(&b, &a), Err(Error::MissingGait)));
+        assert!(matches!(
+            req(None, None, None).complete(&b, &a),
+            Err(Error::MissingGait)
+        ));
     }
 }

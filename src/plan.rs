@@ -30,9 +30,18 @@ impl Timing {
         let t_cycle = 2.0 * t_step;
         let t_ds = (-0.16 * step_frequency + 29.08) * t_cycle / 100.0;
         if t_ds <= 0.0 {
-            return Err(Error::NoDoubleSupport { step_frequency, t_ds });
+            return Err(Error::NoDoubleSupport {
+                step_frequency,
+                t_ds,
+            });
         }
-        Ok(Timing { t_step, t_cycle, t_ds, t_stance: t_step + t_ds, t_swing: t_step - t_ds })
+        Ok(Timing {
+            t_step,
+            t_cycle,
+            t_ds,
+            t_stance: t_step + t_ds,
+            t_swing: t_step - t_ds,
+        })
     }
 }
 
@@ -128,12 +137,17 @@ mod tests {
 
     fn worked(kappa_deg: f64, delta_deg: f64) -> (Body, StepConstraints) {
         let body = Body::standard(1.8, 80.0).unwrap();
-        let mut attrs = Attributes::default();
-        attrs.heel_strike_knee = kappa_deg.to_radians();
-        attrs.heel_strike_ankle = delta_deg.to_radians();
-        let gait = GaitRequest { velocity: Some(1.4), ..Default::default() }
-            .complete(&body, &attrs)
-            .unwrap();
+        let attrs = Attributes {
+            heel_strike_knee: kappa_deg.to_radians(),
+            heel_strike_ankle: delta_deg.to_radians(),
+            ..Default::default()
+        };
+        let gait = GaitRequest {
+            velocity: Some(1.4),
+            ..Default::default()
+        }
+        .complete(&body, &attrs)
+        .unwrap();
         let c = StepConstraints::new(&body, &attrs, gait).unwrap();
         (body, c)
     }
@@ -192,7 +206,10 @@ mod tests {
                 ankle[1] + b.l8 * p.sin() - b.l9 * p.cos(),
             ];
             assert!(heel[1].abs() < 1e-12, "κ {kappa} δ {delta}: heel {heel:?}");
-            assert!((heel[0] - c.heel_x).abs() < 1e-12, "κ {kappa} δ {delta}: heel {heel:?}");
+            assert!(
+                (heel[0] - c.heel_x).abs() < 1e-12,
+                "κ {kappa} δ {delta}: heel {heel:?}"
+            );
             let w = ((xh).powi(2) + (yh - b.l9).powi(2)).sqrt();
             assert!((w - c.w).abs() < 1e-12);
             assert!((c.sole_angle + p).abs() < 1e-12);

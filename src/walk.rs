@@ -10,15 +10,15 @@ use crate::body::Body;
 use crate::control::shooting::{self, Memory1, Memory2, Options, SolveReport, Start1, Start2};
 use crate::control::stance::{StanceRun, StanceSetup, StanceState};
 use crate::control::swing::{self, Subphase, SwingSetup, SwingState, SwingTrial};
-use crate::kinematics::foot::{Foot, FootPoints};
-use crate::report::{Achieved, Frame, Report, StepReport, Target};
-use crate::kinematics::hind_leg::HindLeg;
-use crate::ode::Segment;
 use crate::dynamics::impact::{self, ImpactReport};
 use crate::dynamics::{StanceModel, SwingModel};
 use crate::error::{Error, Result};
+use crate::kinematics::foot::{Foot, FootPoints};
+use crate::kinematics::hind_leg::HindLeg;
+use crate::ode::Segment;
 use crate::params::Gait;
 use crate::plan::StepConstraints;
+use crate::report::{Achieved, Frame, Report, StepReport, Target};
 
 /// Shooting tolerance on every end condition (rad or m): 100× inside the 1e-6 the walk promises,
 /// 10× above the residual noise of the 1e-10 integrator tolerance (measured ≈ 1e-9).
@@ -58,6 +58,8 @@ pub struct Step {
     pub theta6_off: f64,
     /// Toe clearance attribute (m).
     pub toe_clearance: f64,
+    /// Where in the swing (fraction) the foot is lowest.
+    pub lowest_at: f64,
     /// Measurements of the step (targets, achievements, invariants).
     pub report: StepReport,
 }
@@ -73,7 +75,7 @@ pub struct Walker {
     stance_memory: Option<Memory2>,
     swing1_memory: Option<Memory2>,
     swing2_memory: Option<Memory1>,
-    swing3_memory: Option<Memory1>,
+    swing3_memory: Option<Memory2>,
     t: f64,
     x_ankle: f64,
     index: usize,
@@ -86,7 +88,10 @@ impl Walker {
             swing_model: SwingModel::new(&body),
             body,
             attrs,
-            options: Options { tol: SOLVE_TOLERANCE, max_iterations: MAX_ITERATIONS },
+            options: Options {
+                tol: SOLVE_TOLERANCE,
+                max_iterations: MAX_ITERATIONS,
+            },
             prev: None,
             stance_memory: None,
             swing1_memory: None,
@@ -129,7 +134,12 @@ impl Walker {
         // pre-impact posture and rates about the new pivot
         let (prev_c, q, hip_v, trunk_rate) = match &self.prev {
             // first step [ours]: the mirrored heel-strike posture, hip moving horizontally at v
-            None => (c, Vector3::new(c.w, -c.theta1, self.attrs.trunk_lean), [gait.velocity, 0.0], 0.0),
+            None => (
+                c,
+                Vector3::new(c.w, -c.theta1, self.attrs.trunk_lean),
+                [gait.velocity, 0.0],
+                0.0,
+            ),
             Some((pc, y_end)) => {
                 let q_old = Vector3::new(y_end[0], y_end[1], y_end[2]);
                 let qd_old = Vector3::new(y_end[3], y_end[4], y_end[5]);
@@ -146,7 +156,10 @@ impl Walker {
             Some(m) => Start2::Warm(m),
             None => {
                 let scale = self.body.mass * self.body.l1;
-                Start2::Cold { x0: Vector2::new(0.5 * scale, 0.0), h: Vector2::new(0.01 * scale, 1e-3) }
+                Start2::Cold {
+                    x0: Vector2::new(0.5 * scale, 0.0),
+                    h: Vector2::new(0.01 * scale, 1e-3),
+                }
             }
         };
         let best = std::cell::RefCell::new(None::<StanceRun>);
@@ -154,13 +167,21 @@ impl Walker {
             let run = StanceRun::simulate(&setup, y0, x[0], x[1])?;
             let r = run.residual;
             let mut b = best.borrow_mut();
-            if b.as_ref().is_none_or(|o: &StanceRun| r.amax() < o.residual.amax()) {
+            if b.as_ref()
+                .is_none_or(|o: &StanceRun| r.amax() < o.residual.amax())
+            {
                 *b = Some(run);
             }
             Ok(r)
         };
-        let (x, report, memory) = shooting::solve2(residual, start, &self.options)
-            .map_err(|reason| Error::Integration { step: index, phase: "stance", reason })?;
+        let (x, report, memory) =
+            shooting::solve2(residual, start, &self.options).map_err(|reason| {
+                Error::Integration {
+                    step: index,
+                    phase: "stance",
+                    reason,
+                }
+            })?;
         let stance = best.into_inner().expect("at least one trial ran");
         if !report.converged {
             return Err(Error::NotConverged {
@@ -172,7 +193,10 @@ impl Walker {
         }
         debug_assert!(stance.tau1 == x[0] && stance.p == x[1]);
         self.stance_memory = Some(memory);
-        let mut solves = vec![SolveRecord { phase: "stance", report }];
+        let mut solves = vec![SolveRecord {
+            phase: "stance",
+            report,
+        }];
 
         // double support: the hind leg (flat foot at −sl of the previous step) completes its stance
         let t = c.timing;
@@ -185,19 +209,25 @@ impl Walker {
             t.t_ds,
             self.attrs.metatarsal_limit,
         );
-        let geometry = |what: String| Error::Invariant { step: index, phase: "double_support", what };
+        let geometry = |what: String| Error::Invariant {
+            step: index,
+            phase: "double_support",
+            what,
+        };
         let hind_pose = |tt: f64| hind.pose(stance.hip(&setup, tt)[0], tt);
         let off = hind_pose(t.t_ds).map_err(geometry)?;
         let h = 1e-4 * t.t_ds;
         let theta3_at = |tt: f64| hind_pose(tt).map(|p| p.theta3);
-        let d3 = (-theta3_at(t.t_ds + 2.0 * h).map_err(geometry)? + 8.0 * theta3_at(t.t_ds + h).map_err(geometry)?
+        let d3 = (-theta3_at(t.t_ds + 2.0 * h).map_err(geometry)?
+            + 8.0 * theta3_at(t.t_ds + h).map_err(geometry)?
             - 8.0 * theta3_at(t.t_ds - h).map_err(geometry)?
             + theta3_at(t.t_ds - 2.0 * h).map_err(geometry)?)
             / (12.0 * h);
         let y_off = SwingState::from([off.theta3, off.theta4, d3, hind.knee(t.t_ds).1]);
 
         // swing: three subphases, each solved by shooting
-        let a11 = self.swing_model.mass_matrix(&Vector2::new(0.0, c.theta4))[(0, 0)];
+        let m_hs = self.swing_model.mass_matrix(&Vector2::new(0.0, c.theta4));
+        let (a11, a22) = (m_hs[(0, 0)], m_hs[(1, 1)]);
         let wh = 2.0 * PI * self.attrs.swing_hip_frequency;
         let sw = SwingSetup {
             model: self.swing_model,
@@ -209,11 +239,21 @@ impl Walker {
             t_end: t.t_step,
             theta3_target: c.theta3,
             kappa_hs: c.theta4,
+            heel_ahead: c.heel_x - c.hip[0],
+            landing_velocity: self.attrs.heel_strike_velocity,
+            k_k: a22 * wh * wh,
+            d_k: 2.0 * self.attrs.swing_hip_damping_ratio * a22 * wh,
             k_h: a11 * wh * wh,
             d_h: 2.0 * self.attrs.swing_hip_damping_ratio * a11 * wh,
         };
         let torque_scale = self.body.mass * self.body.l1 * 0.01;
-        let fail = |phase: &'static str| move |reason: String| Error::Integration { step: index, phase, reason };
+        let fail = |phase: &'static str| {
+            move |reason: String| Error::Integration {
+                step: index,
+                phase,
+                reason,
+            }
+        };
         let not_converged = |phase: &'static str, r: &SolveReport| Error::NotConverged {
             step: index,
             phase,
@@ -224,11 +264,22 @@ impl Walker {
         let best1 = std::cell::RefCell::new(None::<SwingTrial>);
         let start = match self.swing1_memory {
             Some(m) => Start2::Warm(m),
-            None => Start2::Cold { x0: Vector2::zeros(), h: Vector2::new(torque_scale, 0.5 * torque_scale) },
+            None => Start2::Cold {
+                x0: Vector2::zeros(),
+                h: Vector2::new(torque_scale, 0.5 * torque_scale),
+            },
         };
         let (_, rep1, mem1) = shooting::solve2(
             |x: Vector2<f64>| {
-                let trial = SwingTrial::simulate(&sw, Subphase::Swing1 { hip: x[0], knee: x[1] }, sw.t_off, y_off)?;
+                let trial = SwingTrial::simulate(
+                    &sw,
+                    Subphase::Swing1 {
+                        hip: x[0],
+                        knee: x[1],
+                    },
+                    sw.t_off,
+                    y_off,
+                )?;
                 let r = trial.residual;
                 keep_best(&best1, trial);
                 Ok(r)
@@ -237,7 +288,10 @@ impl Walker {
             &self.options,
         )
         .map_err(fail("swing1"))?;
-        solves.push(SolveRecord { phase: "swing1", report: rep1 });
+        solves.push(SolveRecord {
+            phase: "swing1",
+            report: rep1,
+        });
         if !rep1.converged {
             return Err(not_converged("swing1", &rep1));
         }
@@ -245,9 +299,23 @@ impl Walker {
         let s1 = best1.into_inner().expect("a trial ran");
         // swing2: knee torque C
         let y1 = s1.segment.y1;
-        let (s2, rep2, mem2) = self.solve_1d(&sw, self.swing2_memory, torque_scale, |x| Subphase::Swing2 { knee: x }, sw.t1, y1)
+        let (s2, rep2, mem2) = self
+            .solve_1d(
+                &sw,
+                self.swing2_memory,
+                torque_scale,
+                |x| Subphase::Swing2 {
+                    knee: x,
+                    knee_start: y1[1],
+                },
+                sw.t1,
+                y1,
+            )
             .map_err(fail("swing2"))?;
-        solves.push(SolveRecord { phase: "swing2", report: rep2 });
+        solves.push(SolveRecord {
+            phase: "swing2",
+            report: rep2,
+        });
         if !rep2.converged {
             return Err(not_converged("swing2", &rep2));
         }
@@ -257,12 +325,41 @@ impl Walker {
         let q2 = Vector2::new(y2[0], y2[1]);
         let qd2 = impact::knee_lock(&self.swing_model, &q2, &Vector2::new(y2[2], y2[3]));
         let y2 = SwingState::from([y2[0], c.theta4, qd2[0], 0.0]);
-        let (s3, rep3, mem3) = self.solve_1d(&sw, self.swing3_memory, torque_scale, |x| Subphase::Swing3 { hip: x }, sw.t2, y2)
-            .map_err(fail("swing3"))?;
-        solves.push(SolveRecord { phase: "swing3", report: rep3 });
+        let best3 = std::cell::RefCell::new(None::<SwingTrial>);
+        let start = match self.swing3_memory {
+            Some(m) => Start2::Warm(m),
+            None => Start2::Cold {
+                x0: Vector2::zeros(),
+                h: Vector2::new(torque_scale, torque_scale),
+            },
+        };
+        let (_, rep3, mem3) = shooting::solve2(
+            |x: Vector2<f64>| {
+                let trial = SwingTrial::simulate(
+                    &sw,
+                    Subphase::Swing3 {
+                        hip: x[0],
+                        ramp: x[1],
+                    },
+                    sw.t2,
+                    y2,
+                )?;
+                let r = trial.residual;
+                keep_best(&best3, trial);
+                Ok(r)
+            },
+            start,
+            &self.options,
+        )
+        .map_err(fail("swing3"))?;
+        solves.push(SolveRecord {
+            phase: "swing3",
+            report: rep3,
+        });
         if !rep3.converged {
             return Err(not_converged("swing3", &rep3));
         }
+        let s3 = best3.into_inner().expect("a trial ran");
         self.swing3_memory = Some(mem3);
 
         let step = Step {
@@ -274,10 +371,15 @@ impl Walker {
             impact,
             solves,
             hind,
-            swing: vec![(s1.sub, s1.segment), (s2.sub, s2.segment), (s3.sub, s3.segment)],
+            swing: vec![
+                (s1.sub, s1.segment),
+                (s2.sub, s2.segment),
+                (s3.sub, s3.segment),
+            ],
             theta5_off: off.theta3 + off.theta4 - off.pitch,
             theta6_off: off.theta6,
             toe_clearance: self.attrs.toe_clearance,
+            lowest_at: 0.0,
             stance,
             report: StepReport {
                 index,
@@ -286,7 +388,11 @@ impl Walker {
                     step_length: gait.step_length,
                     step_frequency: gait.step_frequency,
                 },
-                achieved: Achieved { velocity: f64::NAN, step_length: f64::NAN, duration: t.t_step },
+                achieved: Achieved {
+                    velocity: f64::NAN,
+                    step_length: f64::NAN,
+                    duration: t.t_step,
+                },
                 solves: Vec::new(),
                 end_condition_error: f64::NAN,
                 heel_height_at_strike: f64::NAN,
@@ -302,7 +408,13 @@ impl Walker {
         let mut step = step;
         step.measure(&self.swing_model, &foot);
         step.check_invariants()?;
-        let y_end = step.stance.segments.last().expect("a converged run has segments").0.y1;
+        let y_end = step
+            .stance
+            .segments
+            .last()
+            .expect("a converged run has segments")
+            .0
+            .y1;
         self.prev = Some((c, y_end));
         self.t += c.timing.t_step;
         self.x_ankle += gait.step_length;
@@ -323,7 +435,10 @@ impl Walker {
         let best = std::cell::RefCell::new(None::<SwingTrial>);
         let start = match memory {
             Some(m) => Start1::Warm(m),
-            None => Start1::Cold { x0: 0.0, dx: 10.0 * scale },
+            None => Start1::Cold {
+                x0: 0.0,
+                dx: 10.0 * scale,
+            },
         };
         let (_, report, mem) = shooting::solve1(
             |x| {
@@ -342,7 +457,9 @@ impl Walker {
 /// Keep the trial with the smallest residual (the one the solver returns).
 fn keep_best(best: &std::cell::RefCell<Option<SwingTrial>>, trial: SwingTrial) {
     let mut b = best.borrow_mut();
-    if b.as_ref().is_none_or(|o| trial.residual.amax() < o.residual.amax()) {
+    if b.as_ref()
+        .is_none_or(|o| trial.residual.amax() < o.residual.amax())
+    {
         *b = Some(trial);
     }
 }
@@ -357,7 +474,10 @@ pub struct Walk {
 /// Simulate one step per entry of `gaits` (parameters may change from step to step).
 pub fn simulate(body: Body, attrs: Attributes, gaits: &[Gait]) -> Result<Walk> {
     let mut walker = Walker::new(body, attrs.clone());
-    let steps = gaits.iter().map(|g| walker.step(*g)).collect::<Result<Vec<_>>>()?;
+    let steps = gaits
+        .iter()
+        .map(|g| walker.step(*g))
+        .collect::<Result<Vec<_>>>()?;
     Ok(Walk { body, attrs, steps })
 }
 
@@ -396,7 +516,6 @@ impl Walk {
     }
 }
 
-
 /// The swing leg at one instant: subphase, coordinates and points (relative to the stance ankle x).
 #[derive(Clone, Copy, Debug)]
 pub struct SwingPose {
@@ -423,10 +542,16 @@ impl Step {
         let t1 = t.t_ds + swing::SWING1_END * t.t_swing;
         if tau < t1 {
             let s = ((tau - t.t_ds) / (ANKLE_NEUTRAL * (t1 - t.t_ds))).clamp(0.0, 1.0);
-            (self.theta5_off * (1.0 - s), self.theta6_off * 0.5 * (1.0 + (PI * s).cos()))
+            (
+                self.theta5_off * (1.0 - s),
+                self.theta6_off * 0.5 * (1.0 + (PI * s).cos()),
+            )
         } else {
             let s = ((tau - t1) / (t.t_step - t1)).clamp(0.0, 1.0);
-            (self.constraints.ankle * crate::control::stance::smoothstep(s), 0.0)
+            (
+                self.constraints.ankle * crate::control::stance::smoothstep(s),
+                0.0,
+            )
         }
     }
 
@@ -434,19 +559,22 @@ impl Step {
     pub fn swing_pose(&self, tau: f64, model: &SwingModel, foot: &Foot) -> SwingPose {
         let hip = self.hip(tau);
         let t = self.constraints.timing;
-        if tau < t.t_ds {
-            if let Ok(p) = self.hind.pose(hip, tau) {
-                return SwingPose {
-                    phase: "double_support",
-                    theta3: p.theta3,
-                    theta4: p.theta4,
-                    knee: p.knee,
-                    ankle: p.ankle,
-                    foot: p.foot,
-                };
-            }
+        if tau < t.t_ds
+            && let Ok(p) = self.hind.pose(hip, tau)
+        {
+            return SwingPose {
+                phase: "double_support",
+                theta3: p.theta3,
+                theta4: p.theta4,
+                knee: p.knee,
+                ankle: p.ankle,
+                foot: p.foot,
+            };
         }
-        let i = self.swing.partition_point(|(_, s)| s.t1 < tau).min(self.swing.len() - 1);
+        let i = self
+            .swing
+            .partition_point(|(_, s)| s.t1 < tau)
+            .min(self.swing.len() - 1);
         let (sub, seg) = &self.swing[i];
         let y = seg.state(tau);
         let q = Vector2::new(y[0], y[1]);
@@ -458,8 +586,15 @@ impl Step {
         let t = self.constraints.timing;
         let s = ((tau - t.t_ds) / t.t_swing).clamp(0.0, 1.0);
         let floor = self.toe_clearance * (PI * s).sin().powi(2);
-        let pitch = (y[0] + y[1] - theta5).min(foot.max_pitch(ankle[1], theta6, floor));
-        SwingPose { phase: sub.name(), theta3: y[0], theta4: y[1], knee, ankle, foot: foot.points(ankle, pitch, theta6) }
+        let pitch = foot.clear_pitch(y[0] + y[1] - theta5, ankle[1], theta6, floor);
+        SwingPose {
+            phase: sub.name(),
+            theta3: y[0],
+            theta4: y[1],
+            knee,
+            ankle,
+            foot: foot.points(ankle, pitch, theta6),
+        }
     }
 
     /// The frame at world time t.
@@ -473,7 +608,11 @@ impl Step {
             time_s: t,
             step: self.index,
             phase: sw.phase,
-            stance_side: if self.index % 2 == 0 { "right" } else { "left" },
+            stance_side: if self.index.is_multiple_of(2) {
+                "right"
+            } else {
+                "left"
+            },
             stance_mode: if locked { "locked" } else { "telescopic" },
             w_m: y[0],
             theta1_deg: y[1].to_degrees(),
@@ -501,9 +640,14 @@ impl Step {
         let t = c.timing;
         let y_end = self.stance.segments.last().expect("converged").0.y1;
         let sw_end = self.swing.last().expect("converged").1.y1;
-        let end_error = [y_end[1] - c.theta1, y_end[0] - c.w, sw_end[0] - c.theta3, sw_end[1] - c.theta4]
-            .iter()
-            .fold(0.0_f64, |m, e| m.max(e.abs()));
+        let end_error = [
+            y_end[1] - c.theta1,
+            y_end[0] - c.w,
+            sw_end[0] - c.theta3,
+            sw_end[1] - c.theta4,
+        ]
+        .iter()
+        .fold(0.0_f64, |m, e| m.max(e.abs()));
         let strike = self.swing_pose(t.t_step, model, foot);
         let dt = 1e-6;
         let before = self.swing_pose(t.t_step - dt, model, foot);
@@ -521,7 +665,13 @@ impl Step {
         let (mut lowest, mut mid) = (f64::INFINITY, f64::INFINITY);
         for k in 0..=SAMPLES {
             let frac = k as f64 / SAMPLES as f64;
-            let h = self.swing_pose(t.t_ds + frac * t.t_swing, model, foot).foot.lowest();
+            let h = self
+                .swing_pose(t.t_ds + frac * t.t_swing, model, foot)
+                .foot
+                .lowest();
+            if h < lowest {
+                self.lowest_at = frac;
+            }
             lowest = lowest.min(h);
             if (0.25..=0.75).contains(&frac) {
                 mid = mid.min(h);
@@ -529,7 +679,11 @@ impl Step {
         }
         let r = &mut self.report;
         r.solves = self.solves.clone();
-        r.achieved = Achieved { velocity: step_length / t.t_step, step_length, duration: t.t_step };
+        r.achieved = Achieved {
+            velocity: step_length / t.t_step,
+            step_length,
+            duration: t.t_step,
+        };
         r.end_condition_error = end_error;
         r.heel_height_at_strike = strike.foot.heel[1];
         r.heel_contact_velocity = (strike.foot.heel[1] - before.foot.heel[1]) / dt;
@@ -543,12 +697,31 @@ impl Step {
     /// no point of the swing foot under the ground.
     fn check_invariants(&self) -> Result<()> {
         let r = &self.report;
-        let fail = |phase: &'static str, what: String| Err(Error::Invariant { step: self.index, phase, what });
+        let fail = |phase: &'static str, what: String| {
+            Err(Error::Invariant {
+                step: self.index,
+                phase,
+                what,
+            })
+        };
         if r.hip_min_margin < -1e-6 {
-            return fail("stance", format!("the hip drops {:.3e} m below its heel-strike height", -r.hip_min_margin));
+            return fail(
+                "stance",
+                format!(
+                    "the hip drops {:.3e} m below its heel-strike height",
+                    -r.hip_min_margin
+                ),
+            );
         }
         if r.min_foot_height < -1e-6 {
-            return fail("swing", format!("the swing foot goes {:.3e} m under the ground", -r.min_foot_height));
+            return fail(
+                "swing",
+                format!(
+                    "the swing foot goes {:.3e} m under the ground at {:.0} % of the swing",
+                    -r.min_foot_height,
+                    100.0 * self.lowest_at
+                ),
+            );
         }
         Ok(())
     }

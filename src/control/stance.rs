@@ -47,9 +47,17 @@ pub struct StanceSetup {
 /// y_ref = ȳ(u) + (e/2)(1 + cos πu), u = sin θ1 / sin θ1^± clipped to [−1, 1], with ȳ blending
 /// the two heel-strike heights (ȳ = y_hs when they are equal).
 pub fn hip_reference(s: &StanceSetup, theta1: f64) -> (f64, f64) {
-    let denom = if theta1 < 0.0 { s.theta1_start.sin() } else { s.theta1_end.sin() };
+    let denom = if theta1 < 0.0 {
+        s.theta1_start.sin()
+    } else {
+        s.theta1_end.sin()
+    };
     let raw = theta1.sin() / denom;
-    let (u, du) = if raw.abs() >= 1.0 { (raw.signum(), 0.0) } else { (raw, theta1.cos() / denom) };
+    let (u, du) = if raw.abs() >= 1.0 {
+        (raw.signum(), 0.0)
+    } else {
+        (raw, theta1.cos() / denom)
+    };
     let half = 0.5 * PI * (1.0 + u);
     let dy = s.y_end - s.y_start;
     let base = s.y_start + dy * 0.5 * (1.0 - half.cos());
@@ -82,7 +90,11 @@ impl StanceForces<'_> {
         let s = self.setup;
         let (w, th1, th2, wd, th1d, th2d) = (y[0], y[1], y[2], y[3], y[4], y[5]);
         let f2 = -s.k_2 * (th2 - s.theta2_ref) - s.d_2 * th2d;
-        let f1 = if t < TORQUE_OFF * s.t_step { self.tau1 } else { 0.0 };
+        let f1 = if t < TORQUE_OFF * s.t_step {
+            self.tau1
+        } else {
+            0.0
+        };
         let fw = if self.locked {
             0.0
         } else {
@@ -105,7 +117,9 @@ impl StanceForces<'_> {
     pub fn accelerations(&self, t: f64, y: &StanceState) -> Vector3<f64> {
         let q = Vector3::new(y[0], y[1], y[2]);
         let qd = Vector3::new(y[3], y[4], y[5]);
-        self.setup.model.accelerations(&q, &qd, &self.generalized(t, y), self.locked)
+        self.setup
+            .model
+            .accelerations(&q, &qd, &self.generalized(t, y), self.locked)
     }
 }
 
@@ -146,7 +160,12 @@ pub struct StanceRun {
 
 impl StanceRun {
     /// One trial integration of the stance from `y0` over [0, t_step] with magnitudes (τ1, p).
-    pub fn simulate(setup: &StanceSetup, y0: StanceState, tau1: f64, p: f64) -> Result<Self, String> {
+    pub fn simulate(
+        setup: &StanceSetup,
+        y0: StanceState,
+        tau1: f64,
+        p: f64,
+    ) -> Result<Self, String> {
         let breaks = [TORQUE_OFF * setup.t_step, 0.5 * setup.t_step, setup.t_step];
         let mut run = StanceRun {
             tau1,
@@ -159,7 +178,12 @@ impl StanceRun {
         let (mut t, mut y, mut locked) = (0.0, y0, false);
         'outer: for t_break in breaks {
             while t < t_break {
-                let forces = StanceForces { setup, tau1, p, locked };
+                let forces = StanceForces {
+                    setup,
+                    tau1,
+                    p,
+                    locked,
+                };
                 let out = ode::integrate(&forces, t, y, t_break)?;
                 run.evaluations += out.evaluations;
                 t = out.segment.t1;
@@ -171,7 +195,8 @@ impl StanceRun {
                     Some(0) => {
                         // the knee locks: a plastic impulse along the leg stops ẇ
                         let q = Vector3::new(y[0], y[1], y[2]);
-                        let (qd, _) = impact::heel_strike(&setup.model, &q, &Vector3::new(y[3], y[4], y[5]));
+                        let (qd, _) =
+                            impact::heel_strike(&setup.model, &q, &Vector3::new(y[3], y[4], y[5]));
                         y = StanceState::from([y[0], y[1], y[2], 0.0, qd[1], qd[2]]);
                         locked = true;
                     }
@@ -193,7 +218,10 @@ impl StanceRun {
 
     /// The state and subphase at time t.
     pub fn state(&self, t: f64) -> (StanceState, bool) {
-        let i = self.segments.partition_point(|(s, _)| s.t1 < t).min(self.segments.len() - 1);
+        let i = self
+            .segments
+            .partition_point(|(s, _)| s.t1 < t)
+            .min(self.segments.len() - 1);
         let (seg, locked) = &self.segments[i];
         (seg.state(t), *locked)
     }
@@ -203,9 +231,18 @@ impl StanceRun {
         let (y, locked) = self.state(t);
         let q = Vector3::new(y[0], y[1], y[2]);
         let qd = Vector3::new(y[3], y[4], y[5]);
-        let forces = StanceForces { setup, tau1: self.tau1, p: self.p, locked };
+        let forces = StanceForces {
+            setup,
+            tau1: self.tau1,
+            p: self.p,
+            locked,
+        };
         let qdd = forces.accelerations(t, &y);
         let m = &setup.model;
-        [m.hip(&q), m.hip_velocity(&q, &qd), m.hip_acceleration(&q, &qd, &qdd)]
+        [
+            m.hip(&q),
+            m.hip_velocity(&q, &qd),
+            m.hip_acceleration(&q, &qd, &qdd),
+        ]
     }
 }

@@ -6,15 +6,18 @@
 //!   Measured over the grid (examples/grid.rs): constant torques whip the shank forward late and
 //!   put the toe 1–3 cm under the ground; a hip push that turns into a brake and a knee
 //!   extension that grows late keep the knee flexed while the foot passes under the hip.
-//! - swing2 [½, 0.85 t_swing]: hip servo F_θ3 = −k_h (θ3 − θ3*) − d_h θ̇3 and a knee braking
-//!   burst C·exp(−(t − t1)/τ), τ = 0.1 (t2 − t1) [ours], whose magnitude C is found so that θ4
-//!   first reaches κ_hs at the end (no hyperextension before); then the knee locks. A constant
-//!   knee torque cannot do it: swing1 hands over a knee extending at ≈ 10 rad/s, and a constant
-//!   torque that delays the crossing to t2 reverses the knee before it gets there (the residual
-//!   jumps at the tangency). A short braking burst slows the knee and lets it coast in, still
-//!   extending, so the residual is monotone in C; the knee lock absorbs the rest.
-//! - swing3 [0.85, 1 t_swing]: knee locked at κ_hs, constant hip moment D such that θ3 = θ3*
-//!   at heel strike.
+//! - swing2 [½, 0.85 t_swing]: hip servo F_θ3 = −k_h (θ3 − θ3*) − d_h θ̇3; the knee follows a
+//!   linear reference from its swing1-end angle to κ_hs at t2 through a servo
+//!   −k_k (θ4 − θ4_ref) − d_k (θ̇4 − θ̇4_ref), plus the unknown constant knee torque C found so
+//!   that θ4 first reaches κ_hs at t2 [ours]; then the knee locks. The knee is still extending at
+//!   t2 (the reference's rate), so the crossing is transversal and the residual monotone in C.
+//!   Measured: a constant or a decaying knee torque alone leaves no such root at slow speeds —
+//!   the knee, handed over extending at ≈ 10 rad/s, either crosses early or turns back before
+//!   t2 (the residual jumps at the tangency).
+//! - swing3 [0.85, 1 t_swing]: knee locked at κ_hs, hip moment D0 + D1 s (s the fraction of
+//!   swing3) such that θ3 = θ3* at heel strike and the heel comes down at the landing velocity
+//!   attribute [ours: the spec asks for a heel velocity ≤ 0 at contact; with one unknown the leg
+//!   still swings forward at contact at slow speeds and the heel scrapes up from below].
 use nalgebra::{SVector, Vector2};
 
 use crate::control::stance::{StanceRun, StanceSetup};
@@ -29,8 +32,6 @@ pub const SWING1_END: f64 = 0.5;
 pub const SWING2_END: f64 = 0.85;
 /// A trial stops when the thigh swings beyond ±100° (a wild guess).
 pub const THETA3_ABORT: f64 = 1.75;
-/// Time constant of the swing2 knee braking burst, as a fraction of swing2.
-pub const SWING2_BRAKE: f64 = 0.1;
 
 /// Everything about one swing that does not change between trials.
 #[derive(Clone, Copy, Debug)]
@@ -47,6 +48,13 @@ pub struct SwingSetup<'a> {
     /// θ3* and κ_hs.
     pub theta3_target: f64,
     pub kappa_hs: f64,
+    /// Heel ahead of the hip at heel strike, x_heel − x_hip = sl/2 − l8 (m).
+    pub heel_ahead: f64,
+    /// Downward heel velocity wanted at contact (m/s).
+    pub landing_velocity: f64,
+    /// Swing2 knee servo (N m/rad, N m s/rad).
+    pub k_k: f64,
+    pub d_k: f64,
     /// Swing2 hip servo.
     pub k_h: f64,
     pub d_h: f64,
@@ -55,9 +63,19 @@ pub struct SwingSetup<'a> {
 /// Which subphase, with its torque magnitudes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Subphase {
-    Swing1 { hip: f64, knee: f64 },
-    Swing2 { knee: f64 },
-    Swing3 { hip: f64 },
+    Swing1 {
+        hip: f64,
+        knee: f64,
+    },
+    /// `knee_start`: θ4 at the start of swing2, where the knee reference starts.
+    Swing2 {
+        knee: f64,
+        knee_start: f64,
+    },
+    Swing3 {
+        hip: f64,
+        ramp: f64,
+    },
 }
 
 impl Subphase {
@@ -84,15 +102,25 @@ impl SwingForces<'_> {
             Subphase::Swing1 { hip, knee } => {
                 // hip: a push that turns into a brake, A (1 − 1.5 s); knee: B s², an extension
                 // that grows late, so the knee flexes first (s = fraction of swing1)
-                let s = ((t - self.setup.t_off) / (self.setup.t1 - self.setup.t_off)).clamp(0.0, 1.0);
+                let s =
+                    ((t - self.setup.t_off) / (self.setup.t1 - self.setup.t_off)).clamp(0.0, 1.0);
                 Vector2::new(hip * (1.0 - 1.5 * s), knee * s * s)
             }
-            Subphase::Swing2 { knee } => {
+            Subphase::Swing2 { knee, knee_start } => {
                 let s = self.setup;
-                let tau = SWING2_BRAKE * (s.t2 - s.t1);
-                Vector2::new(-s.k_h * (y[0] - s.theta3_target) - s.d_h * y[2], knee * (-(t - s.t1) / tau).exp())
+                let span = s.t2 - s.t1;
+                let u = (t - s.t1) / span;
+                let reference = knee_start + (s.kappa_hs - knee_start) * u * u;
+                let rate = 2.0 * (s.kappa_hs - knee_start) * u / span;
+                Vector2::new(
+                    -s.k_h * (y[0] - s.theta3_target) - s.d_h * y[2],
+                    knee - s.k_k * (y[1] - reference) - s.d_k * (y[3] - rate),
+                )
             }
-            Subphase::Swing3 { hip } => Vector2::new(hip, 0.0),
+            Subphase::Swing3 { hip, ramp } => {
+                let s = self.setup;
+                Vector2::new(hip + ramp * (t - s.t2) / (s.t_end - s.t2), 0.0)
+            }
         }
     }
 }
@@ -105,7 +133,9 @@ impl Phase<4, 2> for SwingForces<'_> {
         let q = Vector2::new(y[0], y[1]);
         let qd = Vector2::new(y[2], y[3]);
         let locked = matches!(self.sub, Subphase::Swing3 { .. });
-        let a = s.model.accelerations(&q, &qd, &self.torques(t, y), hip_acc, locked);
+        let a = s
+            .model
+            .accelerations(&q, &qd, &self.torques(t, y), hip_acc, locked);
         SwingState::from([y[2], y[3], a[0], a[1]])
     }
 
@@ -130,7 +160,12 @@ pub struct SwingTrial {
 impl SwingTrial {
     /// Integrate `sub` from (t0, y0) to its end time and measure its end-condition residual
     /// (one component for swing2 and swing3, the second then 0).
-    pub fn simulate(setup: &SwingSetup, sub: Subphase, t0: f64, y0: SwingState) -> Result<Self, String> {
+    pub fn simulate(
+        setup: &SwingSetup,
+        sub: Subphase,
+        t0: f64,
+        y0: SwingState,
+    ) -> Result<Self, String> {
         let t_end = match sub {
             Subphase::Swing1 { .. } => setup.t1,
             Subphase::Swing2 { .. } => setup.t2,
@@ -145,8 +180,19 @@ impl SwingTrial {
                 Vector2::new(y[3] * (t_end - out.segment.t1), 0.0)
             }
             Subphase::Swing2 { .. } => Vector2::new(y[1] - setup.kappa_hs, 0.0),
-            Subphase::Swing3 { .. } => Vector2::new(y[0] - setup.theta3_target, 0.0),
+            Subphase::Swing3 { .. } => {
+                // heel velocity of the rigid leg rotating about the moving hip:
+                // v_heel,y = v_hip,y − θ̇3 (x_heel − x_hip)
+                let hip_vy = setup.stance.hip(setup.stance_setup, t_end)[1][1];
+                let heel_vy = hip_vy - y[2] * setup.heel_ahead;
+                Vector2::new(y[0] - setup.theta3_target, heel_vy + setup.landing_velocity)
+            }
         };
-        Ok(SwingTrial { sub, segment: out.segment, residual, evaluations: out.evaluations })
+        Ok(SwingTrial {
+            sub,
+            segment: out.segment,
+            residual,
+            evaluations: out.evaluations,
+        })
     }
 }

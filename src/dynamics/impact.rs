@@ -18,7 +18,11 @@ pub struct ImpactReport {
 
 /// Stance-model rates of a hip moving at `hip_velocity` about a pivot, in the coordinates
 /// q = (w, θ1, θ2) of that pivot: ẇ = v·(s1, c1), θ̇1 = v·(c1, −s1)/w; the trunk rate is kept.
-pub fn rates_about_pivot(q: &Vector3<f64>, hip_velocity: [f64; 2], trunk_rate: f64) -> Vector3<f64> {
+pub fn rates_about_pivot(
+    q: &Vector3<f64>,
+    hip_velocity: [f64; 2],
+    trunk_rate: f64,
+) -> Vector3<f64> {
     let (s1, c1) = q[1].sin_cos();
     let [vx, vy] = hip_velocity;
     Vector3::new(vx * s1 + vy * c1, (vx * c1 - vy * s1) / q[0], trunk_rate)
@@ -27,7 +31,11 @@ pub fn rates_about_pivot(q: &Vector3<f64>, hip_velocity: [f64; 2], trunk_rate: f
 /// Plastic heel-strike impulse along the new stance leg (spec §7): with the pre-impact rates
 /// q̇⁻ written about the new pivot, q̇⁺ = q̇⁻ − M⁻¹ e_w ẇ⁻ / (e_wᵀ M⁻¹ e_w), e_w = (1, 0, 0).
 /// Afterwards ẇ⁺ = 0, and p_θ1, p_θ2 (components of M q̇) are unchanged.
-pub fn heel_strike(model: &StanceModel, q: &Vector3<f64>, qd_minus: &Vector3<f64>) -> (Vector3<f64>, ImpactReport) {
+pub fn heel_strike(
+    model: &StanceModel,
+    q: &Vector3<f64>,
+    qd_minus: &Vector3<f64>,
+) -> (Vector3<f64>, ImpactReport) {
     let m = model.mass_matrix(q);
     let minv_ew = solve3(&m, &Vector3::new(1.0, 0.0, 0.0));
     let wd = qd_minus[0];

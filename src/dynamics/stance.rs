@@ -86,14 +86,21 @@ impl StanceModel {
         let (m2, a, g) = (self.m2, self.a, self.g);
         Vector3::new(
             -m2 * w * t1d * t1d - m2 * a * c12 * t2d * t2d + m2 * g * c1,
-            2.0 * m2 * w * wd * t1d + m2 * a * w * s12 * t2d * t2d - (self.m1 * self.r1 + m2 * w) * g * s1,
+            2.0 * m2 * w * wd * t1d + m2 * a * w * s12 * t2d * t2d
+                - (self.m1 * self.r1 + m2 * w) * g * s1,
             2.0 * m2 * a * c12 * wd * t1d - m2 * a * w * s12 * t1d * t1d - m2 * g * a * s2,
         )
     }
 
     /// Accelerations q̈ = M⁻¹ (Q − b). With `locked` the leg length is held (ẇ = ẅ = 0; the
     /// paper's locked-leg edit: the w row and column drop out) and q̈[0] = 0.
-    pub fn accelerations(&self, q: &Vector3<f64>, qd: &Vector3<f64>, force: &Vector3<f64>, locked: bool) -> Vector3<f64> {
+    pub fn accelerations(
+        &self,
+        q: &Vector3<f64>,
+        qd: &Vector3<f64>,
+        force: &Vector3<f64>,
+        locked: bool,
+    ) -> Vector3<f64> {
         let m = self.mass_matrix(q);
         let rhs = force - self.bias(q, qd);
         if locked {
@@ -125,11 +132,19 @@ impl StanceModel {
     /// Hip velocity ẇ (s1, c1) + w θ̇1 (c1, −s1).
     pub fn hip_velocity(&self, q: &Vector3<f64>, qd: &Vector3<f64>) -> [f64; 2] {
         let (s1, c1) = q[1].sin_cos();
-        [qd[0] * s1 + q[0] * qd[1] * c1, qd[0] * c1 - q[0] * qd[1] * s1]
+        [
+            qd[0] * s1 + q[0] * qd[1] * c1,
+            qd[0] * c1 - q[0] * qd[1] * s1,
+        ]
     }
 
     /// Hip acceleration from q, q̇ and q̈ (second derivative of [`Self::hip`]).
-    pub fn hip_acceleration(&self, q: &Vector3<f64>, qd: &Vector3<f64>, qdd: &Vector3<f64>) -> [f64; 2] {
+    pub fn hip_acceleration(
+        &self,
+        q: &Vector3<f64>,
+        qd: &Vector3<f64>,
+        qdd: &Vector3<f64>,
+    ) -> [f64; 2] {
         let (w, wd, wdd) = (q[0], qd[0], qdd[0]);
         let (t1d, t1dd) = (qd[1], qdd[1]);
         let (s1, c1) = q[1].sin_cos();

@@ -53,7 +53,8 @@ impl SwingModel {
     pub fn mass_matrix(&self, q: &Vector2<f64>) -> Matrix2<f64> {
         let c = self.m4 * self.l3 * self.r4 * q[1].cos();
         let shank = self.i4 + self.m4 * self.r4 * self.r4;
-        let a11 = self.i3 + self.m3 * self.r3 * self.r3 + self.m4 * self.l3 * self.l3 + shank + 2.0 * c;
+        let a11 =
+            self.i3 + self.m3 * self.r3 * self.r3 + self.m4 * self.l3 * self.l3 + shank + 2.0 * c;
         Matrix2::new(a11, shank + c, shank + c, shank)
     }
 
@@ -69,7 +70,8 @@ impl SwingModel {
         let gy = self.g + hip_acc[1];
         let ax = hip_acc[0];
         Vector2::new(
-            -c * s4 * (2.0 * t3d * t4d + t4d * t4d) + gy * (k * s3 + mr4 * sp) - ax * (k * c3 + mr4 * cp),
+            -c * s4 * (2.0 * t3d * t4d + t4d * t4d) + gy * (k * s3 + mr4 * sp)
+                - ax * (k * c3 + mr4 * cp),
             c * s4 * t3d * t3d + gy * mr4 * sp - ax * mr4 * cp,
         )
     }

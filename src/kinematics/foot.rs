@@ -47,7 +47,12 @@ pub struct Foot {
 
 impl Foot {
     pub fn new(body: &Body) -> Self {
-        Foot { l8: body.l8, l9: body.l9, h12: body.ankle_to_metatarsal_horizontal(), l13: body.l13 }
+        Foot {
+            l8: body.l8,
+            l9: body.l9,
+            h12: body.ankle_to_metatarsal_horizontal(),
+            l13: body.l13,
+        }
     }
 
     /// Foot points for an ankle at `ankle`, foot pitch `p` (heel up +) and toe dorsiflexion θ6.
@@ -80,6 +85,36 @@ impl Foot {
             if low(m) >= 0.0 { a = m } else { b = m }
         }
         a
+    }
+
+    /// The smallest pitch (heel up +) that keeps the heel at or above the ground, for an ankle at
+    /// height `ankle_y` (heel height l8 sin p − l9 cos p rises with p on [−π/2, π/3]).
+    pub fn min_pitch(&self, ankle_y: f64) -> f64 {
+        let heel = |p: f64| ankle_y + pitch([-self.l8, -self.l9], p)[1];
+        let (mut a, mut b) = (-std::f64::consts::FRAC_PI_2, std::f64::consts::FRAC_PI_3);
+        if heel(a) >= 0.0 {
+            return a;
+        }
+        if heel(b) < 0.0 {
+            return b;
+        }
+        while b - a > 1e-12 {
+            let m = 0.5 * (a + b);
+            if heel(m) >= 0.0 { b = m } else { a = m }
+        }
+        b
+    }
+
+    /// The swing foot's pitch: the rule's pitch, kept inside the range where the heel is on or
+    /// above the ground and the toe on or above `floor` (the floor drops to the ground when
+    /// both cannot hold).
+    pub fn clear_pitch(&self, rule: f64, ankle_y: f64, theta6: f64, floor: f64) -> f64 {
+        let lo = self.min_pitch(ankle_y);
+        let mut hi = self.max_pitch(ankle_y, theta6, floor);
+        if hi < lo {
+            hi = self.max_pitch(ankle_y, theta6, 0.0).max(lo);
+        }
+        rule.clamp(lo, hi)
     }
 
     /// Ankle of a foot rolling over the ground whose metatarsal joint stood at `meta_x` when the

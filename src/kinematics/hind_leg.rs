@@ -53,7 +53,10 @@ impl CostFunction for PitchResidual<'_> {
     type Param = f64;
     type Output = f64;
     fn cost(&self, p: &f64) -> Result<f64, argmin::core::Error> {
-        let (ankle, _) = self.leg.foot.rolling_ankle(self.leg.meta_x, *p, self.leg.theta6_max);
+        let (ankle, _) = self
+            .leg
+            .foot
+            .rolling_ankle(self.leg.meta_x, *p, self.leg.theta6_max);
         Ok((self.hip[0] - ankle[0]).hypot(self.hip[1] - ankle[1]) - self.a)
     }
 }
@@ -62,8 +65,24 @@ impl CostFunction for PitchResidual<'_> {
 const PITCH_BRACKET: (f64, f64) = (-0.5, 1.8);
 
 impl HindLeg {
-    pub fn new(body: &Body, meta_x: f64, kappa0: f64, kappa_to: f64, t_ds: f64, theta6_max: f64) -> Self {
-        HindLeg { foot: Foot::new(body), l3: body.l3, l4: body.l4, meta_x, kappa0, kappa_to, t_ds, theta6_max }
+    pub fn new(
+        body: &Body,
+        meta_x: f64,
+        kappa0: f64,
+        kappa_to: f64,
+        t_ds: f64,
+        theta6_max: f64,
+    ) -> Self {
+        HindLeg {
+            foot: Foot::new(body),
+            l3: body.l3,
+            l4: body.l4,
+            meta_x,
+            kappa0,
+            kappa_to,
+            t_ds,
+            theta6_max,
+        }
     }
 
     /// Prescribed knee flexion and its rate at time t of the double support.
@@ -76,11 +95,15 @@ impl HindLeg {
     /// The pose for a hip at `hip` at time t.
     pub fn pose(&self, hip: [f64; 2], t: f64) -> Result<LegPose, String> {
         let (kappa, _) = self.knee(t);
-        let a = (self.l3 * self.l3 + self.l4 * self.l4 + 2.0 * self.l3 * self.l4 * kappa.cos()).sqrt();
+        let a =
+            (self.l3 * self.l3 + self.l4 * self.l4 + 2.0 * self.l3 * self.l4 * kappa.cos()).sqrt();
         let problem = PitchResidual { leg: self, hip, a };
         let (lo, hi) = PITCH_BRACKET;
-        let (flo, fhi) = (problem.cost(&lo).unwrap_or(f64::NAN), problem.cost(&hi).unwrap_or(f64::NAN));
-        if !(flo * fhi < 0.0) {
+        let (flo, fhi) = (
+            problem.cost(&lo).unwrap_or(f64::NAN),
+            problem.cost(&hi).unwrap_or(f64::NAN),
+        );
+        if flo * fhi >= 0.0 || flo.is_nan() || fhi.is_nan() {
             return Err(format!(
                 "the hind foot cannot roll to reach the hip: hip–ankle distance {:.4} m is out of reach for knee flexion {:.1}°",
                 a,
@@ -98,8 +121,19 @@ impl HindLeg {
         let line = (hip[0] - ankle[0]).atan2(hip[1] - ankle[1]);
         let beta = (self.l4 * kappa.sin() / a).clamp(-1.0, 1.0).asin();
         let theta3 = line - beta;
-        let knee = [hip[0] - self.l3 * theta3.sin(), hip[1] - self.l3 * theta3.cos()];
-        Ok(LegPose { knee, ankle, foot: self.foot.points(ankle, p, theta6), theta3, theta4: kappa, pitch: p, theta6 })
+        let knee = [
+            hip[0] - self.l3 * theta3.sin(),
+            hip[1] - self.l3 * theta3.cos(),
+        ];
+        Ok(LegPose {
+            knee,
+            ankle,
+            foot: self.foot.points(ankle, p, theta6),
+            theta3,
+            theta4: kappa,
+            pitch: p,
+            theta6,
+        })
     }
 }
 
@@ -112,7 +146,14 @@ mod tests {
     #[test]
     fn pose_closes_the_leg_chain() {
         let b = Body::standard(1.8, 80.0).unwrap();
-        let leg = HindLeg::new(&b, -0.78 + 0.1444, 4f64.to_radians(), 40f64.to_radians(), 0.13, 35f64.to_radians());
+        let leg = HindLeg::new(
+            &b,
+            -0.78 + 0.1444,
+            4f64.to_radians(),
+            40f64.to_radians(),
+            0.13,
+            35f64.to_radians(),
+        );
         for i in 0..=10 {
             let t = 0.013 * i as f64;
             let hip = [-0.39 + 1.4 * t, 0.877 + 0.05 * t];
@@ -122,7 +163,8 @@ mod tests {
             assert!((d(pose.knee, pose.ankle) - b.l4).abs() < 1e-9, "t {t}");
             let thigh = [pose.knee[0] - hip[0], pose.knee[1] - hip[1]];
             let shank = [pose.ankle[0] - pose.knee[0], pose.ankle[1] - pose.knee[1]];
-            let flex = (thigh[0] * shank[1] - thigh[1] * shank[0]).atan2(thigh[0] * shank[0] + thigh[1] * shank[1]);
+            let flex = (thigh[0] * shank[1] - thigh[1] * shank[0])
+                .atan2(thigh[0] * shank[0] + thigh[1] * shank[1]);
             assert!((flex.abs() - leg.knee(t).0).abs() < 1e-9, "t {t}: {flex}");
             assert!(pose.foot.lowest() > -1e-12);
             assert!(pose.pitch > 0.0, "heel is off the ground in double support");
