@@ -8,7 +8,7 @@ use std::f64::consts::PI;
 use crate::attributes::Attributes;
 use crate::body::Body;
 use crate::control::shooting::{self, Memory1, Memory2, Options, SolveReport, Start1, Start2};
-use crate::control::stance::{StanceRun, StanceSetup, StanceState};
+use crate::control::stance::{HipPath, StanceRun, StanceSetup, StanceState};
 use crate::control::swing::{self, Subphase, SwingSetup, SwingState, SwingTrial};
 use crate::dynamics::impact::{self, ImpactReport};
 use crate::dynamics::{StanceModel, SwingModel};
@@ -233,6 +233,7 @@ impl Walker {
             model: self.swing_model,
             stance: &stance,
             stance_setup: &setup,
+            hip_path: &HipPath::new(&stance, &setup, t.t_ds, t.t_step),
             t_off: t.t_ds,
             t1: t.t_ds + swing::SWING1_END * t.t_swing,
             t2: t.t_ds + swing::SWING2_END * t.t_swing,

@@ -106,7 +106,11 @@ fn default_walk_meets_every_bound() {
     let c = klaw::StepConstraints::new(&body, &Attributes::default(), g).unwrap();
     for s in &report.steps {
         let r = s.impact_speed_ratio;
-        assert!(r > (2.0 * c.theta1).cos() && r < c.theta1.cos(), "step {}: ratio {r}", s.index);
+        assert!(
+            r > (2.0 * c.theta1).cos() && r < c.theta1.cos(),
+            "step {}: ratio {r}",
+            s.index
+        );
     }
     // the walk lasts 10 t_step and covers 10 sl: from sf = √(15000·1.4/1.8) by hand
     let sf = (15000.0_f64 * 1.4 / 1.8).sqrt();
@@ -178,4 +182,27 @@ fn accelerating_schedule_meets_every_target() {
             "{s:?}"
         );
     }
+}
+
+/// The tabulated hip acceleration the swing reads agrees with the stance dynamics between the
+/// grid points: to 1e-4 m/s² (3e-5 of the ≈ 3 m/s² hip accelerations); the largest errors sit
+/// where the jerk jumps (the position actuator's smoothstep starts at t_step/2).
+#[test]
+fn hip_path_interpolates_the_stance_hip() {
+    use klaw::control::stance::HipPath;
+    let body = Body::standard(1.8, 80.0).unwrap();
+    let w = walk::simulate(body, Attributes::default(), &[gait(&body, 1.4); 3]).unwrap();
+    let s = &w.steps[2];
+    let t = s.constraints.timing;
+    let path = HipPath::new(&s.stance, &s.stance_setup, t.t_ds, t.t_step);
+    let mut worst: f64 = 0.0;
+    for k in 0..997 {
+        let tau = t.t_ds + (t.t_step - t.t_ds) * (k as f64 + 0.37) / 997.0;
+        let exact = s.stance.hip(&s.stance_setup, tau)[2];
+        let got = path.acceleration(tau);
+        worst = worst
+            .max((exact[0] - got[0]).abs())
+            .max((exact[1] - got[1]).abs());
+    }
+    assert!(worst < 1e-4, "worst hip acceleration error {worst:e} m/s²");
 }

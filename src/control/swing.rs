@@ -20,7 +20,7 @@
 //!   still swings forward at contact at slow speeds and the heel scrapes up from below].
 use nalgebra::{SVector, Vector2};
 
-use crate::control::stance::{StanceRun, StanceSetup};
+use crate::control::stance::{HipPath, StanceRun, StanceSetup};
 use crate::dynamics::SwingModel;
 use crate::ode::{self, Phase, Segment};
 
@@ -40,6 +40,8 @@ pub struct SwingSetup<'a> {
     /// The stance of the same step: it moves the hip.
     pub stance: &'a StanceRun,
     pub stance_setup: &'a StanceSetup,
+    /// The stance's hip acceleration over the swing, tabulated.
+    pub hip_path: &'a HipPath,
     /// Toe-off, end of swing1, knee lock, heel strike (s from the step's start).
     pub t_off: f64,
     pub t1: f64,
@@ -129,7 +131,7 @@ impl SwingForces<'_> {
 impl Phase<4, 2> for SwingForces<'_> {
     fn rhs(&self, t: f64, y: &SwingState) -> SwingState {
         let s = self.setup;
-        let hip_acc = s.stance.hip(s.stance_setup, t)[2];
+        let hip_acc = s.hip_path.acceleration(t);
         let q = Vector2::new(y[0], y[1]);
         let qd = Vector2::new(y[2], y[3]);
         let locked = matches!(self.sub, Subphase::Swing3 { .. });
