@@ -79,6 +79,8 @@ pub struct Walker {
     t: f64,
     x_ankle: f64,
     index: usize,
+    /// Right-hand-side evaluations of the current step, over all trials.
+    evaluations: std::cell::Cell<u64>,
 }
 
 impl Walker {
@@ -100,6 +102,7 @@ impl Walker {
             t: 0.0,
             x_ankle: 0.0,
             index: 0,
+            evaluations: std::cell::Cell::new(0),
         }
     }
 
@@ -131,6 +134,7 @@ impl Walker {
     pub fn step(&mut self, gait: Gait) -> Result<Step> {
         let c = StepConstraints::new(&self.body, &self.attrs, gait)?;
         let index = self.index;
+        self.evaluations.set(0);
         // pre-impact posture and rates about the new pivot
         let (prev_c, q, hip_v, trunk_rate) = match &self.prev {
             // first step [ours]: the mirrored heel-strike posture, hip moving horizontally at v
@@ -165,6 +169,7 @@ impl Walker {
         let best = std::cell::RefCell::new(None::<StanceRun>);
         let residual = |x: Vector2<f64>| {
             let run = StanceRun::simulate(&setup, y0, x[0], x[1])?;
+            self.count(run.evaluations);
             let r = run.residual;
             let mut b = best.borrow_mut();
             if b.as_ref()
@@ -282,6 +287,7 @@ impl Walker {
                     y_off,
                 )?;
                 let r = trial.residual;
+                self.count(trial.evaluations);
                 keep_best(&best1, trial);
                 Ok(r)
             },
@@ -346,6 +352,7 @@ impl Walker {
                     y2,
                 )?;
                 let r = trial.residual;
+                self.count(trial.evaluations);
                 keep_best(&best3, trial);
                 Ok(r)
             },
@@ -404,10 +411,12 @@ impl Walker {
                 min_foot_height: f64::NAN,
                 min_toe_clearance: f64::NAN,
                 heel_contact_velocity: f64::NAN,
+                rhs_evaluations: 0,
             },
         };
         let mut step = step;
         step.measure(&self.swing_model, &foot);
+        step.report.rhs_evaluations = self.evaluations.get();
         step.check_invariants()?;
         let y_end = step
             .stance
@@ -421,6 +430,10 @@ impl Walker {
         self.x_ankle += gait.step_length;
         self.index += 1;
         Ok(step)
+    }
+
+    fn count(&self, evaluations: u32) {
+        self.evaluations.set(self.evaluations.get() + u64::from(evaluations));
     }
 
     /// A 1-D swing solve (bisection then secant), warm-started from `memory`.
@@ -445,6 +458,7 @@ impl Walker {
             |x| {
                 let trial = SwingTrial::simulate(sw, sub(x), t0, y0)?;
                 let r = trial.residual[0];
+                self.count(trial.evaluations);
                 keep_best(&best, trial);
                 Ok(r)
             },
