@@ -16,5 +16,6 @@ pub use params::{Gait, GaitRequest};
 pub use plan::{StepConstraints, Timing};
 pub mod dynamics;
 pub mod io;
+pub mod plot;
 pub mod report;
 pub mod walk;

@@ -78,6 +78,8 @@ pub struct StepReport {
     pub min_toe_clearance: f64,
     /// Heel vertical velocity at contact (m/s, ≤ 0).
     pub heel_contact_velocity: f64,
+    /// Largest knee flexion of the swing (rad).
+    pub peak_swing_knee_flexion: f64,
     /// Right-hand-side evaluations of the step's dynamic models over all shooting trials.
     pub rhs_evaluations: u64,
 }

@@ -412,6 +412,7 @@ impl Walker {
                 min_toe_clearance: f64::NAN,
                 heel_contact_velocity: f64::NAN,
                 rhs_evaluations: 0,
+                peak_swing_knee_flexion: f64::NAN,
             },
         };
         let mut step = step;
@@ -433,7 +434,8 @@ impl Walker {
     }
 
     fn count(&self, evaluations: u32) {
-        self.evaluations.set(self.evaluations.get() + u64::from(evaluations));
+        self.evaluations
+            .set(self.evaluations.get() + u64::from(evaluations));
     }
 
     /// A 1-D swing solve (bisection then secant), warm-started from `memory`.
@@ -677,13 +679,13 @@ impl Step {
         }
         let s = &self.stance_setup;
         // swing foot: lowest point over the swing, and in mid swing
-        let (mut lowest, mut mid) = (f64::INFINITY, f64::INFINITY);
+        let (mut lowest, mut mid, mut knee_peak) =
+            (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY);
         for k in 0..=SAMPLES {
             let frac = k as f64 / SAMPLES as f64;
-            let h = self
-                .swing_pose(t.t_ds + frac * t.t_swing, model, foot)
-                .foot
-                .lowest();
+            let pose = self.swing_pose(t.t_ds + frac * t.t_swing, model, foot);
+            knee_peak = knee_peak.max(pose.theta4);
+            let h = pose.foot.lowest();
             if h < lowest {
                 self.lowest_at = frac;
             }
@@ -706,6 +708,7 @@ impl Step {
         r.hip_min_margin = y_min - s.y_start.min(s.y_end);
         r.min_foot_height = lowest;
         r.min_toe_clearance = mid;
+        r.peak_swing_knee_flexion = knee_peak;
     }
 
     /// Invariants of a converged step (spec §4, §5): the hip never below its heel-strike height,

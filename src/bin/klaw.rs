@@ -9,7 +9,7 @@ use std::time::Instant;
 use clap::{Args, Parser, Subcommand};
 use klaw::report::Report;
 use klaw::walk::simulate;
-use klaw::{AttributeTable, Attributes, Body, Error, Gait, GaitRequest, Result, io};
+use klaw::{AttributeTable, Attributes, Body, Error, Gait, GaitRequest, Result, io, plot};
 
 const DEFAULT_HEIGHT: f64 = 1.8;
 const DEFAULT_MASS: f64 = 80.0;
@@ -31,7 +31,8 @@ const MAX_FRAMES: f64 = 5_000_000.0;
     long_about = "Goal-directed, dynamically simulated human walking after Bruderlin & Calvert, \"Goal-directed,\n\
         dynamic animation of human walking\" (SIGGRAPH 1989).\n\
         \n\
-        `klaw walk` simulates a walk and writes its frames as CSV; `klaw bench` times the default walk.\n\
+        `klaw walk` simulates a walk and writes its frames as CSV and a figure of it (PNG or SVG);\n\
+        `klaw bench` times the default walk.\n\
         \n\
         Exit status: 0 on success, 2 for bad input (a flag or file out of range or malformed), 1 when\n\
         the simulation or writing the output fails."
@@ -43,9 +44,10 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Simulate a walk and write its frames (CSV) and optionally a per-step report (JSON)
+    /// Simulate a walk and write its frames (CSV), a figure (PNG/SVG) and optionally a report (JSON)
     #[command(
-        long_about = "Simulate a walk and write its frames (CSV) and optionally a per-step report (JSON).\n\
+        long_about = "Simulate a walk and write its frames (CSV), a figure of it (PNG or SVG) and optionally a\n\
+            per-step report (JSON).\n\
             \n\
             The gait is given by any of --velocity (v, m/s), --step-length (sl, m) and --step-frequency (sf,\n\
             steps/min); the others are completed by KLAW's normalizing formula for a body of height H:\n\
@@ -56,7 +58,7 @@ enum Command {
             anatomical limits of the attributes (by default v in [0.4, 2.5] m/s, sf in [50, 182] steps/min,\n\
             sl in [0.2, 1.3] leg lengths, i.e. [0.1736, 1.1285] m for H = 1.8 m).\n\
             \n\
-            Example: klaw walk --velocity 1.2 --steps 6 --out slow.csv --report slow.json"
+            Example: klaw walk --velocity 1.2 --steps 6 --out slow.csv --plot slow.svg --report slow.json"
     )]
     Walk(WalkArgs),
     /// Time the default walk (v = 1.4 m/s, H = 1.8 m, M = 80 kg), single-threaded
@@ -184,6 +186,25 @@ struct WalkArgs {
             all; an existing file is replaced only on success."
     )]
     out: PathBuf,
+
+    /// Figure of the walk to write: PNG or SVG by the extension
+    #[arg(
+        long,
+        value_name = "FILE.png|FILE.svg",
+        default_value = "walk.png",
+        long_help = "Figure of the walk to write, 1600 × 1000 px, PNG or SVG by the extension (.png or .svg):\n\
+            a side view of the legs as stick figures every 0.1 s over the ground (metres, equal\n\
+            aspect ratio; blue the right leg, red the left), the hip height against time and the\n\
+            joint angles θ1..θ4 in degrees against time. Titles, tick labels and legends need a\n\
+            TrueType font, read when the program runs from $KLAW_FONT or else DejaVu Sans\n\
+            (/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf); without one the figure is drawn\n\
+            without text. Written whole or not at all, after the CSV and the report."
+    )]
+    plot: PathBuf,
+
+    /// Do not write the figure
+    #[arg(long, conflicts_with = "plot")]
+    no_plot: bool,
 
     /// Per-step report to write as JSON [default: none]
     #[arg(
@@ -334,6 +355,23 @@ fn walk(args: &WalkArgs) -> Result<()> {
             });
         }
     }
+    let plot = (!args.no_plot).then_some(args.plot.as_path());
+    if let Some(plot) = plot {
+        plot::figure_format(plot)?;
+        check_output_dir(plot)?;
+        for (other, flag) in [
+            (Some(&args.out), "--out"),
+            (args.report.as_ref(), "--report"),
+        ] {
+            if other.is_some_and(|o| o == plot) {
+                return Err(Error::Malformed {
+                    what: "output path",
+                    path: plot.to_path_buf(),
+                    reason: format!("--plot and {flag} name the same file"),
+                });
+            }
+        }
+    }
 
     let walk = simulate(body, attrs, &gaits)?;
     let frames = walk.frames(fps);
@@ -341,6 +379,9 @@ fn walk(args: &WalkArgs) -> Result<()> {
     let report = walk.report();
     if let Some(path) = &args.report {
         io::write_report_json(path, &report)?;
+    }
+    if let Some(plot) = plot {
+        plot::walk_figure(&frames, plot)?;
     }
 
     let mut out = std::io::stdout().lock();
@@ -362,6 +403,14 @@ fn walk(args: &WalkArgs) -> Result<()> {
     let _ = writeln!(out, "frames: {}", args.out.display());
     if let Some(path) = &args.report {
         let _ = writeln!(out, "report: {}", path.display());
+    }
+    if let Some(path) = plot {
+        let note = if plot::text_available() {
+            ""
+        } else {
+            " (no font found: drawn without text; set KLAW_FONT to a .ttf file)"
+        };
+        let _ = writeln!(out, "plot: {}{note}", path.display());
     }
     Ok(())
 }
