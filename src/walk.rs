@@ -266,44 +266,30 @@ impl Walker {
             residual: r.residual,
             iterations: r.iterations,
         };
-        // swing1: (A, B) together
-        let best1 = std::cell::RefCell::new(None::<SwingTrial>);
-        let start = match self.swing1_memory {
-            Some(m) => Start2::Warm(m),
-            None => Start2::Cold {
-                x0: Vector2::zeros(),
-                h: Vector2::new(torque_scale, 0.5 * torque_scale),
-            },
+        let mut record = |phase: &'static str, report: SolveReport| {
+            solves.push(SolveRecord { phase, report });
+            if report.converged {
+                Ok(())
+            } else {
+                Err(not_converged(phase, &report))
+            }
         };
-        let (_, rep1, mem1) = shooting::solve2(
-            |x: Vector2<f64>| {
-                let trial = SwingTrial::simulate(
-                    &sw,
-                    Subphase::Swing1 {
-                        hip: x[0],
-                        knee: x[1],
-                    },
-                    sw.t_off,
-                    y_off,
-                )?;
-                let r = trial.residual;
-                self.count(trial.evaluations);
-                keep_best(&best1, trial);
-                Ok(r)
-            },
-            start,
-            &self.options,
-        )
-        .map_err(fail("swing1"))?;
-        solves.push(SolveRecord {
-            phase: "swing1",
-            report: rep1,
-        });
-        if !rep1.converged {
-            return Err(not_converged("swing1", &rep1));
-        }
+        // swing1: hip and knee magnitudes (A, B) together
+        let (s1, rep1, mem1) = self
+            .solve_2d(
+                &sw,
+                self.swing1_memory,
+                Vector2::new(torque_scale, 0.5 * torque_scale),
+                |x| Subphase::Swing1 {
+                    hip: x[0],
+                    knee: x[1],
+                },
+                sw.t_off,
+                y_off,
+            )
+            .map_err(fail("swing1"))?;
+        record("swing1", rep1)?;
         self.swing1_memory = Some(mem1);
-        let s1 = best1.into_inner().expect("a trial ran");
         // swing2: knee torque C
         let y1 = s1.segment.y1;
         let (s2, rep2, mem2) = self
@@ -319,55 +305,27 @@ impl Walker {
                 y1,
             )
             .map_err(fail("swing2"))?;
-        solves.push(SolveRecord {
-            phase: "swing2",
-            report: rep2,
-        });
-        if !rep2.converged {
-            return Err(not_converged("swing2", &rep2));
-        }
+        record("swing2", rep2)?;
         self.swing2_memory = Some(mem2);
-        // knee lock, then swing3: hip moment D
+        // knee lock, then swing3: hip moment D0 + D1 s
         let y2 = s2.segment.y1;
         let q2 = Vector2::new(y2[0], y2[1]);
         let qd2 = impact::knee_lock(&self.swing_model, &q2, &Vector2::new(y2[2], y2[3]));
         let y2 = SwingState::from([y2[0], c.theta4, qd2[0], 0.0]);
-        let best3 = std::cell::RefCell::new(None::<SwingTrial>);
-        let start = match self.swing3_memory {
-            Some(m) => Start2::Warm(m),
-            None => Start2::Cold {
-                x0: Vector2::zeros(),
-                h: Vector2::new(torque_scale, torque_scale),
-            },
-        };
-        let (_, rep3, mem3) = shooting::solve2(
-            |x: Vector2<f64>| {
-                let trial = SwingTrial::simulate(
-                    &sw,
-                    Subphase::Swing3 {
-                        hip: x[0],
-                        ramp: x[1],
-                    },
-                    sw.t2,
-                    y2,
-                )?;
-                let r = trial.residual;
-                self.count(trial.evaluations);
-                keep_best(&best3, trial);
-                Ok(r)
-            },
-            start,
-            &self.options,
-        )
-        .map_err(fail("swing3"))?;
-        solves.push(SolveRecord {
-            phase: "swing3",
-            report: rep3,
-        });
-        if !rep3.converged {
-            return Err(not_converged("swing3", &rep3));
-        }
-        let s3 = best3.into_inner().expect("a trial ran");
+        let (s3, rep3, mem3) = self
+            .solve_2d(
+                &sw,
+                self.swing3_memory,
+                Vector2::new(torque_scale, torque_scale),
+                |x| Subphase::Swing3 {
+                    hip: x[0],
+                    ramp: x[1],
+                },
+                sw.t2,
+                y2,
+            )
+            .map_err(fail("swing3"))?;
+        record("swing3", rep3)?;
         self.swing3_memory = Some(mem3);
 
         let step = Step {
@@ -436,6 +394,39 @@ impl Walker {
     fn count(&self, evaluations: u32) {
         self.evaluations
             .set(self.evaluations.get() + u64::from(evaluations));
+    }
+
+    /// A 2-D swing solve (Broyden), warm-started from `memory`, cold from zero torques with
+    /// finite-difference steps `h`.
+    fn solve_2d(
+        &self,
+        sw: &SwingSetup,
+        memory: Option<Memory2>,
+        h: Vector2<f64>,
+        sub: impl Fn(Vector2<f64>) -> Subphase,
+        t0: f64,
+        y0: SwingState,
+    ) -> std::result::Result<(SwingTrial, SolveReport, Memory2), String> {
+        let best = std::cell::RefCell::new(None::<SwingTrial>);
+        let start = match memory {
+            Some(m) => Start2::Warm(m),
+            None => Start2::Cold {
+                x0: Vector2::zeros(),
+                h,
+            },
+        };
+        let (_, report, mem) = shooting::solve2(
+            |x| {
+                let trial = SwingTrial::simulate(sw, sub(x), t0, y0)?;
+                let r = trial.residual;
+                self.count(trial.evaluations);
+                keep_best(&best, trial);
+                Ok(r)
+            },
+            start,
+            &self.options,
+        )?;
+        Ok((best.into_inner().ok_or("no trial ran")?, report, mem))
     }
 
     /// A 1-D swing solve (bisection then secant), warm-started from `memory`.

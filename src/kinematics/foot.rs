@@ -66,43 +66,26 @@ impl Foot {
     }
 
     /// The largest pitch (heel up +) at which the metatarsal joint and the toe tip of a foot with
-    /// its ankle at height `ankle_y` and toe angle θ6 stay at or above `floor` (bisection: both
-    /// heights fall monotonically with the pitch on [−π/2, π/3]).
+    /// its ankle at height `ankle_y` and toe angle θ6 stay at or above `floor` (both heights fall
+    /// monotonically with the pitch on [−π/2, π/3]).
     pub fn max_pitch(&self, ankle_y: f64, theta6: f64, floor: f64) -> f64 {
-        let low = |p: f64| {
-            let meta = ankle_y + pitch([self.h12, -self.l9], p)[1];
-            meta.min(meta + pitch([self.l13, 0.0], p - theta6)[1]) - floor
-        };
-        let (mut a, mut b) = (-std::f64::consts::FRAC_PI_2, std::f64::consts::FRAC_PI_3);
-        if low(b) >= 0.0 {
-            return b;
-        }
-        if low(a) < 0.0 {
-            return a;
-        }
-        while b - a > 1e-12 {
-            let m = 0.5 * (a + b);
-            if low(m) >= 0.0 { a = m } else { b = m }
-        }
-        a
+        let meta = |p: f64| ankle_y + pitch([self.h12, -self.l9], p)[1];
+        boundary(
+            |p| meta(p).min(meta(p) + pitch([self.l13, 0.0], p - theta6)[1]) >= floor,
+            -std::f64::consts::FRAC_PI_2,
+            true,
+        )
     }
 
     /// The smallest pitch (heel up +) that keeps the heel at or above the ground, for an ankle at
-    /// height `ankle_y` (heel height l8 sin p − l9 cos p rises with p on [−π/2, π/3]).
+    /// height `ankle_y` (the heel's height l8 sin p − l9 cos p rises with p from its lowest
+    /// point, p = −atan(l8/l9) with the heel straight under the ankle, up to π/3).
     pub fn min_pitch(&self, ankle_y: f64) -> f64 {
-        let heel = |p: f64| ankle_y + pitch([-self.l8, -self.l9], p)[1];
-        let (mut a, mut b) = (-std::f64::consts::FRAC_PI_2, std::f64::consts::FRAC_PI_3);
-        if heel(a) >= 0.0 {
-            return a;
-        }
-        if heel(b) < 0.0 {
-            return b;
-        }
-        while b - a > 1e-12 {
-            let m = 0.5 * (a + b);
-            if heel(m) >= 0.0 { b = m } else { a = m }
-        }
-        b
+        boundary(
+            |p| ankle_y + pitch([-self.l8, -self.l9], p)[1] >= 0.0,
+            -(self.l8 / self.l9).atan(),
+            false,
+        )
     }
 
     /// The swing foot's pitch: the rule's pitch, kept inside the range where the heel is on or
@@ -129,6 +112,25 @@ impl Foot {
             (sub(meta, pitch([self.h12, -self.l9], p)), theta6_max)
         }
     }
+}
+
+/// The pitch on [lo, π/3] where `ok` changes, by bisection to 1e-12 rad: `ok` holds below the
+/// boundary when `below` (the largest good pitch is returned), above it otherwise (the smallest).
+/// Returns the end of the range when `ok` holds, or fails, everywhere.
+fn boundary(ok: impl Fn(f64) -> bool, lo: f64, below: bool) -> f64 {
+    let hi = std::f64::consts::FRAC_PI_3;
+    let (mut good, mut bad) = if below { (lo, hi) } else { (hi, lo) };
+    if ok(bad) {
+        return bad;
+    }
+    if !ok(good) {
+        return good;
+    }
+    while (bad - good).abs() > 1e-12 {
+        let m = 0.5 * (good + bad);
+        if ok(m) { good = m } else { bad = m }
+    }
+    good
 }
 
 #[cfg(test)]
@@ -169,6 +171,27 @@ mod tests {
         let (a, _) = f.rolling_ankle(0.5, lim, lim);
         let (b, _) = f.rolling_ankle(0.5, lim + 1e-9, lim);
         assert!((a[0] - b[0]).abs() < 1e-8 && (a[1] - b[1]).abs() < 1e-8);
+    }
+
+    /// The clearance limits sit exactly where the toe meets its floor and the heel the ground.
+    #[test]
+    fn pitch_limits_touch_the_floor() {
+        let f = foot();
+        let ankle_y = 0.12;
+        let p = f.max_pitch(ankle_y, 0.1, 0.01);
+        let pts = f.points([0.0, ankle_y], p, 0.1);
+        assert!((pts.meta[1].min(pts.toe[1]) - 0.01).abs() < 1e-9, "{pts:?}");
+        for ankle_y in [0.06, 0.065] {
+            let p = f.min_pitch(ankle_y);
+            assert!(
+                f.points([0.0, ankle_y], p, 0.0).heel[1].abs() < 1e-9,
+                "{ankle_y}"
+            );
+        }
+        // the rule is kept when it is clear, clamped when it is not
+        assert_eq!(f.clear_pitch(0.2, 0.3, 0.0, 0.01), 0.2);
+        let clamped = f.clear_pitch(1.0, ankle_y, 0.0, 0.01);
+        assert!(clamped < 1.0 && f.points([0.0, ankle_y], clamped, 0.0).lowest() >= 0.01 - 1e-9);
     }
 
     /// Rotating about the heel: the distances between the foot points are those of the body
