@@ -45,6 +45,9 @@ pub enum Error {
         source_name: String,
         known: String,
     },
+    /// A sweep flag whose value list cannot be parsed (`--flag`: reason).
+    #[error("--{flag}: {reason}")]
+    BadSpec { flag: String, reason: String },
     /// A model, attribute or schedule file that cannot be parsed.
     #[error("malformed {what} {path}: {reason}")]
     Malformed {

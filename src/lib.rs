@@ -18,4 +18,5 @@ pub mod dynamics;
 pub mod io;
 pub mod plot;
 pub mod report;
+pub mod sweep;
 pub mod walk;
