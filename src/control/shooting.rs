@@ -938,6 +938,23 @@ impl<R: Fn(Vector2<f64>) -> Result<Vector2<f64>, String>> Operator for Residual2
     }
 }
 
+/// Drive a solver from `init` until it terminates (argmin's Executor without its per-iteration
+/// bookkeeping: observers, timers and key-value logs the shooting loop does not use).
+fn run_to_end<O, S, I>(solver: &mut S, problem: &mut Problem<O>) -> Result<(), String>
+where
+    S: Solver<O, I>,
+    I: State,
+{
+    let (mut state, _) = solver.init(problem, I::new()).map_err(|e| e.to_string())?;
+    while !state.terminated() {
+        state = solver
+            .next_iter(problem, state)
+            .map_err(|e| e.to_string())?
+            .0;
+    }
+    Ok(())
+}
+
 /// Solve `residual(x) = 0` for one unknown with [`BisectionSecant`].
 ///
 /// Returns the best point found (smallest `|r|`), a report (`iterations` = residual
@@ -954,15 +971,7 @@ pub fn solve1<R: Fn(f64) -> Result<f64, String>>(
         Start1::Warm(m) => BisectionSecant::warm(m.x, m.slope, opts.tol, opts.max_iterations),
     };
     let mut problem = Problem::new(Residual1(residual));
-    let (mut state, _) = solver
-        .init(&mut problem, IterState::new())
-        .map_err(|e| e.to_string())?;
-    while !state.terminated() {
-        state = solver
-            .next_iter(&mut problem, state)
-            .map_err(|e| e.to_string())?
-            .0;
-    }
+    run_to_end(&mut solver, &mut problem)?;
     let Some((x, f)) = solver.best() else {
         return match solver.last_error() {
             Some(msg) => Err(format!("residual failed at the start point: {msg}")),
@@ -1014,15 +1023,7 @@ pub fn solve2<R: Fn(Vector2<f64>) -> Result<Vector2<f64>, String>>(
         ),
     };
     let mut problem = Problem::new(Residual2(residual));
-    let (mut state, _) = solver
-        .init(&mut problem, IterState::new())
-        .map_err(|e| e.to_string())?;
-    while !state.terminated() {
-        state = solver
-            .next_iter(&mut problem, state)
-            .map_err(|e| e.to_string())?
-            .0;
-    }
+    run_to_end(&mut solver, &mut problem)?;
     let jacobian = solver.jacobian().unwrap_or(Matrix2::repeat(f64::NAN));
     let Some((x, r)) = solver.best() else {
         return match solver.last_error() {
