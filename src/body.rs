@@ -39,6 +39,24 @@ pub struct FootRow {
     pub metatarsal_to_toe: f64,
 }
 
+/// Dimensions of the kinematic figure (fractions of H): the upper body and arms that dress the
+/// dynamic model, which lumps them into segment 2.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, serde::Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct FigureRow {
+    /// Hip-joint level to shoulder level.
+    pub spine: f64,
+    /// Shoulder joint to shoulder joint.
+    pub shoulder_width: f64,
+    /// Shoulder level to chin.
+    pub neck: f64,
+    /// Chin to top of the head.
+    pub head: f64,
+    pub upper_arm: f64,
+    pub forearm: f64,
+    pub hand: f64,
+}
+
 /// Bodies a table is valid for.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -58,6 +76,7 @@ pub struct BodyTable {
     pub thigh: SegmentRow,
     pub shank: SegmentRow,
     pub foot: FootRow,
+    pub figure: FigureRow,
     pub limits: Limits,
 }
 
@@ -96,6 +115,13 @@ impl BodyTable {
             ("foot.heel_to_ankle", table.foot.heel_to_ankle),
             ("foot.ankle_to_metatarsal", table.foot.ankle_to_metatarsal),
             ("foot.metatarsal_to_toe", table.foot.metatarsal_to_toe),
+            ("figure.spine", table.figure.spine),
+            ("figure.shoulder_width", table.figure.shoulder_width),
+            ("figure.neck", table.figure.neck),
+            ("figure.head", table.figure.head),
+            ("figure.upper_arm", table.figure.upper_arm),
+            ("figure.forearm", table.figure.forearm),
+            ("figure.hand", table.figure.hand),
         ];
         for (name, v) in rows {
             Error::check_range(name, v, 1e-6, 1.0, "(fraction)").map_err(|e| Error::Malformed {
@@ -151,6 +177,8 @@ pub struct Body {
     pub i2: f64,
     pub i3: f64,
     pub i4: f64,
+    /// The kinematic figure's dimensions, in metres (the table's fractions × H).
+    pub figure: FigureRow,
 }
 
 impl Body {
@@ -198,6 +226,18 @@ impl Body {
             i2: inertia(m2, table.upper_body.gamma, l2),
             i3: inertia(m3, table.thigh.gamma, l3),
             i4: inertia(m4, table.shank.gamma, l4),
+            figure: {
+                let f = table.figure;
+                FigureRow {
+                    spine: f.spine * h,
+                    shoulder_width: f.shoulder_width * h,
+                    neck: f.neck * h,
+                    head: f.head * h,
+                    upper_arm: f.upper_arm * h,
+                    forearm: f.forearm * h,
+                    hand: f.hand * h,
+                }
+            },
         })
     }
 

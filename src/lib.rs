@@ -15,6 +15,7 @@ pub mod plan;
 pub use params::{Gait, GaitRequest};
 pub use plan::{StepConstraints, Timing};
 pub mod dynamics;
+pub mod figure;
 pub mod io;
 pub mod plot;
 pub mod report;
