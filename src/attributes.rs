@@ -10,6 +10,37 @@ use crate::error::{Error, Result};
 /// The bundled attribute table.
 pub const BUILTIN_TABLE: &str = include_str!("../models/attributes.toml");
 
+/// The bundled style presets (`--style NAME`): attribute files in `models/styles/`.
+pub const STYLES: &[(&str, &str)] = &[
+    ("normal", include_str!("../models/styles/normal.toml")),
+    ("brisk", include_str!("../models/styles/brisk.toml")),
+    ("elderly", include_str!("../models/styles/elderly.toml")),
+    ("march", include_str!("../models/styles/march.toml")),
+    (
+        "long-stride",
+        include_str!("../models/styles/long-stride.toml"),
+    ),
+];
+
+/// The overrides of the style preset `name` (an error lists the known styles).
+pub fn style(name: &str) -> Result<BTreeMap<String, f64>> {
+    let (_, text) = STYLES
+        .iter()
+        .find(|(n, _)| *n == name)
+        .ok_or_else(|| Error::BadSpec {
+            flag: "style".into(),
+            reason: format!(
+                "unknown style `{name}`; the styles are {}",
+                STYLES
+                    .iter()
+                    .map(|(n, _)| *n)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        })?;
+    parse_overrides(text, Path::new(&format!("models/styles/{name}.toml")))
+}
+
 /// One row of the attribute table: default, unit, valid range, meaning and source.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -92,10 +123,10 @@ impl AttributeTable {
         }
         let si = |name: &str| {
             let v = values[name];
-            if self.0[name].unit == "deg" {
-                v.to_radians()
-            } else {
-                v
+            match self.0[name].unit.as_str() {
+                "deg" => v.to_radians(),
+                "%" => v / 100.0,
+                _ => v,
             }
         };
         Ok(Attributes::from_fn(si))
@@ -166,16 +197,14 @@ attribute_struct! {
     trunk_lean,
     /// f_w (Hz): leg axis spring k_w = m2 (2π f_w)².
     leg_frequency,
-    /// ζ_w: leg axis damper d_w = 2 ζ_w m2 (2π f_w).
-    leg_damping_ratio,
+    /// Damping ratio of the leg axis and the swing servos.
+    servo_damping_ratio,
     /// f_2 (Hz): trunk balance spring k_2 = J2 (2π f_2)².
     trunk_frequency,
     /// ζ_2: trunk balance damper.
     trunk_damping_ratio,
     /// f_h (Hz): swing2 hip servo spring.
     swing_hip_frequency,
-    /// ζ_h: swing2 hip servo damper.
-    swing_hip_damping_ratio,
     /// κ_TO: knee flexion at toe-off (rad).
     toe_off_knee,
     /// θ6_max: metatarsal dorsiflexion limit (rad).
@@ -196,8 +225,24 @@ attribute_struct! {
     step_length_min,
     /// sl_max as a fraction of the leg length.
     step_length_max,
-    /// Relative tolerance of v = sl·sf/60.
-    consistency_tolerance,
+    /// Pelvic rotation amplitude (rad).
+    pelvic_rotation,
+    /// Pelvic list amplitude (rad).
+    pelvic_list,
+    /// Lateral displacement amplitude of the pelvis centre (m).
+    lateral_displacement,
+    /// Distance between the feet (m).
+    step_width,
+    /// Anterior pelvic tilt at the trunk's lean reference (rad).
+    pelvis_tilt,
+    /// Shoulder flexion range, peak to peak (rad).
+    arm_swing,
+    /// Heel strike to foot flat, fraction of the gait cycle (the file's % / 100).
+    foot_flat_time,
+    /// Flat-foot ankle dorsiflexion at which the heel rises (rad).
+    heel_off_dorsiflexion,
+    /// Step length relative to the normalizing formula.
+    stride_factor,
 }
 
 impl Default for Attributes {
@@ -232,6 +277,18 @@ mod tests {
         assert!((a.heel_strike_knee - 6.0_f64.to_radians()).abs() < 1e-15);
         assert!((a.toe_off_knee - std::f64::consts::PI / 6.0).abs() < 1e-15);
         assert_eq!(a.bounciness, 0.8);
+    }
+
+    /// Every bundled style parses and resolves inside the attribute ranges; an unknown style
+    /// is named with the list of known ones.
+    #[test]
+    fn styles_resolve() {
+        let t = AttributeTable::builtin();
+        for (name, _) in STYLES {
+            t.resolve(&style(name).unwrap(), name).unwrap();
+        }
+        let e = style("sneaky").unwrap_err().to_string();
+        assert!(e.contains("sneaky") && e.contains("long-stride"), "{e}");
     }
 
     #[test]

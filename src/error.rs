@@ -93,6 +93,17 @@ pub enum Error {
 }
 
 impl Error {
+    /// A failure of the swing: its shooting, or its foot under the ground.
+    pub fn is_swing_failure(&self) -> bool {
+        match self {
+            Error::NotConverged { phase, .. } | Error::Integration { phase, .. } => {
+                phase.starts_with("swing")
+            }
+            Error::Invariant { phase, .. } => *phase == "swing",
+            _ => false,
+        }
+    }
+
     /// Process exit status: 2 for bad input, 1 for a simulation that failed.
     pub fn exit_code(&self) -> i32 {
         match self {

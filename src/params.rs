@@ -9,6 +9,9 @@ use crate::error::{Error, Result};
 
 /// Normalizing constant of eq. 1: metres of step per (step/min · m of body height).
 pub const NORMALIZING_CONSTANT: f64 = 0.004;
+/// Relative tolerance of v = sl · sf / 60 when all three are given: the rounding of user input
+/// (1.4 m/s, 0.78 m, 108 steps/min agree to 0.3 %).
+pub const CONSISTENCY_TOLERANCE: f64 = 0.01;
 
 /// What the user asked for: any of v (m/s), sl (m), sf (steps/min).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -31,9 +34,10 @@ pub struct Gait {
 
 impl GaitRequest {
     /// Complete the request by the normalizing formula and check it against the anatomical
-    /// limits of `attrs` (KLAW 1989 §3.1): only v → sf = √(15000 v / H), sl = 60 v / sf;
-    /// only sf → sl = 0.004 sf H; only sl → sf = sl / (0.004 H); two given → the third from
-    /// v = sl sf / 60; all three → they must agree within `consistency_tolerance`.
+    /// limits of `attrs` (KLAW 1989 §3.1): only v → sf = √(15000 v / (k H)), sl = 60 v / sf;
+    /// only sf → sl = 0.004 k sf H; only sl → sf = sl / (0.004 k H) (k the `stride_factor`
+    /// attribute, 1 for the paper's formula); two given → the third from
+    /// v = sl sf / 60; all three → they must agree within `CONSISTENCY_TOLERANCE`.
     pub fn complete(&self, body: &Body, attrs: &Attributes) -> Result<Gait> {
         for (name, value) in [
             ("velocity", self.velocity),
@@ -50,7 +54,7 @@ impl GaitRequest {
             }
         }
         let h = body.height;
-        let k = NORMALIZING_CONSTANT;
+        let k = NORMALIZING_CONSTANT * attrs.stride_factor;
         let (v, sl, sf) = match (self.velocity, self.step_length, self.step_frequency) {
             (None, None, None) => return Err(Error::MissingGait),
             (Some(v), None, None) => {
@@ -67,13 +71,13 @@ impl GaitRequest {
             (None, Some(sl), Some(sf)) => (sl * sf / 60.0, sl, sf),
             (Some(v), Some(sl), Some(sf)) => {
                 let implied = sl * sf / 60.0;
-                if (implied - v).abs() > attrs.consistency_tolerance * v {
+                if (implied - v).abs() > CONSISTENCY_TOLERANCE * v {
                     return Err(Error::Inconsistent {
                         velocity: v,
                         step_length: sl,
                         step_frequency: sf,
                         implied,
-                        tolerance_pct: attrs.consistency_tolerance * 100.0,
+                        tolerance_pct: CONSISTENCY_TOLERANCE * 100.0,
                     });
                 }
                 (v, sl, sf)

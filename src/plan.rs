@@ -71,6 +71,15 @@ pub struct StepConstraints {
     pub height_budget: f64,
     /// Bounce e = min(ε E, g t_step² / 4π²) (m): the hip's rise above y_hs at mid-stance.
     pub bounce: f64,
+    /// The striking leg's hip joint is (l0/2) sin A ahead of the pelvis centre at heel strike
+    /// (pelvic rotation A, spec §7), m.
+    pub hip_shift: f64,
+    /// The striking leg's lateral offset from hip joint to ankle at heel strike,
+    /// (l0/2) cos A − step width / 2 (m).
+    pub lateral_offset: f64,
+    /// In-plane hip–ankle drop of the striking leg at heel strike (m): the length with which a
+    /// lateral offset folds the leg's height (`pelvis::fold_height`) all through the swing.
+    pub fold_length: f64,
 }
 
 impl StepConstraints {
@@ -80,6 +89,12 @@ impl StepConstraints {
     /// dorsiflexion δ_hs. Cosine law: r² = a1² + l11² + 2 a1 l11 cos(ω8 − δ_hs + α), cos ω8 = l9/l11,
     /// where α = κ − β is the angle between shank and hip–ankle line (0 for a straight knee, the
     /// paper's case; the spec's formula omits it and misses the ground by 0.75 mm at κ = 4°).
+    ///
+    /// With the determinants of gait (spec §7) the striking leg hangs from its own hip joint,
+    /// (l0/2) sin A ahead of the pelvis centre (rotation at its maximum, list and lateral
+    /// displacement 0), with a lateral offset d to its ankle: the leg works in its own plane,
+    /// where the hip sits d_v − √(d_v² − d²) higher than in the world (d_v the in-plane drop).
+    /// The cosine law is solved in that plane; the pelvis centre is then that much lower.
     pub fn new(body: &Body, attrs: &Attributes, gait: Gait) -> Result<Self> {
         let timing = Timing::new(gait.step_frequency)?;
         let sl = gait.step_length;
@@ -97,18 +112,23 @@ impl StepConstraints {
         let r = r2.sqrt();
         let heel_x = sl - body.l8;
         let x_h = sl / 2.0;
-        let dx = heel_x - x_h;
+        let half = 0.5 * body.l0;
+        let hip_shift = half * attrs.pelvic_rotation.sin();
+        let lateral_offset = half * attrs.pelvic_rotation.cos() - 0.5 * attrs.step_width;
+        let dx = heel_x - x_h - hip_shift;
         if dx.abs() >= r {
             return Err(Error::Geometry {
                 what: format!("step length {sl} m: the swing heel cannot reach the ground"),
             });
         }
-        let y_h = (r2 - dx * dx).sqrt();
-        let w = ((y_h - body.l9).powi(2) + x_h * x_h).sqrt();
-        let theta1 = (x_h / w).asin();
+        let y_plane = (r2 - dx * dx).sqrt();
         let omega3 = ((a1 * a1 + r2 - body.l11 * body.l11) / (2.0 * a1 * r)).acos();
         // angle of the hip–ankle line from the downward vertical (negative: ankle ahead)
         let line = -(omega3 + (dx / r).asin());
+        let fold_length = a1 * line.cos();
+        let y_h = y_plane - crate::kinematics::pelvis::fold_height(fold_length, lateral_offset);
+        let w = ((y_h - body.l9).powi(2) + x_h * x_h).sqrt();
+        let theta1 = (x_h / w).asin();
         let theta3 = line - beta;
         let shank = theta3 + kappa;
         let height_budget = body.l1 + body.l9 - y_h;
@@ -126,6 +146,9 @@ impl StepConstraints {
             ankle: delta,
             height_budget,
             bounce: (attrs.bounciness * height_budget).min(cap),
+            hip_shift,
+            lateral_offset,
+            fold_length,
         })
     }
 }
@@ -135,21 +158,28 @@ mod tests {
     use super::*;
     use crate::params::GaitRequest;
 
+    /// The spec's worked examples have no determinants: no pelvic rotation, and a step width
+    /// equal to the pelvis width (no lateral offset).
     fn worked(kappa_deg: f64, delta_deg: f64) -> (Body, StepConstraints) {
         let body = Body::standard(1.8, 80.0).unwrap();
         let attrs = Attributes {
             heel_strike_knee: kappa_deg.to_radians(),
             heel_strike_ankle: delta_deg.to_radians(),
+            pelvic_rotation: 0.0,
+            step_width: body.l0,
             ..Default::default()
         };
+        (body, constraints(&body, &attrs))
+    }
+
+    fn constraints(body: &Body, attrs: &Attributes) -> StepConstraints {
         let gait = GaitRequest {
             velocity: Some(1.4),
             ..Default::default()
         }
-        .complete(&body, &attrs)
+        .complete(body, attrs)
         .unwrap();
-        let c = StepConstraints::new(&body, &attrs, gait).unwrap();
-        (body, c)
+        StepConstraints::new(body, attrs, gait).unwrap()
     }
 
     /// Spec §3 worked example, recomputed by hand: sf = 108.01, t_step = 60/108.01 = 0.5555 s,
@@ -192,11 +222,32 @@ mod tests {
     /// Independent check of the cosine-law construction for a flexed knee: forward kinematics of
     /// thigh (θ3*), shank (θ3* + κ) and a foot pitched by (shank − δ_hs) puts the heel on the
     /// ground at sl − l8, and the hip–stance-ankle distance is w*.
+    ///
+    /// With the determinants, the same in the striking leg's plane: its hip joint is
+    /// (l0/2) sin A ahead of the pelvis centre, and the world drop √(d_v² − d²) of a leg of
+    /// in-plane drop d_v and lateral offset d puts the world hip at the pelvis centre's height.
     #[test]
     fn forward_kinematics_lands_the_heel() {
-        for (kappa, delta) in [(4.0, 0.0), (10.0, -5.0), (0.0, 5.0)] {
-            let (b, c) = worked(kappa, delta);
-            let [xh, yh] = c.hip;
+        let body = Body::standard(1.8, 80.0).unwrap();
+        let with_determinants = constraints(
+            &body,
+            &Attributes {
+                pelvic_rotation: 6f64.to_radians(),
+                step_width: 0.05,
+                ..Default::default()
+            },
+        );
+        let cases = [(4.0, 0.0), (10.0, -5.0), (0.0, 5.0)]
+            .map(|(k, d)| worked(k, d))
+            .into_iter()
+            .chain([(body, with_determinants)]);
+        for (b, c) in cases {
+            let (kappa, delta) = (c.theta4.to_degrees(), c.ankle.to_degrees());
+            let xh = c.hip[0] + c.hip_shift;
+            // in-plane drop from the hip to the ankle, then the world hip height
+            let drop = b.l3 * c.theta3.cos() + b.l4 * (c.theta3 + c.theta4).cos();
+            let d = c.lateral_offset;
+            let yh = c.hip[1] + drop - (drop * drop - d * d).sqrt();
             let shank = c.theta3 + c.theta4;
             let knee = [xh - b.l3 * c.theta3.sin(), yh - b.l3 * c.theta3.cos()];
             let ankle = [knee[0] - b.l4 * shank.sin(), knee[1] - b.l4 * shank.cos()];
@@ -210,8 +261,9 @@ mod tests {
                 (heel[0] - c.heel_x).abs() < 1e-12,
                 "κ {kappa} δ {delta}: heel {heel:?}"
             );
-            let w = ((xh).powi(2) + (yh - b.l9).powi(2)).sqrt();
-            assert!((w - c.w).abs() < 1e-12);
+            // the telescopic leg runs from the stance ankle pivot to the pelvis centre
+            let w = (c.hip[0].powi(2) + (c.hip[1] - b.l9).powi(2)).sqrt();
+            assert!((w - c.w).abs() < 1e-12 && (c.theta1 - (c.hip[0] / w).asin()).abs() < 1e-12);
             assert!((c.sole_angle + p).abs() < 1e-12);
         }
     }

@@ -14,7 +14,8 @@ use crate::dynamics::impact::{self, ImpactReport};
 use crate::dynamics::{StanceModel, SwingModel};
 use crate::error::{Error, Result};
 use crate::kinematics::foot::{Foot, FootPoints};
-use crate::kinematics::hind_leg::HindLeg;
+use crate::kinematics::pelvis::{Determinants, PelvisMotion, Side, fold_height};
+use crate::kinematics::stance_leg::{KneeCurve, LegPose, StanceLeg, leg_points};
 use crate::ode::Segment;
 use crate::params::Gait;
 use crate::plan::StepConstraints;
@@ -22,7 +23,7 @@ use crate::report::{Achieved, Frame, Report, StepReport, Target};
 
 /// Shooting tolerance on every end condition (rad or m): 100× inside the 1e-6 the walk promises,
 /// 10× above the residual noise of the 1e-10 integrator tolerance (measured ≈ 1e-9).
-pub const SOLVE_TOLERANCE: f64 = 1e-8;
+pub const SOLVE_TOLERANCE: f64 = 2e-8;
 /// Trial integrations allowed per solve.
 pub const MAX_ITERATIONS: usize = 25;
 /// Fraction of swing1 at which the swing ankle is back at neutral.
@@ -49,8 +50,15 @@ pub struct Step {
     pub stance: StanceRun,
     pub impact: ImpactReport,
     pub solves: Vec<SolveRecord>,
-    /// The hind leg's kinematic completion during double support.
-    pub hind: HindLeg,
+    /// The stance side (step 0 stands on the right leg).
+    pub side: Side,
+    /// The determinants of gait.
+    pub determinants: Determinants,
+    /// This step's virtual stance leg (heel strike to the next heel strike; its toe-off falls in
+    /// the next step, which continues it as its hind leg).
+    pub stance_leg: StanceLeg,
+    /// The previous step's stance leg, completing its stance through this double support.
+    pub hind_leg: StanceLeg,
     /// The swing subphases, in order.
     pub swing: Vec<(Subphase, Segment<4>)>,
     /// Swing foot: ankle dorsiflexion and toe angle at toe-off (rad).
@@ -72,6 +80,8 @@ pub struct Walker {
     swing_model: SwingModel,
     options: Options,
     prev: Option<(StepConstraints, StanceState)>,
+    determinants: Determinants,
+    prev_leg: Option<StanceLeg>,
     stance_memory: Option<Memory2>,
     swing1_memory: Option<Memory2>,
     swing2_memory: Option<Memory1>,
@@ -85,6 +95,7 @@ pub struct Walker {
 
 impl Walker {
     pub fn new(body: Body, attrs: Attributes) -> Self {
+        let determinants = Determinants::new(&attrs, body.l0);
         Walker {
             stance_model: StanceModel::new(&body),
             swing_model: SwingModel::new(&body),
@@ -95,6 +106,8 @@ impl Walker {
                 max_iterations: MAX_ITERATIONS,
             },
             prev: None,
+            determinants,
+            prev_leg: None,
             stance_memory: None,
             swing1_memory: None,
             swing2_memory: None,
@@ -116,7 +129,7 @@ impl Walker {
             model: m,
             l1: self.body.l1,
             k_w: m.m2 * ww * ww,
-            d_w: 2.0 * a.leg_damping_ratio * m.m2 * ww,
+            d_w: 2.0 * a.servo_damping_ratio * m.m2 * ww,
             k_2: j2 * w2 * w2,
             d_2: 2.0 * a.trunk_damping_ratio * j2 * w2,
             theta2_ref: a.trunk_lean,
@@ -130,11 +143,39 @@ impl Walker {
         }
     }
 
-    /// Simulate the next step with gait `gait`.
+    /// Simulate the next step with gait `gait`. When the swing fails with the attributes'
+    /// pelvic list (the foot under the ground, or no convergence), the step is tried again with
+    /// half the list, then none [ours]: the list lowers the swing hip by (l0/2) sin L at mid
+    /// step, ≈ 5 mm, which the fastest walks of short bodies (v = 2 m/s at H = 1.5 m) cannot
+    /// spare. The list used is in the step's `determinants`.
     pub fn step(&mut self, gait: Gait) -> Result<Step> {
+        let saved = (
+            self.stance_memory,
+            self.swing1_memory,
+            self.swing2_memory,
+            self.swing3_memory,
+        );
+        let mut list = self.attrs.pelvic_list;
+        self.evaluations.set(0);
+        loop {
+            match self.step_with_list(gait, list) {
+                Err(e) if list > 0.0 && e.is_swing_failure() => {
+                    (
+                        self.stance_memory,
+                        self.swing1_memory,
+                        self.swing2_memory,
+                        self.swing3_memory,
+                    ) = saved;
+                    list = if list > 1e-3 { 0.5 * list } else { 0.0 };
+                }
+                result => return result,
+            }
+        }
+    }
+
+    fn step_with_list(&mut self, gait: Gait, list: f64) -> Result<Step> {
         let c = StepConstraints::new(&self.body, &self.attrs, gait)?;
         let index = self.index;
-        self.evaluations.set(0);
         // pre-impact posture and rates about the new pivot
         let (prev_c, q, hip_v, trunk_rate) = match &self.prev {
             // first step [ours]: the mirrored heel-strike posture, hip moving horizontally at v
@@ -203,54 +244,124 @@ impl Walker {
             report,
         }];
 
-        // double support: the hind leg (flat foot at −sl of the previous step) completes its stance
+        // the determinants of gait move each leg's hip joint off the pelvis centre
         let t = c.timing;
-        let foot = Foot::new(&self.body);
-        let hind = HindLeg::new(
+        let side = Side::of_step(index);
+        let det = Determinants {
+            list,
+            ..self.determinants
+        };
+        let (t0, x0) = (self.t, self.x_ankle);
+        let pelvis = |tau: f64| det.at(side, tau, t.t_step);
+        // a leg's hip joint at step time τ: world (x, y) and lateral offset from its ankle
+        let hip_joint = |leg: Side, tau: f64| {
+            let h = stance.hip(&setup, tau)[0];
+            let p = pelvis(tau);
+            let o = det.hip_offset(leg, &p);
+            ([x0 + h[0] + o[0], h[1] + o[1]], det.lateral_offset(leg, &p))
+        };
+        let geometry = |phase: &'static str| {
+            move |what: String| Error::Invariant {
+                step: index,
+                phase,
+                what,
+            }
+        };
+        let kappa_to = self.attrs.toe_off_knee;
+        // double support: the previous stance leg completes its stance to toe-off
+        let mut hind = match self.prev_leg {
+            Some(leg) => leg,
+            None => {
+                // first step [ours]: a hind foot flat at −sl, its heel already off at the heel
+                // strike with the knee at κ_hs
+                let mut leg = StanceLeg::new(
+                    &self.body,
+                    x0 - gait.step_length,
+                    t0 - t.t_step,
+                    0.0,
+                    self.attrs.foot_flat_time * t.t_cycle,
+                    self.attrs.heel_off_dorsiflexion,
+                    self.attrs.metatarsal_limit,
+                );
+                leg.heel_off = Some(KneeCurve {
+                    t0,
+                    kappa0: self.attrs.heel_strike_knee,
+                    rate0: 0.0,
+                    t_to: t0 + t.t_ds,
+                    kappa_to,
+                });
+                leg
+            }
+        };
+        let hind_side = side.other();
+        hind.continue_to_toe_off(
+            |tw| hip_joint(hind_side, tw - t0),
+            t0,
+            t0 + t.t_ds,
+            kappa_to,
+        )
+        .map_err(geometry("double_support"))?;
+        let hind_pose = |tau: f64| {
+            let (h, dz) = hip_joint(hind_side, tau);
+            hind.pose(h, dz, t0 + tau)
+        };
+        let off = hind_pose(t.t_ds).map_err(geometry("double_support"))?;
+        let h = 1e-4 * t.t_ds;
+        let theta3_at = |tau: f64| hind_pose(tau).map(|p| p.theta3);
+        let d3 = (-theta3_at(t.t_ds + 2.0 * h).map_err(geometry("double_support"))?
+            + 8.0 * theta3_at(t.t_ds + h).map_err(geometry("double_support"))?
+            - 8.0 * theta3_at(t.t_ds - h).map_err(geometry("double_support"))?
+            + theta3_at(t.t_ds - 2.0 * h).map_err(geometry("double_support"))?)
+            / (12.0 * h);
+        let knee_rate = hind.knee_curve(t0 + t.t_ds).map_or(0.0, |k| k.1);
+        let y_off = SwingState::from([off.theta3, off.theta4, d3, knee_rate]);
+
+        // this step's stance leg, to its heel-off
+        let mut stance_leg = StanceLeg::new(
             &self.body,
-            -prev_c.gait.step_length + foot.h12,
-            self.attrs.heel_strike_knee,
-            self.attrs.toe_off_knee,
-            t.t_ds,
+            x0,
+            t0,
+            prev_c.sole_angle,
+            self.attrs.foot_flat_time * t.t_cycle,
+            self.attrs.heel_off_dorsiflexion,
             self.attrs.metatarsal_limit,
         );
-        let geometry = |what: String| Error::Invariant {
-            step: index,
-            phase: "double_support",
-            what,
-        };
-        let hind_pose = |tt: f64| hind.pose(stance.hip(&setup, tt)[0], tt);
-        let off = hind_pose(t.t_ds).map_err(geometry)?;
-        let h = 1e-4 * t.t_ds;
-        let theta3_at = |tt: f64| hind_pose(tt).map(|p| p.theta3);
-        let d3 = (-theta3_at(t.t_ds + 2.0 * h).map_err(geometry)?
-            + 8.0 * theta3_at(t.t_ds + h).map_err(geometry)?
-            - 8.0 * theta3_at(t.t_ds - h).map_err(geometry)?
-            + theta3_at(t.t_ds - 2.0 * h).map_err(geometry)?)
-            / (12.0 * h);
-        let y_off = SwingState::from([off.theta3, off.theta4, d3, hind.knee(t.t_ds).1]);
+        stance_leg
+            .find_heel_off(
+                |tw| hip_joint(side, tw - t0),
+                t0,
+                t0 + t.t_step,
+                t0 + t.t_step + t.t_ds,
+                kappa_to,
+            )
+            .map_err(geometry("stance"))?;
 
-        // swing: three subphases, each solved by shooting
+        // swing: three subphases, each solved by shooting; the dynamics hang from the swing
+        // side's hip joint, in the leg's own plane
+        let swing_offset = |tau: f64| swing_hip_offset(&det, side, &c, &pelvis(tau));
+        let hip_path = HipPath::new(&stance, &setup, t.t_ds, t.t_step, &swing_offset);
+        let e = 1e-6 * t.t_step;
+        let hip_vy_end = stance.hip(&setup, t.t_step)[1][1]
+            + (swing_offset(t.t_step)[1] - swing_offset(t.t_step - e)[1]) / e;
         let m_hs = self.swing_model.mass_matrix(&Vector2::new(0.0, c.theta4));
         let (a11, a22) = (m_hs[(0, 0)], m_hs[(1, 1)]);
         let wh = 2.0 * PI * self.attrs.swing_hip_frequency;
         let sw = SwingSetup {
             model: self.swing_model,
-            stance: &stance,
-            stance_setup: &setup,
-            hip_path: &HipPath::new(&stance, &setup, t.t_ds, t.t_step),
+            hip_path: &hip_path,
+            hip_vy_end,
             t_off: t.t_ds,
             t1: t.t_ds + swing::SWING1_END * t.t_swing,
             t2: t.t_ds + swing::SWING2_END * t.t_swing,
             t_end: t.t_step,
             theta3_target: c.theta3,
             kappa_hs: c.theta4,
-            heel_ahead: c.heel_x - c.hip[0],
+            heel_ahead: c.heel_x - c.hip[0] - c.hip_shift,
             landing_velocity: self.attrs.heel_strike_velocity,
             k_k: a22 * wh * wh,
-            d_k: 2.0 * self.attrs.swing_hip_damping_ratio * a22 * wh,
+            d_k: 2.0 * self.attrs.servo_damping_ratio * a22 * wh,
             k_h: a11 * wh * wh,
-            d_h: 2.0 * self.attrs.swing_hip_damping_ratio * a11 * wh,
+            d_h: 2.0 * self.attrs.servo_damping_ratio * a11 * wh,
         };
         let torque_scale = self.body.mass * self.body.l1 * 0.01;
         let fail = |phase: &'static str| {
@@ -336,7 +447,10 @@ impl Walker {
             stance_setup: setup,
             impact,
             solves,
-            hind,
+            side,
+            determinants: det,
+            stance_leg,
+            hind_leg: hind,
             swing: vec![
                 (s1.sub, s1.segment),
                 (s2.sub, s2.segment),
@@ -374,7 +488,7 @@ impl Walker {
             },
         };
         let mut step = step;
-        step.measure(&self.swing_model, &foot);
+        step.measure(&Foot::new(&self.body));
         step.report.rhs_evaluations = self.evaluations.get();
         step.check_invariants()?;
         let y_end = step
@@ -385,6 +499,7 @@ impl Walker {
             .0
             .y1;
         self.prev = Some((c, y_end));
+        self.prev_leg = Some(step.stance_leg);
         self.t += c.timing.t_step;
         self.x_ankle += gait.step_length;
         self.index += 1;
@@ -462,6 +577,34 @@ impl Walker {
     }
 }
 
+/// Move a pose's x coordinates by `dx`.
+fn shift_pose(p: &mut LegPose, dx: f64) {
+    for q in [
+        &mut p.knee,
+        &mut p.ankle,
+        &mut p.foot.heel,
+        &mut p.foot.meta,
+        &mut p.foot.toe,
+    ] {
+        q[0] += dx;
+    }
+}
+
+/// The swing-side hip joint relative to the pelvis centre, in the swing leg's plane (spec §7):
+/// the determinants' offset, raised by the fold of the leg's lateral offset (with the striking
+/// leg's in-plane drop, exact at heel strike).
+fn swing_hip_offset(
+    det: &Determinants,
+    stance: Side,
+    c: &StepConstraints,
+    p: &PelvisMotion,
+) -> [f64; 2] {
+    let leg = stance.other();
+    let o = det.hip_offset(leg, p);
+    let dz = det.lateral_offset(leg, p);
+    [o[0], o[1] + fold_height(c.fold_length, dz)]
+}
+
 /// Keep the trial with the smallest residual (the one the solver returns).
 fn keep_best(best: &std::cell::RefCell<Option<SwingTrial>>, trial: SwingTrial) {
     let mut b = best.borrow_mut();
@@ -497,7 +640,6 @@ impl Walk {
 
     /// Frames at `fps` frames per second from t = 0 to the last heel strike (inclusive).
     pub fn frames(&self, fps: f64) -> Vec<Frame> {
-        let swing_model = SwingModel::new(&self.body);
         let foot = Foot::new(&self.body);
         let n = (self.duration() * fps + 1e-9).floor() as usize;
         let mut frames = Vec::with_capacity(n + 1);
@@ -508,7 +650,7 @@ impl Walk {
                 i += 1;
             }
             if let Some(step) = self.steps.get(i) {
-                frames.push(step.frame(t, &swing_model, &foot));
+                frames.push(step.frame(t, &foot));
             }
         }
         frames
@@ -524,21 +666,52 @@ impl Walk {
     }
 }
 
-/// The swing leg at one instant: subphase, coordinates and points (relative to the stance ankle x).
+/// The swing leg at one instant: subphase, in-plane angles, and points (x relative to the
+/// stance ankle, world heights; the hip joint's lateral offset from the ankle `dz`).
 #[derive(Clone, Copy, Debug)]
 pub struct SwingPose {
     pub phase: &'static str,
     pub theta3: f64,
     pub theta4: f64,
+    pub hip: [f64; 2],
+    pub dz: f64,
     pub knee: [f64; 2],
     pub ankle: [f64; 2],
     pub foot: FootPoints,
 }
 
 impl Step {
-    /// Hip (relative to the stance ankle x) and stance state at step time τ.
+    /// The dynamic hip, the pelvis centre (x relative to the stance ankle), at step time τ.
     pub fn hip(&self, tau: f64) -> [f64; 2] {
         self.stance.hip(&self.stance_setup, tau)[0]
+    }
+
+    /// The pelvis's determinants at step time τ.
+    pub fn pelvis(&self, tau: f64) -> PelvisMotion {
+        self.determinants
+            .at(self.side, tau, self.constraints.timing.t_step)
+    }
+
+    /// The hip joint of `leg` (x relative to the stance ankle, world y) and its lateral offset
+    /// from that leg's ankle, at step time τ.
+    pub fn hip_joint(&self, leg: Side, tau: f64) -> ([f64; 2], f64) {
+        let h = self.hip(tau);
+        let p = self.pelvis(tau);
+        let o = self.determinants.hip_offset(leg, &p);
+        (
+            [h[0] + o[0], h[1] + o[1]],
+            self.determinants.lateral_offset(leg, &p),
+        )
+    }
+
+    /// The stance leg's pose at step time τ (x relative to the stance ankle).
+    pub fn stance_pose(&self, tau: f64) -> std::result::Result<LegPose, String> {
+        let (h, dz) = self.hip_joint(self.side, tau);
+        let mut p = self
+            .stance_leg
+            .pose([h[0] + self.x_ankle, h[1]], dz, self.t_start + tau)?;
+        shift_pose(&mut p, -self.x_ankle);
+        Ok(p)
     }
 
     /// The swing foot's ankle dorsiflexion θ5 and toe angle θ6 at step time τ ≥ t_ds (spec §5
@@ -564,17 +737,24 @@ impl Step {
     }
 
     /// The swing (or, in double support, hind) leg at step time τ.
-    pub fn swing_pose(&self, tau: f64, model: &SwingModel, foot: &Foot) -> SwingPose {
-        let hip = self.hip(tau);
+    pub fn swing_pose(&self, tau: f64, foot: &Foot) -> SwingPose {
         let t = self.constraints.timing;
+        let (hip, dz) = self.hip_joint(self.side.other(), tau);
+        let (l3, l4) = (self.stance_leg.l3, self.stance_leg.l4);
         if tau < t.t_ds
-            && let Ok(p) = self.hind.pose(hip, tau)
+            && let Ok(mut p) =
+                self.hind_leg
+                    .pose([hip[0] + self.x_ankle, hip[1]], dz, self.t_start + tau)
         {
+            shift_pose(&mut p, -self.x_ankle);
+            let (knee, _) = leg_points(hip, dz, p.theta3, p.theta4, l3, l4);
             return SwingPose {
                 phase: "double_support",
                 theta3: p.theta3,
                 theta4: p.theta4,
-                knee: p.knee,
+                hip,
+                dz,
+                knee,
                 ankle: p.ankle,
                 foot: p.foot,
             };
@@ -585,8 +765,7 @@ impl Step {
             .min(self.swing.len() - 1);
         let (sub, seg) = &self.swing[i];
         let y = seg.state(tau);
-        let q = Vector2::new(y[0], y[1]);
-        let (knee, ankle) = model.joints(hip, &q);
+        let (knee, ankle) = leg_points(hip, dz, y[0], y[1], l3, l4);
         let (theta5, theta6) = self.swing_foot_angles(tau);
         // [ours] the ankle dorsiflexes beyond its rule when the rule would put the toe below a
         // floor rising from 0 at toe-off to the toe-clearance attribute at mid swing and back to
@@ -599,6 +778,8 @@ impl Step {
             phase: sub.name(),
             theta3: y[0],
             theta4: y[1],
+            hip,
+            dz,
             knee,
             ankle,
             foot: foot.points(ankle, pitch, theta6),
@@ -606,11 +787,11 @@ impl Step {
     }
 
     /// The frame at world time t.
-    pub fn frame(&self, t: f64, model: &SwingModel, foot: &Foot) -> Frame {
+    pub fn frame(&self, t: f64, foot: &Foot) -> Frame {
         let tau = (t - self.t_start).clamp(0.0, self.constraints.timing.t_step);
         let (y, locked) = self.stance.state(tau);
         let hip = self.hip(tau);
-        let sw = self.swing_pose(tau, model, foot);
+        let sw = self.swing_pose(tau, foot);
         let x0 = self.x_ankle;
         Frame {
             time_s: t,
@@ -643,7 +824,7 @@ impl Step {
     }
 
     /// Fill the report: end conditions, step length achieved, hip excursion, foot clearance.
-    fn measure(&mut self, model: &SwingModel, foot: &Foot) {
+    fn measure(&mut self, foot: &Foot) {
         let c = self.constraints;
         let t = c.timing;
         let y_end = self.stance.segments.last().expect("converged").0.y1;
@@ -656,9 +837,9 @@ impl Step {
         ]
         .iter()
         .fold(0.0_f64, |m, e| m.max(e.abs()));
-        let strike = self.swing_pose(t.t_step, model, foot);
+        let strike = self.swing_pose(t.t_step, foot);
         let dt = 1e-6;
-        let before = self.swing_pose(t.t_step - dt, model, foot);
+        let before = self.swing_pose(t.t_step - dt, foot);
         let step_length = strike.foot.heel[0] + foot.l8;
         // hip: sampled densely through the stance
         const SAMPLES: usize = 400;
@@ -674,7 +855,7 @@ impl Step {
             (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY);
         for k in 0..=SAMPLES {
             let frac = k as f64 / SAMPLES as f64;
-            let pose = self.swing_pose(t.t_ds + frac * t.t_swing, model, foot);
+            let pose = self.swing_pose(t.t_ds + frac * t.t_swing, foot);
             knee_peak = knee_peak.max(pose.theta4);
             let h = pose.foot.lowest();
             if h < lowest {

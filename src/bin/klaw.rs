@@ -54,8 +54,8 @@ enum Command {
             steps/min); the others are completed by KLAW's normalizing formula for a body of height H:\n\
             sl = 0.004 · sf · H and v = sl · sf / 60. Only v → sf = √(15000 · v / H), sl = 60 · v / sf; only\n\
             sf → sl = 0.004 · sf · H; only sl → sf = sl / (0.004 · H); two given → the third from\n\
-            v = sl · sf / 60; all three → they must agree (v = sl · sf / 60 within the consistency\n\
-            tolerance, 1 % by default). With none, v = 1.4 m/s. The completed gait is checked against the\n\
+            v = sl · sf / 60; all three → they must agree (v = sl · sf / 60 within 1 %). With none,\n\
+            v = 1.4 m/s. The completed gait is checked against the\n\
             anatomical limits of the attributes (by default v in [0.4, 2.5] m/s, sf in [50, 182] steps/min,\n\
             sl in [0.2, 1.3] leg lengths, i.e. [0.1736, 1.1285] m for H = 1.8 m).\n\
             \n\
@@ -218,6 +218,15 @@ struct WalkArgs {
     )]
     attributes: Option<PathBuf>,
 
+    /// Style preset: normal, brisk, elderly, march or long-stride
+    #[arg(
+        long,
+        value_name = "NAME",
+        long_help = "Style preset: an attribute file bundled from models/styles/ (normal, brisk, elderly,\n\
+            march, long-stride). --attributes overrides the style's values name by name."
+    )]
+    style: Option<String>,
+
     /// Output frame rate in frames/s, range [0.001, 10000]
     #[arg(
         long,
@@ -364,12 +373,19 @@ fn gaits(args: &WalkArgs, body: &Body, attrs: &Attributes) -> Result<Vec<Gait>> 
     }
 }
 
-fn load_attributes(path: Option<&Path>) -> Result<Attributes> {
+/// The defaults, then the style preset's values, then the attribute file's.
+fn load_attributes(style: Option<&str>, path: Option<&Path>) -> Result<Attributes> {
     let table = AttributeTable::builtin();
-    match path {
-        Some(p) => table.resolve(&io::read_attributes(p)?, &p.display().to_string()),
-        None => Ok(table.defaults()),
+    let mut overrides = match style {
+        Some(name) => klaw::attributes::style(name)?,
+        None => Default::default(),
+    };
+    let mut source = style.map_or(String::new(), |s| format!("style {s}"));
+    if let Some(p) = path {
+        overrides.extend(io::read_attributes(p)?);
+        source = p.display().to_string();
     }
+    table.resolve(&overrides, &source)
 }
 
 /// Mean and max shooting iterations over every solve of the report, and the number of solves.
@@ -387,7 +403,7 @@ fn iteration_stats(report: &Report) -> Option<(f64, usize, usize)> {
 fn walk(args: &WalkArgs) -> Result<()> {
     let fps = Error::check_range("fps", args.fps, MIN_FPS, MAX_FPS, "frames/s")?;
     let body = Body::standard(args.height, args.mass)?;
-    let attrs = load_attributes(args.attributes.as_deref())?;
+    let attrs = load_attributes(args.style.as_deref(), args.attributes.as_deref())?;
     let gaits = gaits(args, &body, &attrs)?;
     // the walk lasts Σ 60 / sf: refuse a frame count that would not fit in memory
     let expected_duration: f64 = gaits.iter().map(|g| 60.0 / g.step_frequency).sum();

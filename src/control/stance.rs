@@ -163,7 +163,9 @@ pub struct StanceRun {
 /// here instead of re-evaluating the stance dynamics at every stage (spec §5: the swing uses
 /// the hip of the same step's stance). The table is split where the leg torque switches off
 /// (the acceleration jumps there); ghost points at the ends are extrapolated linearly.
-/// Grid ≤ 0.5 ms: interpolation error ≈ h⁴ a⁗ / 384.
+/// Grid ≤ 0.5 ms: interpolation error ≈ h⁴ a⁗ / 384. A kinematic offset of the swing-side hip
+/// joint from the dynamic hip (the determinants of gait, spec §7) adds its acceleration, by
+/// central second differences (step 1e-4 s: truncation ≈ h² f⁗ / 12 ≈ 1e-8 m/s²).
 #[derive(Clone, Debug)]
 pub struct HipPath {
     pieces: Vec<Piece>,
@@ -182,8 +184,23 @@ struct Piece {
 pub const HIP_PATH_STEP: f64 = 5e-4;
 
 impl HipPath {
-    /// Tabulate the hip acceleration of `run` on [t0, t1].
-    pub fn new(run: &StanceRun, setup: &StanceSetup, t0: f64, t1: f64) -> Self {
+    /// Tabulate the hip acceleration of `run` plus that of `offset(t)` on [t0, t1].
+    pub fn new(
+        run: &StanceRun,
+        setup: &StanceSetup,
+        t0: f64,
+        t1: f64,
+        offset: &dyn Fn(f64) -> [f64; 2],
+    ) -> Self {
+        const H: f64 = 1e-4;
+        let acceleration = |t: f64| {
+            let a = run.hip(setup, t)[2];
+            let (m, o, p) = (offset(t - H), offset(t), offset(t + H));
+            [
+                a[0] + (m[0] - 2.0 * o[0] + p[0]) / (H * H),
+                a[1] + (m[1] - 2.0 * o[1] + p[1]) / (H * H),
+            ]
+        };
         let off = TORQUE_OFF * setup.t_step;
         let bounds: Vec<(f64, f64)> = if off > t0 && off < t1 {
             vec![(t0, off), (off, t1)]
@@ -204,7 +221,7 @@ impl HipPath {
                     } else {
                         a + i as f64 * dt
                     };
-                    acc.push(run.hip(setup, t)[2]);
+                    acc.push(acceleration(t));
                 }
                 let ghost = |p: [f64; 2], q: [f64; 2]| [2.0 * p[0] - q[0], 2.0 * p[1] - q[1]];
                 acc[0] = ghost(acc[1], acc[2]);

@@ -20,7 +20,7 @@
 //!   still swings forward at contact at slow speeds and the heel scrapes up from below].
 use nalgebra::{SVector, Vector2};
 
-use crate::control::stance::{HipPath, StanceRun, StanceSetup};
+use crate::control::stance::HipPath;
 use crate::dynamics::SwingModel;
 use crate::ode::{self, Phase, Segment};
 
@@ -37,11 +37,11 @@ pub const THETA3_ABORT: f64 = 1.75;
 #[derive(Clone, Copy, Debug)]
 pub struct SwingSetup<'a> {
     pub model: SwingModel,
-    /// The stance of the same step: it moves the hip.
-    pub stance: &'a StanceRun,
-    pub stance_setup: &'a StanceSetup,
-    /// The stance's hip acceleration over the swing, tabulated.
+    /// The swing-side hip's acceleration over the swing (the stance's hip moved by the
+    /// determinants of gait), tabulated.
     pub hip_path: &'a HipPath,
+    /// The swing-side hip's vertical velocity at heel strike (m/s).
+    pub hip_vy_end: f64,
     /// Toe-off, end of swing1, knee lock, heel strike (s from the step's start).
     pub t_off: f64,
     pub t1: f64,
@@ -185,8 +185,7 @@ impl SwingTrial {
             Subphase::Swing3 { .. } => {
                 // heel velocity of the rigid leg rotating about the moving hip:
                 // v_heel,y = v_hip,y − θ̇3 (x_heel − x_hip)
-                let hip_vy = setup.stance.hip(setup.stance_setup, t_end)[1][1];
-                let heel_vy = hip_vy - y[2] * setup.heel_ahead;
+                let heel_vy = setup.hip_vy_end - y[2] * setup.heel_ahead;
                 Vector2::new(y[0] - setup.theta3_target, heel_vy + setup.landing_velocity)
             }
         };

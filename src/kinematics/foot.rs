@@ -88,10 +88,14 @@ impl Foot {
         )
     }
 
-    /// The swing foot's pitch: the rule's pitch, kept inside the range where the heel is on or
-    /// above the ground and the toe on or above `floor` (the floor drops to the ground when
-    /// both cannot hold).
+    /// The swing foot's pitch: the rule's pitch when it keeps the heel on or above the ground
+    /// and the toe on or above `floor`; otherwise the rule clamped into the range where both
+    /// hold (the floor drops to the ground when both cannot hold).
     pub fn clear_pitch(&self, rule: f64, ankle_y: f64, theta6: f64, floor: f64) -> f64 {
+        let pts = self.points([0.0, ankle_y], rule, theta6);
+        if pts.heel[1] >= 0.0 && pts.meta[1].min(pts.toe[1]) >= floor {
+            return rule;
+        }
         let lo = self.min_pitch(ankle_y);
         let mut hi = self.max_pitch(ankle_y, theta6, floor);
         if hi < lo {

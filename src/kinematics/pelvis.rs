@@ -1,0 +1,220 @@
+//! Determinants of gait (Saunders, Inman & Eberhart 1953; KLAW 1989 §4.2; spec §7): pelvic
+//! rotation, pelvic list and lateral displacement of the pelvis centre, as functions of the time
+//! in a step, and the hip joints they move.
+//!
+//! Boundary values are the spec's: rotation +A at right heel strike, 0 at mid-step, −A at left
+//! heel strike; list 0 at heel strike and ±L at mid-step with the stance side up; lateral
+//! displacement 0 at heel strike and ±D at mid-step towards the stance leg. Between them the
+//! spec's half-cosine blends [ours] replace the paper's linear interpolation: rotation
+//! A·cos(π s) has zero rate at both heel strikes, list L·sin(π s) and lateral D·sin(π s) are
+//! C¹ across a heel strike where the stance side changes (s = τ / t_step).
+use std::f64::consts::PI;
+
+use crate::attributes::Attributes;
+
+/// A side of the body: +1 right, −1 left (the sign of its world z).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub enum Side {
+    Right,
+    Left,
+}
+
+impl Side {
+    /// +1 for the right side, −1 for the left (world z points to the right).
+    pub fn sign(self) -> f64 {
+        match self {
+            Side::Right => 1.0,
+            Side::Left => -1.0,
+        }
+    }
+
+    pub fn other(self) -> Side {
+        match self {
+            Side::Right => Side::Left,
+            Side::Left => Side::Right,
+        }
+    }
+
+    /// The stance side of step `index`: step 0 stands on the right leg.
+    pub fn of_step(index: usize) -> Side {
+        if index.is_multiple_of(2) {
+            Side::Right
+        } else {
+            Side::Left
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Side::Right => "right",
+            Side::Left => "left",
+        }
+    }
+}
+
+/// The pelvis at one instant: angles (rad, clinical signs) and the lateral position of its
+/// centre (m, world z), with their time derivatives.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PelvisMotion {
+    pub rotation: f64,
+    pub list: f64,
+    pub lateral: f64,
+    pub rotation_rate: f64,
+    pub list_rate: f64,
+    pub lateral_rate: f64,
+}
+
+/// Amplitudes of the determinants and the geometry they act on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Determinants {
+    /// Rotation amplitude A (rad).
+    pub rotation: f64,
+    /// List amplitude L (rad).
+    pub list: f64,
+    /// Lateral displacement amplitude D (m).
+    pub lateral: f64,
+    /// Half the pelvis width, l0/2 (m).
+    pub half_width: f64,
+    /// Half the step width (m): each ankle's |z|.
+    pub half_step_width: f64,
+}
+
+impl Determinants {
+    pub fn new(attrs: &Attributes, l0: f64) -> Self {
+        Determinants {
+            rotation: attrs.pelvic_rotation,
+            list: attrs.pelvic_list,
+            lateral: attrs.lateral_displacement,
+            half_width: 0.5 * l0,
+            half_step_width: 0.5 * attrs.step_width,
+        }
+    }
+
+    /// The pelvis at time τ of a step of duration `t_step` standing on `stance`.
+    pub fn at(&self, stance: Side, tau: f64, t_step: f64) -> PelvisMotion {
+        let sign = stance.sign();
+        let s = (tau / t_step).clamp(0.0, 1.0);
+        let w = PI / t_step;
+        let (sn, cs) = (PI * s).sin_cos();
+        PelvisMotion {
+            rotation: sign * self.rotation * cs,
+            list: sign * self.list * sn,
+            lateral: sign * self.lateral * sn,
+            rotation_rate: -sign * self.rotation * w * sn,
+            list_rate: sign * self.list * w * cs,
+            lateral_rate: sign * self.lateral * w * cs,
+        }
+    }
+
+    /// The hip joint of `side` relative to the pelvis centre (m, world axes), for pelvic rotation
+    /// and list (tilt turns about the hip axis and moves neither hip):
+    /// R_y(rot) R_x(−list) (0, 0, ±l0/2).
+    pub fn hip_offset(&self, side: Side, p: &PelvisMotion) -> [f64; 3] {
+        let h = side.sign() * self.half_width;
+        let (sl, cl) = p.list.sin_cos();
+        let (sr, cr) = p.rotation.sin_cos();
+        [h * cl * sr, h * sl, h * cl * cr]
+    }
+
+    /// World z of the ankle of `side`.
+    pub fn ankle_z(&self, side: Side) -> f64 {
+        side.sign() * self.half_step_width
+    }
+
+    /// Lateral offset Δz from the ankle of `side` to its hip joint (m) at pelvis state `p`.
+    pub fn lateral_offset(&self, side: Side, p: &PelvisMotion) -> f64 {
+        p.lateral + self.hip_offset(side, p)[2] - self.ankle_z(side)
+    }
+}
+
+/// Height gained by folding a lateral offset out of a leg (spec §7: "the sagittal leg length is
+/// √(a1² − d²)"): a leg whose hip–ankle line has in-plane length `d_v` and lateral offset `dz`
+/// spans only √(d_v² − dz²) vertically, so in the leg's own plane the hip sits
+/// d_v − √(d_v² − dz²) higher than in the world.
+pub fn fold_height(d_v: f64, dz: f64) -> f64 {
+    d_v - (d_v * d_v - dz * dz).max(0.0).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn det() -> Determinants {
+        Determinants {
+            rotation: 4f64.to_radians(),
+            list: 5f64.to_radians(),
+            lateral: 0.02,
+            half_width: 0.09,
+            half_step_width: 0.04,
+        }
+    }
+
+    /// The spec's boundary values, continuity of value and rate across a heel strike where the
+    /// stance side changes, and rates that match finite differences.
+    #[test]
+    fn boundary_values_and_continuity() {
+        let d = det();
+        let t = 0.55;
+        let r0 = d.at(Side::Right, 0.0, t);
+        assert!((r0.rotation - d.rotation).abs() < 1e-15 && r0.list.abs() < 1e-15);
+        assert!(r0.lateral.abs() < 1e-15);
+        let mid = d.at(Side::Right, 0.5 * t, t);
+        assert!(mid.rotation.abs() < 1e-15);
+        assert!((mid.list - d.list).abs() < 1e-15 && (mid.lateral - 0.02).abs() < 1e-15);
+        let end = d.at(Side::Right, t, t);
+        let next = d.at(Side::Left, 0.0, t);
+        assert!((end.rotation + d.rotation).abs() < 1e-15);
+        for (a, b) in [
+            (end.rotation, next.rotation),
+            (end.list, next.list),
+            (end.lateral, next.lateral),
+            (end.rotation_rate, next.rotation_rate),
+            (end.list_rate, next.list_rate),
+            (end.lateral_rate, next.lateral_rate),
+        ] {
+            assert!((a - b).abs() < 1e-12, "{a} vs {b}");
+        }
+        let h = 1e-6;
+        for tau in [0.05, 0.2, 0.4] {
+            let (a, b) = (d.at(Side::Left, tau - h, t), d.at(Side::Left, tau + h, t));
+            let c = d.at(Side::Left, tau, t);
+            assert!(((b.rotation - a.rotation) / (2.0 * h) - c.rotation_rate).abs() < 1e-7);
+            assert!(((b.list - a.list) / (2.0 * h) - c.list_rate).abs() < 1e-7);
+            assert!(((b.lateral - a.lateral) / (2.0 * h) - c.lateral_rate).abs() < 1e-7);
+        }
+    }
+
+    /// The hip joints stay l0 apart and symmetric about the centre; with list +L the right hip is
+    /// higher by (l0/2) sin L, with rotation +A the right hip is ahead by (l0/2) sin A.
+    #[test]
+    fn hip_offsets_are_a_rigid_pelvis() {
+        let d = det();
+        let p = PelvisMotion {
+            rotation: 0.1,
+            list: 0.07,
+            ..Default::default()
+        };
+        let (r, l) = (d.hip_offset(Side::Right, &p), d.hip_offset(Side::Left, &p));
+        let dist = ((r[0] - l[0]).powi(2) + (r[1] - l[1]).powi(2) + (r[2] - l[2]).powi(2)).sqrt();
+        assert!((dist - 0.18).abs() < 1e-15);
+        for k in 0..3 {
+            assert!((r[k] + l[k]).abs() < 1e-15);
+        }
+        assert!((r[1] - 0.09 * 0.07f64.sin()).abs() < 1e-15);
+        let p = PelvisMotion {
+            rotation: 0.1,
+            ..Default::default()
+        };
+        assert!((d.hip_offset(Side::Right, &p)[0] - 0.09 * 0.1f64.sin()).abs() < 1e-15);
+    }
+
+    /// Folding: a leg of in-plane length d_v tilted by φ drops d_v cos φ, so the fold is
+    /// d_v (1 − cos φ) with sin φ = dz / d_v.
+    #[test]
+    fn fold_height_is_the_tilted_leg_drop() {
+        let (d_v, phi) = (0.85_f64, 0.07_f64);
+        let dz = d_v * phi.sin();
+        assert!((fold_height(d_v, dz) - d_v * (1.0 - phi.cos())).abs() < 1e-15);
+        assert_eq!(fold_height(0.8, 0.0), 0.0);
+    }
+}

@@ -1,0 +1,555 @@
+//! The virtual stance leg (KLAW 1989 §4.2, Figure 6; the foot rules of spec §7): a human leg —
+//! thigh, shank and a foot with ankle and metatarsal joints — laid over the telescopic stance leg
+//! from its heel strike to its toe-off (which falls in the next step's double support). The hip
+//! joint is given at each instant (the dynamic hip moved by the determinants of gait); the foot's
+//! contact with the ground does not slide:
+//! - *heel rocker* (heel strike → foot flat, FGM): the foot turns about its heel, sole angle
+//!   φ(t) = φ_hs (1 − smoothstep(t / t_FGM)); the knee by two-link trigonometry;
+//! - *foot flat* (FGM → heel-off): ankle fixed; the knee follows from the hip–ankle distance;
+//! - *heel-off* and *meta-off*: the knee flexion κ(t) is prescribed, C¹ from its value and rate
+//!   at heel-off to κ_TO at toe-off, and the one unknown foot pitch p solves
+//!   |hip − ankle(p)| = a(κ), rolling about the metatarsal joint, then the toe tip.
+//!
+//! Heel-off starts when the flat foot's ankle dorsiflexion reaches θ5_max, or when the straight
+//! leg can no longer reach the hip. Legs are worked in their own plane: a hip joint with lateral
+//! offset `dz` from the ankle is at 3-D distance √(Δx² + Δy² + dz²), and the leg's plane contains
+//! the forward axis, so the in-plane drop from hip to ankle is √(Δy² + dz²).
+use argmin::core::{CostFunction, Executor};
+use argmin::solver::brent::BrentRoot;
+
+use crate::body::Body;
+use crate::control::stance::smoothstep;
+use crate::kinematics::foot::{Foot, FootPoints};
+
+/// A leg pose: sagittal points (x forward, y up, world heights; the foot in the vertical plane of
+/// its ankle) and the in-plane angles.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LegPose {
+    /// Knee in the leg's plane, unfolded: x, and the in-plane height above the ankle added to the
+    /// ankle's height (equal to the world height when the leg has no lateral offset).
+    pub knee: [f64; 2],
+    pub ankle: [f64; 2],
+    pub foot: FootPoints,
+    /// Thigh from the in-plane downward vertical (knee ahead −), rad.
+    pub theta3: f64,
+    /// Knee flexion, rad.
+    pub theta4: f64,
+    /// Foot pitch (heel up +) and toe dorsiflexion θ6, rad.
+    pub pitch: f64,
+    pub theta6: f64,
+    /// By how much the straight leg falls short of the hip (m; 0 when the hip is reachable).
+    pub gap: f64,
+}
+
+/// Which foot rule holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FootPhase {
+    HeelRocker,
+    FootFlat,
+    Rolling,
+}
+
+/// Knee flexion after heel-off: κ(t) = κ0 + κ̇0 (t − t0) + c (t − t0)², reaching κ_TO at t_to.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct KneeCurve {
+    pub t0: f64,
+    pub kappa0: f64,
+    pub rate0: f64,
+    pub t_to: f64,
+    pub kappa_to: f64,
+}
+
+impl KneeCurve {
+    /// Value and rate at t.
+    pub fn at(&self, t: f64) -> (f64, f64) {
+        let d = self.t_to - self.t0;
+        let c = (self.kappa_to - self.kappa0 - self.rate0 * d) / (d * d);
+        let s = t - self.t0;
+        (
+            self.kappa0 + self.rate0 * s + c * s * s,
+            self.rate0 + 2.0 * c * s,
+        )
+    }
+}
+
+/// Knee and ankle (x, world y) of a leg hanging from a hip joint at `hip` with in-plane thigh
+/// angle θ3 and knee flexion θ4, in a plane that contains the forward axis and is tilted by φ,
+/// sin φ = dz / (in-plane drop), so that the ankle sits `dz` to the side of the hip.
+pub fn leg_points(
+    hip: [f64; 2],
+    dz: f64,
+    theta3: f64,
+    theta4: f64,
+    l3: f64,
+    l4: f64,
+) -> ([f64; 2], [f64; 2]) {
+    let shank = theta3 + theta4;
+    let drop = l3 * theta3.cos() + l4 * shank.cos();
+    let cos_phi = (1.0 - (dz / drop).powi(2)).max(0.0).sqrt();
+    let knee = [
+        hip[0] - l3 * theta3.sin(),
+        hip[1] - l3 * theta3.cos() * cos_phi,
+    ];
+    let ankle = [
+        knee[0] - l4 * shank.sin(),
+        knee[1] - l4 * shank.cos() * cos_phi,
+    ];
+    (knee, ankle)
+}
+
+/// Hip–ankle distance of a leg with knee flexion κ.
+fn reach(l3: f64, l4: f64, kappa: f64) -> f64 {
+    (l3 * l3 + l4 * l4 + 2.0 * l3 * l4 * kappa.cos()).sqrt()
+}
+
+/// The leg chain for a hip at `hip` (with lateral offset `dz`) and an ankle at `ankle`: knee
+/// flexion from the distance (0 and a gap when out of reach), thigh angle in the leg's plane.
+fn chain(l3: f64, l4: f64, hip: [f64; 2], dz: f64, ankle: [f64; 2]) -> (f64, f64, [f64; 2], f64) {
+    let dx = hip[0] - ankle[0];
+    let dv = (hip[1] - ankle[1]).hypot(dz);
+    let d = dx.hypot(dv);
+    let cos_k = ((d * d - l3 * l3 - l4 * l4) / (2.0 * l3 * l4)).clamp(-1.0, 1.0);
+    let kappa = cos_k.acos();
+    let gap = (d - (l3 + l4)).max(0.0);
+    let a = reach(l3, l4, kappa);
+    // thigh = hip–ankle line angle (from the downward vertical, ankle ahead −) minus β
+    let line = dx.atan2(dv);
+    let beta = (l4 * kappa.sin() / a).clamp(-1.0, 1.0).asin();
+    let theta3 = line - beta;
+    let knee = [
+        hip[0] - l3 * theta3.sin(),
+        ankle[1] + dv - l3 * theta3.cos(),
+    ];
+    (kappa, theta3, knee, gap)
+}
+
+/// The stance leg of one step, from its heel strike to its toe-off. Times are world times (s),
+/// x positions world x (m).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StanceLeg {
+    pub foot: Foot,
+    pub l3: f64,
+    pub l4: f64,
+    /// Flat-foot ankle x.
+    pub ankle_x: f64,
+    /// Heel strike time and the sole angle then (toe up +).
+    pub t_hs: f64,
+    pub sole_hs: f64,
+    /// Heel strike to foot flat (s).
+    pub t_fgm: f64,
+    /// θ5_max (heel-off trigger) and θ6_max (meta-off), rad.
+    pub theta5_max: f64,
+    pub theta6_max: f64,
+    /// The knee after heel-off: from heel-off to the next heel strike, then (re-anchored there)
+    /// to toe-off. `None` until found.
+    pub heel_off: Option<KneeCurve>,
+    pub to_toe_off: Option<KneeCurve>,
+}
+
+struct PitchResidual<'a> {
+    leg: &'a StanceLeg,
+    hip: [f64; 2],
+    dz: f64,
+    a: f64,
+}
+
+impl CostFunction for PitchResidual<'_> {
+    type Param = f64;
+    type Output = f64;
+    fn cost(&self, p: &f64) -> Result<f64, argmin::core::Error> {
+        let (ankle, _) = self.leg.rolling(*p);
+        let dx = self.hip[0] - ankle[0];
+        let dy = self.hip[1] - ankle[1];
+        Ok((dx * dx + dy * dy + self.dz * self.dz).sqrt() - self.a)
+    }
+}
+
+/// Bracket of the rolling foot's pitch (rad).
+const PITCH_BRACKET: (f64, f64) = (0.0, 1.8);
+
+impl StanceLeg {
+    pub fn new(
+        body: &Body,
+        ankle_x: f64,
+        t_hs: f64,
+        sole_hs: f64,
+        t_fgm: f64,
+        theta5_max: f64,
+        theta6_max: f64,
+    ) -> Self {
+        StanceLeg {
+            foot: Foot::new(body),
+            l3: body.l3,
+            l4: body.l4,
+            ankle_x,
+            t_hs,
+            sole_hs,
+            t_fgm,
+            theta5_max,
+            theta6_max,
+            heel_off: None,
+            to_toe_off: None,
+        }
+    }
+
+    fn rolling(&self, p: f64) -> ([f64; 2], f64) {
+        self.foot
+            .rolling_ankle(self.ankle_x + self.foot.h12, p, self.theta6_max)
+    }
+
+    /// The prescribed knee after heel-off at time t, if the heel is off by then.
+    pub fn knee_curve(&self, t: f64) -> Option<(f64, f64)> {
+        match (self.heel_off, self.to_toe_off) {
+            (_, Some(k)) if t >= k.t0 => Some(k.at(t)),
+            (Some(k), _) if t >= k.t0 => Some(k.at(t)),
+            _ => None,
+        }
+    }
+
+    /// The foot rule at time t.
+    pub fn phase(&self, t: f64) -> FootPhase {
+        if self.knee_curve(t).is_some() {
+            FootPhase::Rolling
+        } else if t < self.t_hs + self.t_fgm {
+            FootPhase::HeelRocker
+        } else {
+            FootPhase::FootFlat
+        }
+    }
+
+    /// The pose at time t for a hip joint at `hip` (world x, y) with lateral offset `dz` from the
+    /// ankle.
+    pub fn pose(&self, hip: [f64; 2], dz: f64, t: f64) -> Result<LegPose, String> {
+        match self.phase(t) {
+            FootPhase::HeelRocker | FootPhase::FootFlat => {
+                let rule = if t < self.t_hs + self.t_fgm {
+                    self.sole_hs * (1.0 - smoothstep((t - self.t_hs) / self.t_fgm))
+                } else {
+                    0.0
+                };
+                let phi = self.reach_limited_sole(hip, dz, rule);
+                // the foot turns about its heel, at (ankle_x − l8, 0)
+                let ankle = self.rocker_ankle(phi);
+                let p = -phi;
+                let (kappa, theta3, knee, gap) = chain(self.l3, self.l4, hip, dz, ankle);
+                Ok(LegPose {
+                    knee,
+                    ankle,
+                    foot: self.foot.points(ankle, p, 0.0),
+                    theta3,
+                    theta4: kappa,
+                    pitch: p,
+                    theta6: 0.0,
+                    gap,
+                })
+            }
+            FootPhase::Rolling => {
+                let (kappa, _) = self.knee_curve(t).expect("rolling has a knee curve");
+                self.rolling_pose(hip, dz, kappa)
+            }
+        }
+    }
+
+    /// Ankle of the foot turned about its heel to sole angle φ (toe up +).
+    fn rocker_ankle(&self, phi: f64) -> [f64; 2] {
+        let heel = [self.ankle_x - self.foot.l8, 0.0];
+        let off = crate::kinematics::foot::pitch([-self.foot.l8, -self.foot.l9], -phi);
+        [heel[0] - off[0], heel[1] - off[1]]
+    }
+
+    /// The heel rocker's sole angle: the rule's, or, while the hip is still behind the ankle and
+    /// the straight leg cannot reach it with that sole angle, the smallest angle at which it
+    /// can [ours]: the telescopic leg is longer than the anatomical one just after heel strike
+    /// (w* > l1 at most speeds, spec §7 "known geometric tension"), so the foot comes down as
+    /// the hip passes over it. Bisection to 1e-12 rad.
+    fn reach_limited_sole(&self, hip: [f64; 2], dz: f64, rule: f64) -> f64 {
+        let l1 = self.l3 + self.l4;
+        let too_far = |phi: f64| {
+            let a = self.rocker_ankle(phi);
+            ((hip[0] - a[0]).powi(2) + (hip[1] - a[1]).powi(2) + dz * dz).sqrt() > l1
+        };
+        if hip[0] >= self.ankle_x || !too_far(rule) {
+            return rule;
+        }
+        let (mut lo, mut hi) = (rule, std::f64::consts::FRAC_PI_3);
+        if too_far(hi) {
+            return hi;
+        }
+        while hi - lo > 1e-12 {
+            let m = 0.5 * (lo + hi);
+            if too_far(m) { lo = m } else { hi = m }
+        }
+        hi
+    }
+
+    /// The rolling foot's pose for knee flexion κ: the pitch solves |hip − ankle(p)| = a(κ).
+    fn rolling_pose(&self, hip: [f64; 2], dz: f64, kappa: f64) -> Result<LegPose, String> {
+        let a = reach(self.l3, self.l4, kappa);
+        let problem = PitchResidual {
+            leg: self,
+            hip,
+            dz,
+            a,
+        };
+        // the first sign change on a 0.05 rad grid from the flat foot (the distance first falls
+        // as the heel rises, then, past a right angle, grows again)
+        let f = |p: f64| problem.cost(&p).unwrap_or(f64::NAN);
+        let (mut lo, mut flo) = (PITCH_BRACKET.0, f(PITCH_BRACKET.0));
+        if flo < 0.0 {
+            // the hip is nearer than a(κ) even with the foot flat: the foot stays flat and the
+            // knee flexes by the distance [ours] (the prescribed curve resumes where it meets it)
+            let ankle = [self.ankle_x, self.foot.l9];
+            let (kappa, theta3, knee, _) = chain(self.l3, self.l4, hip, dz, ankle);
+            return Ok(LegPose {
+                knee,
+                ankle,
+                foot: self.foot.points(ankle, 0.0, 0.0),
+                theta3,
+                theta4: kappa,
+                pitch: 0.0,
+                theta6: 0.0,
+                gap: 0.0,
+            });
+        }
+        let p = if flo.abs() < 1e-13 {
+            lo
+        } else {
+            let mut hi = lo;
+            loop {
+                hi += 0.05;
+                let fhi = f(hi);
+                if flo * fhi <= 0.0 {
+                    break;
+                }
+                if hi >= PITCH_BRACKET.1 || fhi.is_nan() {
+                    return Err(format!(
+                        "the rolling foot cannot reach the hip: hip–ankle distance {a:.4} m for knee flexion {:.1}° is out of reach",
+                        kappa.to_degrees()
+                    ));
+                }
+                (lo, flo) = (hi, fhi);
+            }
+            let solver = BrentRoot::new(lo, hi, 1e-13);
+            let res = Executor::new(problem, solver)
+                .configure(|s| s.param(0.5 * (lo + hi)).max_iters(100))
+                .run()
+                .map_err(|e| e.to_string())?;
+            res.state.best_param.unwrap_or(f64::NAN)
+        };
+        let (ankle, theta6) = self.rolling(p);
+        let (_, theta3, knee, _) = chain(self.l3, self.l4, hip, dz, ankle);
+        Ok(LegPose {
+            knee,
+            ankle,
+            foot: self.foot.points(ankle, p, theta6),
+            theta3,
+            theta4: kappa,
+            pitch: p,
+            theta6,
+            gap: 0.0,
+        })
+    }
+
+    /// Ankle dorsiflexion of a pose (rad): the shank's in-plane lean relative to the foot.
+    pub fn dorsiflexion(pose: &LegPose) -> f64 {
+        pose.theta3 + pose.theta4 - pose.pitch
+    }
+
+    /// Find heel-off after foot flat: the first time on [t_from, t_to] where the foot is flat and
+    /// its ankle dorsiflexion reaches θ5_max or the leg falls short of the hip; `hip(t)` gives the hip
+    /// joint and its lateral offset. The knee curve then runs from the flat-foot knee and its rate
+    /// there to κ_TO at `t_toe_off`. Leaves `heel_off` empty when the foot stays flat.
+    pub fn find_heel_off(
+        &mut self,
+        hip: impl Fn(f64) -> ([f64; 2], f64),
+        t_from: f64,
+        t_to: f64,
+        t_toe_off: f64,
+        kappa_to: f64,
+    ) -> Result<(), String> {
+        let flat = |t: f64| {
+            let (h, dz) = hip(t);
+            self.pose(h, dz, t)
+        };
+        let trigger = |t: f64| -> Result<bool, String> {
+            let p = flat(t)?;
+            Ok(p.pitch == 0.0 && (p.gap > 0.0 || Self::dorsiflexion(&p) >= self.theta5_max))
+        };
+        let t_from = t_from.max(self.t_hs + self.t_fgm);
+        const SCAN: usize = 64;
+        let mut lo = t_from;
+        let mut found = None;
+        for k in 1..=SCAN {
+            let t = t_from + (t_to - t_from) * k as f64 / SCAN as f64;
+            if trigger(t)? {
+                found = Some(t);
+                break;
+            }
+            lo = t;
+        }
+        let Some(mut hi) = found else {
+            return Ok(());
+        };
+        while hi - lo > 1e-12 {
+            let m = 0.5 * (lo + hi);
+            if trigger(m)? { hi = m } else { lo = m }
+        }
+        let t0 = lo;
+        let h = 1e-6;
+        let k0 = flat(t0)?.theta4;
+        let rate = (k0 - flat(t0 - h)?.theta4) / h;
+        self.heel_off = Some(KneeCurve {
+            t0,
+            kappa0: k0,
+            rate0: rate,
+            t_to: t_toe_off,
+            kappa_to,
+        });
+        Ok(())
+    }
+
+    /// Complete the stance into the next step: the knee curve is re-anchored at `t_hs_next` (its
+    /// value and rate there, or the flat foot's when the heel is still down, the rate then from
+    /// the right) and reaches κ_TO at the actual toe-off `t_toe_off`; `hip(t)` gives the hip
+    /// joint and its lateral offset for t ≥ `t_hs_next`.
+    pub fn continue_to_toe_off(
+        &mut self,
+        hip: impl Fn(f64) -> ([f64; 2], f64),
+        t_hs_next: f64,
+        t_toe_off: f64,
+        kappa_to: f64,
+    ) -> Result<(), String> {
+        let (kappa0, rate0) = match self.knee_curve(t_hs_next) {
+            Some(k) => k,
+            None => {
+                let h = 1e-6;
+                let knee = |t: f64| {
+                    let (p, dz) = hip(t);
+                    self.pose(p, dz, t).map(|p| p.theta4)
+                };
+                let k0 = knee(t_hs_next)?;
+                (k0, (knee(t_hs_next + h)? - k0) / h)
+            }
+        };
+        self.to_toe_off = Some(KneeCurve {
+            t0: t_hs_next,
+            kappa0,
+            rate0,
+            t_to: t_toe_off,
+            kappa_to,
+        });
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn leg() -> (Body, StanceLeg) {
+        let b = Body::standard(1.8, 80.0).unwrap();
+        let l = StanceLeg::new(
+            &b,
+            0.0,
+            0.0,
+            20f64.to_radians(),
+            0.078,
+            12f64.to_radians(),
+            35f64.to_radians(),
+        );
+        (b, l)
+    }
+
+    fn dist(u: [f64; 2], v: [f64; 2], dz: f64) -> f64 {
+        ((u[0] - v[0]).powi(2) + (u[1] - v[1]).powi(2) + dz * dz).sqrt()
+    }
+
+    /// In every foot rule the chain closes (|hip − knee| = l3, |knee − ankle| = l4 in the leg's
+    /// plane), the contact point stays put and no point of the foot is under the ground.
+    #[test]
+    fn chain_closes_and_contacts_hold() {
+        let (b, mut l) = leg();
+        let dz = 0.03;
+        let hip = |t: f64| ([-0.35 + 1.4 * t, 0.88 + 0.03 * (3.0 * t).sin()], dz);
+        l.find_heel_off(hip, 0.0, 0.55, 0.68, 0.7).unwrap();
+        assert!(l.heel_off.is_some());
+        let mut phases = std::collections::BTreeSet::new();
+        for i in 0..=68 {
+            let t = 0.01 * i as f64;
+            let (h, dz) = hip(t);
+            let p = l.pose(h, dz, t).unwrap();
+            // in the leg's plane the hip is the ankle plus the unfolded drop √(Δy² + dz²)
+            let hip_plane = [h[0], p.ankle[1] + (h[1] - p.ankle[1]).hypot(dz)];
+            if p.gap == 0.0 {
+                assert!((dist(hip_plane, p.knee, 0.0) - b.l3).abs() < 1e-9, "t {t}");
+                assert!((dist(p.knee, p.ankle, 0.0) - b.l4).abs() < 1e-9, "t {t}");
+            }
+            assert!(p.foot.lowest() > -1e-12, "t {t}: {:?}", p.foot);
+            phases.insert(format!("{:?}", l.phase(t)));
+            match l.phase(t) {
+                FootPhase::HeelRocker => {
+                    assert!(
+                        (p.foot.heel[0] + l.foot.l8).abs() < 1e-12 && p.foot.heel[1].abs() < 1e-12
+                    )
+                }
+                FootPhase::FootFlat => assert!(p.pitch == 0.0 && p.foot.heel[1].abs() < 1e-12),
+                FootPhase::Rolling => {
+                    assert!(
+                        p.foot.toe[1].abs() < 1e-12,
+                        "t {t}: the toe stays on the ground"
+                    );
+                    assert!((dist(h, p.ankle, dz) - reach(b.l3, b.l4, p.theta4)).abs() < 1e-9);
+                }
+            }
+        }
+        assert_eq!(phases.len(), 3, "every rule was exercised: {phases:?}");
+    }
+
+    /// The heel rocker ends flat (sole angle → 0 with zero rate) and starts at φ_hs.
+    #[test]
+    fn heel_rocker_runs_from_strike_to_flat() {
+        let (_, l) = leg();
+        let hip = [-0.3, 0.88];
+        let p0 = l.pose(hip, 0.0, 0.0).unwrap();
+        assert!((p0.pitch + l.sole_hs).abs() < 1e-15);
+        let pf = l.pose(hip, 0.0, l.t_fgm).unwrap();
+        assert!(pf.pitch.abs() < 1e-15);
+        // 1 − smoothstep(1 − δ) = 3δ² − 2δ³: the sole lands with zero rate
+        let d = 1e-4 / l.t_fgm;
+        let pe = l.pose(hip, 0.0, l.t_fgm - 1e-4).unwrap();
+        assert!((pe.pitch + l.sole_hs * (3.0 * d * d - 2.0 * d * d * d)).abs() < 1e-12);
+    }
+
+    /// Heel-off is found where the flat-foot dorsiflexion reaches θ5_max, and the knee is C¹
+    /// through it and through the re-anchoring at the next heel strike.
+    #[test]
+    fn heel_off_is_where_the_ankle_reaches_its_limit_and_the_knee_is_smooth() {
+        let (_, mut l) = leg();
+        let hip = |t: f64| ([-0.3 + 1.4 * t, 0.885], 0.02);
+        l.find_heel_off(hip, 0.0, 0.55, 0.68, 0.7).unwrap();
+        let k = l
+            .heel_off
+            .expect("the hip passes far enough ahead to lift the heel");
+        let flat_before = {
+            let mut f = l;
+            f.heel_off = None;
+            let (h, dz) = hip(k.t0);
+            f.pose(h, dz, k.t0).unwrap()
+        };
+        assert!((StanceLeg::dorsiflexion(&flat_before) - l.theta5_max).abs() < 1e-6);
+        let knee = |l: &StanceLeg, t: f64| {
+            let (h, dz) = hip(t);
+            l.pose(h, dz, t).unwrap().theta4
+        };
+        let e = 1e-7;
+        let (a, b) = (knee(&l, k.t0 - e), knee(&l, k.t0 + e));
+        assert!((a - b).abs() < 1e-5, "knee continuous at heel-off: {a} {b}");
+        l.continue_to_toe_off(hip, 0.55, 0.70, 0.7).unwrap();
+        let (a, b) = (knee(&l, 0.55 - e), knee(&l, 0.55 + e));
+        assert!((a - b).abs() < 1e-5);
+        let ra = (knee(&l, 0.55 - e) - knee(&l, 0.55 - 2.0 * e)) / e;
+        let rb = (knee(&l, 0.55 + 2.0 * e) - knee(&l, 0.55 + e)) / e;
+        assert!((ra - rb).abs() < 1e-3 * ra.abs().max(1.0), "{ra} {rb}");
+        assert!((knee(&l, 0.70) - 0.7).abs() < 1e-12);
+    }
+}

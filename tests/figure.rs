@@ -1,0 +1,166 @@
+//! The whole figure (spec §7) checked by geometry that does not depend on how it is built: rigid
+//! segments, feet on (never under) the ground, stance contacts that do not slide, heels that
+//! land where the step constraints put them, and no joint angle jumping at a phase boundary.
+use klaw::figure::{Landmarks, LegPoints, landmarks};
+use klaw::{Attributes, Body, GaitRequest, walk};
+
+fn d(a: [f64; 3], b: [f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// Knee flexion from the points: the angle between thigh and shank directions.
+fn knee_angle(l: &LegPoints) -> f64 {
+    let (u, v) = (sub(l.knee, l.hip), sub(l.ankle, l.knee));
+    let dot = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+    (dot / (d(l.knee, l.hip) * d(l.ankle, l.knee)))
+        .clamp(-1.0, 1.0)
+        .acos()
+}
+
+/// Foot pitch (heel up +) from heel and metatarsal joint.
+fn foot_pitch(l: &LegPoints) -> f64 {
+    let (a, b) = (l.heel, l.mtp);
+    -(b[1] - a[1]).atan2(b[0] - a[0])
+}
+
+fn walk_of(v: f64, h: f64) -> (Body, Attributes, walk::Walk) {
+    let body = Body::standard(h, 23.0 * h * h).unwrap();
+    let attrs = Attributes::default();
+    let g = GaitRequest {
+        velocity: Some(v),
+        ..Default::default()
+    }
+    .complete(&body, &attrs)
+    .unwrap();
+    let w = walk::simulate(body, attrs.clone(), &[g; 6]).unwrap();
+    (body, attrs, w)
+}
+
+fn figure_at(w: &walk::Walk, attrs: &Attributes, t: f64) -> Landmarks {
+    let i = w
+        .steps
+        .partition_point(|s| s.t_start <= t)
+        .saturating_sub(1);
+    landmarks(&w.steps[i], t, attrs).unwrap()
+}
+
+#[test]
+fn segments_are_rigid_and_feet_stay_on_or_above_the_ground() {
+    for (v, h) in [(1.4, 1.8), (0.8, 1.6), (1.9, 1.9)] {
+        let (b, attrs, w) = walk_of(v, h);
+        let n = 2000;
+        for k in 0..=n {
+            let t = w.duration() * k as f64 / n as f64;
+            let f = figure_at(&w, &attrs, t);
+            assert!((d(f.right.hip, f.left.hip) - b.l0).abs() < 1e-12);
+            let mid = [0, 1, 2].map(|i| 0.5 * (f.right.hip[i] + f.left.hip[i]));
+            assert!(d(mid, f.pelvis) < 1e-12);
+            for (name, leg, z) in [
+                ("right", &f.right, 0.5 * attrs.step_width),
+                ("left", &f.left, -0.5 * attrs.step_width),
+            ] {
+                let at = format!("v {v} H {h} t {t:.4} {name}");
+                assert!((d(leg.hip, leg.knee) - b.l3).abs() < 1e-9, "{at}");
+                assert!((d(leg.knee, leg.ankle) - b.l4).abs() < 1e-9, "{at}");
+                assert!((d(leg.ankle, leg.heel) - b.l11).abs() < 1e-9, "{at}");
+                assert!((d(leg.ankle, leg.mtp) - b.l12).abs() < 1e-9, "{at}");
+                assert!((d(leg.mtp, leg.toe) - b.l13).abs() < 1e-9, "{at}");
+                // each foot moves in its own sagittal plane at ± half the step width
+                for p in [leg.ankle, leg.heel, leg.mtp, leg.toe] {
+                    assert!((p[2] - z).abs() < 1e-9, "{at}: {p:?}");
+                }
+                let lowest = leg.heel[1].min(leg.mtp[1]).min(leg.toe[1]);
+                assert!(lowest >= -1e-3, "{at}: foot {lowest} m under the ground");
+                // the knee axis is a unit normal of the leg's plane
+                let n = leg.knee_axis;
+                assert!((d(n, [0.0; 3]) - 1.0).abs() < 1e-12);
+                for seg in [sub(leg.knee, leg.hip), sub(leg.ankle, leg.knee)] {
+                    let dot = seg[0] * n[0] + seg[1] * n[1] + seg[2] * n[2];
+                    assert!(dot.abs() < 1e-9, "{at}");
+                }
+            }
+        }
+    }
+}
+
+/// A foot point on the ground stays where it is while it is on the ground (≤ 1 mm), over every
+/// 1 ms interval of the walk.
+#[test]
+fn stance_contacts_do_not_slide() {
+    let (_, attrs, w) = walk_of(1.4, 1.8);
+    let n = (w.duration() * 1000.0) as usize;
+    let mut prev = figure_at(&w, &attrs, 0.0);
+    let mut worst: f64 = 0.0;
+    for k in 1..=n {
+        let f = figure_at(&w, &attrs, k as f64 / 1000.0);
+        for (a, b) in [(&prev.right, &f.right), (&prev.left, &f.left)] {
+            for (p, q) in [(a.heel, b.heel), (a.mtp, b.mtp), (a.toe, b.toe)] {
+                if p[1].abs() < 1e-9 && q[1].abs() < 1e-9 {
+                    worst = worst.max(d(p, q));
+                }
+            }
+        }
+        prev = f;
+    }
+    assert!(worst < 1e-3, "a contact slides {worst} m in 1 ms");
+}
+
+/// The striking heel lands where the step constraints put it: (x_ankle + sl − l8, 0) on its
+/// side, to 1 mm, with the determinants on.
+#[test]
+fn heels_land_on_their_marks() {
+    let (b, attrs, w) = walk_of(1.4, 1.8);
+    for s in &w.steps[1..] {
+        let f = figure_at(&w, &attrs, s.t_start);
+        let leg = if s.index % 2 == 0 { &f.right } else { &f.left };
+        let mark = s.x_ankle - b.l8;
+        assert!(
+            (leg.heel[0] - mark).abs() < 1e-3 && leg.heel[1].abs() < 1e-3,
+            "step {}: heel at {:?}, mark x {mark}",
+            s.index,
+            leg.heel
+        );
+    }
+}
+
+/// Across every phase boundary (heel strike, toe-off, the end of each swing subphase, heel-off)
+/// no knee angle, foot pitch or joint position jumps: the values 1 µs either side differ by less
+/// than 0.05° and 0.1 mm.
+#[test]
+fn nothing_jumps_at_a_phase_boundary() {
+    let (_, attrs, w) = walk_of(1.4, 1.8);
+    let mut boundaries = Vec::new();
+    for s in &w.steps {
+        let t = s.constraints.timing;
+        boundaries.push(("heel strike", s.t_start));
+        boundaries.push(("toe-off", s.t_start + t.t_ds));
+        for (sub, seg) in &s.swing {
+            boundaries.push((sub.name(), seg.t1));
+        }
+        if let Some(k) = s.stance_leg.heel_off {
+            boundaries.push(("heel-off", k.t0));
+        }
+    }
+    let e = 1e-6;
+    for (name, t) in boundaries {
+        if t - e <= 0.0 || t + e >= w.duration() {
+            continue;
+        }
+        let (a, b) = (figure_at(&w, &attrs, t - e), figure_at(&w, &attrs, t + e));
+        for (la, lb) in [(&a.right, &b.right), (&a.left, &b.left)] {
+            let dk = (knee_angle(la) - knee_angle(lb)).abs().to_degrees();
+            let dp = (foot_pitch(la) - foot_pitch(lb)).abs().to_degrees();
+            assert!(
+                dk < 0.05 && dp < 0.05,
+                "{name} at {t}: knee {dk}°, foot {dp}°"
+            );
+            for (p, q) in [(la.knee, lb.knee), (la.ankle, lb.ankle), (la.toe, lb.toe)] {
+                assert!(d(p, q) < 1e-4, "{name} at {t}: {p:?} → {q:?}");
+            }
+        }
+    }
+}
