@@ -20,3 +20,4 @@ pub mod plot;
 pub mod report;
 pub mod sweep;
 pub mod walk;
+pub mod work;
