@@ -19,5 +19,6 @@ pub mod io;
 pub mod plot;
 pub mod report;
 pub mod sweep;
+pub mod sweep_io;
 pub mod walk;
 pub mod work;
