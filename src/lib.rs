@@ -17,6 +17,7 @@ pub use plan::{StepConstraints, Timing};
 pub mod dynamics;
 pub mod io;
 pub mod plot;
+pub mod plot_sweep;
 pub mod report;
 pub mod sweep;
 pub mod sweep_io;

@@ -115,6 +115,22 @@ enum Command {
             Example: klaw merge all.csv part-*.csv"
     )]
     Merge(MergeArgs),
+    /// Heat map (PNG/SVG) of a sweep's result column over two swept parameters
+    #[command(
+        long_about = "Draw a heat map of one result column of a sweep output (CSV or JSON Lines) over two swept\n\
+            parameters: a cell per (x, y) pair, spanning halfway to the neighbouring values, coloured\n\
+            on the viridis scale with a colour bar; points that failed are light grey with a dark\n\
+            cross. If the sweep varies other parameters too, a cell shows the mean over its converged\n\
+            walks (for converged: the fraction converged) and is failed when none converged.\n\
+            1200 × 900 px, PNG or SVG by the extension of --out, written whole or not at all; text\n\
+            needs a TrueType font (see klaw walk --help, --plot).\n\
+            \n\
+            Examples:\n\
+            klaw plot-sweep grid.csv --x velocity --y height --column converged --out converged.png\n\
+            klaw plot-sweep grid.csv --x velocity --y height --column mean_iterations --out it.svg\n\
+            klaw plot-sweep grid.csv --x velocity --y height --column peak_knee --out knee.png"
+    )]
+    PlotSweep(PlotSweepArgs),
 }
 
 #[derive(Args)]
@@ -185,6 +201,25 @@ struct SweepArgs {
     resume: bool,
     /// Output file: CSV (.csv) or JSON Lines (.jsonl)
     #[arg(long, value_name = "FILE.csv|FILE.jsonl", default_value = "sweep.csv")]
+    out: PathBuf,
+}
+
+#[derive(Args)]
+struct PlotSweepArgs {
+    /// Sweep output to read (.csv or .jsonl)
+    input: PathBuf,
+    /// Swept parameter on the horizontal axis (a column name, e.g. velocity)
+    #[arg(long)]
+    x: String,
+    /// Swept parameter on the vertical axis (a column name, e.g. height)
+    #[arg(long)]
+    y: String,
+    /// Result column to colour by: any numeric column, e.g. converged, mean_iterations (alias
+    /// iterations), max_peak_swing_knee_flexion_deg (alias peak_knee), work_per_m
+    #[arg(long)]
+    column: String,
+    /// Heat map to write: PNG or SVG by the extension
+    #[arg(long, value_name = "FILE.png|FILE.svg")]
     out: PathBuf,
 }
 
@@ -364,6 +399,7 @@ fn main() -> ExitCode {
         Command::Bench(args) => bench(&args),
         Command::Sweep(args) => sweep(&args),
         Command::Merge(args) => merge(&args),
+        Command::PlotSweep(args) => plot_sweep(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -714,6 +750,31 @@ fn merge(args: &MergeArgs) -> Result<()> {
         "merged {} rows from {} files: {}",
         stats.rows,
         args.inputs.len(),
+        args.out.display()
+    );
+    Ok(())
+}
+
+fn plot_sweep(args: &PlotSweepArgs) -> Result<()> {
+    plot::figure_format(&args.out)?;
+    check_output_dir(&args.out)?;
+    let map = klaw::plot_sweep::heat_map(&args.input, &args.x, &args.y, &args.column, &args.out)?;
+    let failed = map.cells.iter().filter(|c| c.failed()).count();
+    let note = if plot::text_available() {
+        ""
+    } else {
+        " (no font found: drawn without text; set KLAW_FONT to a .ttf file)"
+    };
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(
+        out,
+        "heat map of {} over {} × {}: {} × {} values, {} cells, {failed} failed: {}{note}",
+        map.column,
+        map.x,
+        map.y,
+        map.xs.len(),
+        map.ys.len(),
+        map.cells.len(),
         args.out.display()
     );
     Ok(())
