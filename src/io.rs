@@ -67,27 +67,62 @@ fn create_temp(path: &Path) -> std::io::Result<(File, PathBuf)> {
     }
 }
 
-/// Write `path` whole or not at all: `write` fills a temporary file in the same directory, which
-/// is flushed, synced and renamed over `path`. On any error the temporary file is removed and an
-/// existing `path` is left untouched. Errors are `Error::Io { action: "writing", .. }`.
+/// A file written whole or not at all: rows go to a temporary file in the target's directory
+/// (so the rename stays on one file system and is atomic), which `commit` flushes, syncs and
+/// renames over the target. Dropped uncommitted, the temporary file is removed and an existing
+/// target is left untouched. Errors are `Error::Io { action: "writing", .. }`.
+pub struct AtomicFile {
+    path: PathBuf,
+    guard: TempGuard,
+    out: BufWriter<File>,
+}
+
+impl AtomicFile {
+    /// Start writing `path`.
+    pub fn create(path: &Path) -> Result<AtomicFile> {
+        let (file, tmp) = create_temp(path).map_err(|e| io_error("writing", path, e))?;
+        Ok(AtomicFile {
+            path: path.to_path_buf(),
+            guard: TempGuard {
+                path: tmp,
+                armed: true,
+            },
+            out: BufWriter::new(file),
+        })
+    }
+
+    /// Where to write.
+    pub fn writer(&mut self) -> &mut BufWriter<File> {
+        &mut self.out
+    }
+
+    /// The error of a failed write to this file.
+    pub fn error(&self, e: std::io::Error) -> Error {
+        io_error("writing", &self.path, e)
+    }
+
+    /// Flush, sync and rename over the target.
+    pub fn commit(mut self) -> Result<()> {
+        let path = self.path.clone();
+        let err = |e| io_error("writing", &path, e);
+        self.out.flush().map_err(err)?;
+        self.out.get_ref().sync_all().map_err(err)?;
+        fs::rename(&self.guard.path, &path).map_err(err)?;
+        self.guard.armed = false;
+        Ok(())
+    }
+}
+
+/// Write `path` whole or not at all: `write` fills an [`AtomicFile`]. On any error the temporary
+/// file is removed and an existing `path` is left untouched. Errors are
+/// `Error::Io { action: "writing", .. }`.
 pub fn write_atomic(
     path: &Path,
     write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
 ) -> Result<()> {
-    let err = |e| io_error("writing", path, e);
-    let (file, tmp) = create_temp(path).map_err(err)?;
-    let mut guard = TempGuard {
-        path: tmp,
-        armed: true,
-    };
-    let mut out = BufWriter::new(file);
-    write(&mut out).map_err(err)?;
-    let file = out.into_inner().map_err(|e| err(e.into_error()))?;
-    file.sync_all().map_err(err)?;
-    drop(file);
-    fs::rename(&guard.path, path).map_err(err)?;
-    guard.armed = false;
-    Ok(())
+    let mut file = AtomicFile::create(path)?;
+    write(file.writer()).map_err(|e| file.error(e))?;
+    file.commit()
 }
 
 /// The CSV header: the serde field names of `Frame`, in declaration order.

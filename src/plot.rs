@@ -36,8 +36,8 @@ pub const FONT_CANDIDATES: &[&str] = &[
     "/usr/share/fonts/dejavu/DejaVuSans.ttf",
 ];
 
-const FONT: &str = "sans-serif";
-const TITLE_SIZE: i32 = 22;
+pub(crate) const FONT: &str = "sans-serif";
+pub(crate) const TITLE_SIZE: i32 = 22;
 const RIGHT: RGBColor = RGBColor(31, 119, 180);
 const LEFT: RGBColor = RGBColor(214, 39, 40);
 const HIP_PATH: RGBColor = RGBColor(150, 150, 150);
@@ -121,14 +121,7 @@ fn render_figure(frames: &[Frame], path: &Path, format: FigureFormat, text: bool
                 draw(&root, frames, text).map_err(fail)?;
                 root.present().map_err(|e| fail(e.to_string()))?;
             }
-            io::write_atomic(path, |out| {
-                PngEncoder::new(out)
-                    .write_image(&pixels, w, h, ColorType::Rgb8)
-                    .map_err(|e| match e {
-                        ImageError::IoError(e) => e,
-                        other => std::io::Error::other(other),
-                    })
-            })
+            write_png(path, &pixels, (w, h))
         }
         FigureFormat::Svg => {
             let mut svg = String::new();
@@ -142,11 +135,23 @@ fn render_figure(frames: &[Frame], path: &Path, format: FigureFormat, text: bool
     }
 }
 
-type Drawn = std::result::Result<(), String>;
+/// Encode an RGB buffer as PNG and write it atomically.
+pub(crate) fn write_png(path: &Path, pixels: &[u8], (w, h): (u32, u32)) -> Result<()> {
+    io::write_atomic(path, |out| {
+        PngEncoder::new(out)
+            .write_image(pixels, w, h, ColorType::Rgb8)
+            .map_err(|e| match e {
+                ImageError::IoError(e) => e,
+                other => std::io::Error::other(other),
+            })
+    })
+}
+
+pub(crate) type Drawn = std::result::Result<(), String>;
 /// A named, coloured curve in pieces (each piece a polyline of finite points).
 type Series<'a> = (&'a str, RGBColor, Vec<Vec<(f64, f64)>>);
 
-fn msg<E: std::fmt::Display>(e: E) -> String {
+pub(crate) fn msg<E: std::fmt::Display>(e: E) -> String {
     e.to_string()
 }
 

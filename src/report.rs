@@ -82,6 +82,10 @@ pub struct StepReport {
     pub peak_swing_knee_flexion: f64,
     /// Right-hand-side evaluations of the step's dynamic models over all shooting trials.
     pub rhs_evaluations: u64,
+    /// Mechanical work of the actuators over the step (J): positive (Σ over the actuators of
+    /// ∫ max(power, 0) dt) and net (∫ Σ power dt); see `work`.
+    pub positive_work: f64,
+    pub net_work: f64,
 }
 
 /// The report of a walk.

@@ -2,16 +2,17 @@
 //! locomotion attribute, one independent walk per point, run in parallel (rayon) and summarized
 //! one row per walk. Rows come out in product order whatever the thread count, and each walk is
 //! deterministic, so the output is byte-identical for any `RAYON_NUM_THREADS`.
+//!
+//! Points are numbered 0.. in product order (the `point` column); a shard `K/N` is the points
+//! with `point mod N = K − 1`. Writing, resuming and merging the output files is `sweep_io`.
 use std::collections::BTreeMap;
 use std::path::Path;
-use std::sync::atomic::{AtomicUsize, Ordering};
 
 use rayon::prelude::*;
 
 use crate::attributes::AttributeTable;
 use crate::body::Body;
 use crate::error::{Error, Result};
-use crate::io;
 use crate::params::GaitRequest;
 use crate::plan::Timing;
 use crate::walk::simulate;
@@ -149,6 +150,17 @@ pub enum Axis {
     Attribute(String),
 }
 
+/// The quantities a sweep names besides the attributes, in product order.
+pub const QUANTITIES: [&str; 7] = [
+    "velocity",
+    "step_length",
+    "step_frequency",
+    "height",
+    "mass",
+    "mass_per_height2",
+    "steps",
+];
+
 impl Axis {
     /// The column name.
     pub fn name(&self) -> &str {
@@ -163,12 +175,227 @@ impl Axis {
             Axis::Attribute(n) => n,
         }
     }
+
+    /// The axis of a flag or sweep-file key (`step-length` or `step_length`), or of a locomotion
+    /// attribute of `table`; `None` for an unknown name.
+    pub fn from_name(name: &str, table: &AttributeTable) -> Option<Axis> {
+        let key = name.trim().replace('-', "_");
+        Some(match key.as_str() {
+            "velocity" => Axis::Velocity,
+            "step_length" => Axis::StepLength,
+            "step_frequency" => Axis::StepFrequency,
+            "height" => Axis::Height,
+            "mass" => Axis::Mass,
+            "mass_per_height2" => Axis::MassPerHeight2,
+            "steps" => Axis::Steps,
+            _ if table.0.contains_key(&key) => Axis::Attribute(key),
+            _ => return None,
+        })
+    }
+
+    /// Position in the product order: the quantities in `QUANTITIES` order, then the attributes.
+    fn rank(&self) -> usize {
+        QUANTITIES
+            .iter()
+            .position(|q| *q == self.name() && !matches!(self, Axis::Attribute(_)))
+            .unwrap_or(QUANTITIES.len())
+    }
 }
 
 /// A sweep: axes in product order (the first varies slowest, the last fastest).
 #[derive(Clone, Debug, Default)]
 pub struct Sweep {
     pub axes: Vec<(Axis, Vec<f64>)>,
+}
+
+/// A swept axis with its values, as a flag or a sweep file gives it.
+pub type Entry = (Axis, Vec<f64>);
+
+/// Read a sweep file: a flat TOML table whose keys are the quantities of `klaw sweep`
+/// (`velocity`, `step_length` or `step-length`, …, `steps`) or locomotion attribute names, and
+/// whose values are a number, a string spec (`"0.6:2.0:0.1"`, `"1.5,1.7"`) or an array of numbers.
+/// Entries come in key order (alphabetical).
+pub fn read_sweep_file(path: &Path, table: &AttributeTable) -> Result<Vec<Entry>> {
+    let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
+        action: "reading",
+        path: path.to_path_buf(),
+        source: e,
+    })?;
+    parse_sweep_toml(&text, table).map_err(|reason| Error::Malformed {
+        what: "sweep file",
+        path: path.to_path_buf(),
+        reason,
+    })
+}
+
+/// `read_sweep_file` on text; errors are the reason only.
+pub fn parse_sweep_toml(
+    text: &str,
+    table: &AttributeTable,
+) -> std::result::Result<Vec<Entry>, String> {
+    let doc: toml::Table =
+        toml::from_str(text).map_err(|e| e.to_string().trim_end().to_string())?;
+    let mut entries: Vec<Entry> = Vec::new();
+    for (key, value) in &doc {
+        let axis = Axis::from_name(key, table).ok_or_else(|| {
+            format!(
+                "unknown key `{key}`: a key is one of {} or a locomotion attribute of \
+                 models/attributes.toml",
+                QUANTITIES.join(", ")
+            )
+        })?;
+        if entries.iter().any(|(a, _)| *a == axis) {
+            return Err(format!("`{key}` is given twice (as `{}`)", axis.name()));
+        }
+        let shape = || {
+            format!(
+                "`{key}` must be a number, a string \"START:STOP:STEP\" or \"A,B,C\", or an array \
+                 of numbers"
+            )
+        };
+        let as_number = |v: &toml::Value| match v {
+            toml::Value::Integer(i) => Some(*i as f64),
+            toml::Value::Float(x) => Some(*x),
+            _ => None,
+        };
+        let values = match value {
+            toml::Value::String(spec) => {
+                parse_spec(axis.name(), spec).map_err(|e| format!("`{key}`: {e}"))?
+            }
+            toml::Value::Array(items) => {
+                if items.is_empty() {
+                    return Err(format!("`{key}` is an empty array"));
+                }
+                items
+                    .iter()
+                    .map(|v| as_number(v).ok_or_else(shape))
+                    .collect::<std::result::Result<Vec<_>, _>>()?
+            }
+            v => vec![as_number(v).ok_or_else(shape)?],
+        };
+        if let Some(x) = values.iter().find(|x| !x.is_finite()) {
+            return Err(format!("`{key}`: {x} is not a finite number"));
+        }
+        entries.push((axis, values));
+    }
+    Ok(entries)
+}
+
+impl Sweep {
+    /// The sweep of a sweep file's entries and the flags' entries: a flag replaces the file's
+    /// entry of the same axis, and a flag `mass` or `mass_per_height2` drops the file's entries
+    /// of both. The axes are put in product order: the quantities in `QUANTITIES` order, then
+    /// the attributes (the file's, then the flags' new ones, each in their given order).
+    pub fn build(file: Vec<Entry>, flags: Vec<Entry>) -> Result<Sweep> {
+        let mut axes: Vec<Entry> = Vec::new();
+        for (i, (axis, _)) in flags.iter().enumerate() {
+            if flags[..i].iter().any(|(a, _)| a == axis) {
+                return Err(bad(axis.name(), "given twice"));
+            }
+        }
+        let flags_mass = flags
+            .iter()
+            .any(|(a, _)| matches!(a, Axis::Mass | Axis::MassPerHeight2));
+        for entry in file {
+            if flags_mass && matches!(entry.0, Axis::Mass | Axis::MassPerHeight2) {
+                continue;
+            }
+            axes.push(entry);
+        }
+        for (axis, values) in flags {
+            match axes.iter_mut().find(|(a, _)| *a == axis) {
+                Some(slot) => slot.1 = values,
+                None => axes.push((axis, values)),
+            }
+        }
+        if axes.iter().any(|(a, _)| *a == Axis::Mass)
+            && axes.iter().any(|(a, _)| *a == Axis::MassPerHeight2)
+        {
+            return Err(bad(
+                "mass-per-height2",
+                "mass and mass_per_height2 exclude each other (M = K · H²): give one",
+            ));
+        }
+        for (axis, values) in &axes {
+            if values.is_empty() {
+                return Err(bad(axis.name(), "no values"));
+            }
+            if *axis == Axis::Steps
+                && let Some(x) = values.iter().find(|x| x.fract() != 0.0)
+            {
+                return Err(bad("steps", format!("{x} is not a whole number of steps")));
+            }
+        }
+        // stable: attributes keep their order
+        axes.sort_by_key(|(a, _)| a.rank());
+        let sweep = Sweep { axes };
+        let total = sweep.len();
+        if total > MAX_POINTS {
+            return Err(Error::OutOfRange {
+                name: "sweep size (product of the value counts)".into(),
+                value: total as f64,
+                min: 1.0,
+                max: MAX_POINTS as f64,
+                unit: "walks".into(),
+            });
+        }
+        Ok(sweep)
+    }
+}
+
+/// The K-th of N disjoint slices of a sweep (1 ≤ K ≤ N): the points with `point mod N = K − 1`.
+/// Interleaved rather than contiguous so that every shard gets a like mix of fast and slow walks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Shard {
+    /// K, 1-based (Slurm's `SLURM_ARRAY_TASK_ID` with `--array=1-N`).
+    pub index: usize,
+    /// N.
+    pub count: usize,
+}
+
+/// Largest shard count.
+pub const MAX_SHARDS: usize = 1_000_000;
+
+impl Shard {
+    /// The whole sweep, 1/1.
+    pub const ALL: Shard = Shard { index: 1, count: 1 };
+
+    /// Parse `K/N` with 1 ≤ K ≤ N ≤ 1 000 000.
+    pub fn parse(text: &str) -> Result<Shard> {
+        let range = format!("K/N with whole numbers 1 ≤ K ≤ N ≤ {MAX_SHARDS}");
+        let (k, n) = text
+            .split_once('/')
+            .ok_or_else(|| bad("shard", format!("`{text}` must be {range}")))?;
+        let whole = |t: &str| {
+            t.trim().parse::<usize>().map_err(|_| {
+                bad(
+                    "shard",
+                    format!("`{text}`: `{}` is not a whole number; {range}", t.trim()),
+                )
+            })
+        };
+        let (index, count) = (whole(k)?, whole(n)?);
+        if index < 1 || count < 1 || index > count || count > MAX_SHARDS {
+            return Err(bad("shard", format!("`{text}` is out of range: {range}")));
+        }
+        Ok(Shard { index, count })
+    }
+
+    /// Whether point `p` belongs to this shard.
+    pub fn contains(&self, p: usize) -> bool {
+        p % self.count == self.index - 1
+    }
+
+    /// The shard's points of a sweep of `total` points, increasing, from `from` on.
+    pub fn points(&self, total: usize, from: usize) -> impl Iterator<Item = usize> + use<> {
+        let first = self.index - 1;
+        let start = if from <= first {
+            first
+        } else {
+            first + (from - first).div_ceil(self.count) * self.count
+        };
+        (start..total).step_by(self.count)
+    }
 }
 
 /// One cell of an output row.
@@ -194,10 +421,13 @@ pub struct Summary {
     pub stance_pct: f64,
     pub double_support_pct: f64,
     pub min_toe_clearance: f64,
+    /// Positive mechanical work of the actuators per metre walked (J/m), and per kg of body mass.
+    pub work_per_m: f64,
+    pub work_per_kg_m: f64,
 }
 
 /// The output columns after the inputs.
-pub const OUTPUT_COLUMNS: [&str; 12] = [
+pub const OUTPUT_COLUMNS: [&str; 14] = [
     "converged",
     "error",
     "mean_iterations",
@@ -210,11 +440,15 @@ pub const OUTPUT_COLUMNS: [&str; 12] = [
     "stance_pct",
     "double_support_pct",
     "min_toe_clearance",
+    "work_per_m",
+    "work_per_kg_m",
 ];
 
 /// The inputs of one walk, decoded from a point of the product.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Inputs {
+    /// The point's index in product order.
+    pub point: usize,
     pub request: GaitRequest,
     pub height: f64,
     pub mass_per_height2: Option<f64>,
@@ -229,6 +463,10 @@ pub struct Row {
     pub inputs: Inputs,
     pub outcome: std::result::Result<Summary, String>,
 }
+
+/// Walks run in parallel per chunk, for each thread: rows are written chunk by chunk, so memory
+/// holds at most a chunk of rows whatever the size of the sweep.
+pub const CHUNK_PER_THREAD: usize = 32;
 
 impl Sweep {
     /// Number of points (walks): the product of the axis lengths.
@@ -258,10 +496,12 @@ impl Sweep {
         (0..self.len()).map(|k| self.point(k)).collect()
     }
 
-    /// Decode a point into the inputs of a walk; unswept quantities take the `klaw walk`
-    /// defaults (H 1.8 m, M 80 kg, 10 steps, v 1.4 m/s when no gait quantity is swept).
-    pub fn inputs(&self, point: &[f64]) -> Inputs {
+    /// The inputs of the walk of point `k`; unswept quantities take the `klaw walk` defaults
+    /// (H 1.8 m, M 80 kg, 10 steps, v 1.4 m/s when no gait quantity is swept).
+    pub fn inputs(&self, k: usize) -> Inputs {
+        let point = self.point(k);
         let mut inputs = Inputs {
+            point: k,
             request: GaitRequest::default(),
             height: 1.8,
             mass_per_height2: None,
@@ -270,7 +510,7 @@ impl Sweep {
             attributes: Vec::new(),
         };
         let mut mass = None;
-        for ((axis, _), &x) in self.axes.iter().zip(point) {
+        for ((axis, _), &x) in self.axes.iter().zip(&point) {
             match axis {
                 Axis::Velocity => inputs.request.velocity = Some(x),
                 Axis::StepLength => inputs.request.step_length = Some(x),
@@ -293,12 +533,18 @@ impl Sweep {
         inputs
     }
 
-    /// The column names: the inputs, then `OUTPUT_COLUMNS`.
-    pub fn header(&self) -> Vec<String> {
-        let mut h: Vec<String> = ["velocity", "step_length", "step_frequency", "height"]
-            .iter()
-            .map(|s| s.to_string())
-            .collect();
+    /// The input column names: `point`, the gait, the body, `steps`, the swept attributes.
+    pub fn input_header(&self) -> Vec<String> {
+        let mut h: Vec<String> = [
+            "point",
+            "velocity",
+            "step_length",
+            "step_frequency",
+            "height",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
         if self.axes.iter().any(|(a, _)| *a == Axis::MassPerHeight2) {
             h.push("mass_per_height2".into());
         }
@@ -309,35 +555,54 @@ impl Sweep {
                 h.push(n.clone());
             }
         }
+        h
+    }
+
+    /// The column names: the inputs, then `OUTPUT_COLUMNS`.
+    pub fn header(&self) -> Vec<String> {
+        let mut h = self.input_header();
         h.extend(OUTPUT_COLUMNS.iter().map(|s| s.to_string()));
         h
     }
 
-    /// Run every walk on the rayon pool; `progress(done, total)` is called after each walk
-    /// (from any thread). Rows are returned in product order.
-    pub fn run(&self, progress: impl Fn(usize, usize) + Sync) -> Result<Vec<Row>> {
-        let total = self.len();
-        if total > MAX_POINTS {
-            return Err(Error::OutOfRange {
-                name: "sweep size (product of the value counts)".into(),
-                value: total as f64,
-                min: 1.0,
-                max: MAX_POINTS as f64,
-                unit: "walks".into(),
-            });
-        }
+    /// Walk point `k` and summarize it; a failure is recorded in the row, never returned.
+    pub fn walk(&self, k: usize, table: &AttributeTable) -> Row {
+        let inputs = self.inputs(k);
+        let outcome =
+            run_walk(&inputs, table).map_err(|e| e.to_string().replace(['\n', '\r'], " "));
+        Row { inputs, outcome }
+    }
+
+    /// Run the walks of `points` (any order) on the rayon pool, a chunk of
+    /// `CHUNK_PER_THREAD × threads` at a time; `emit` receives every row, in the order of
+    /// `points`, as soon as its chunk is done; `progress()` is called after each walk (from any
+    /// thread). An `emit` error stops the sweep.
+    pub fn run(
+        &self,
+        points: impl IntoIterator<Item = usize>,
+        progress: &(dyn Fn() + Sync),
+        mut emit: impl FnMut(Row) -> Result<()>,
+    ) -> Result<()> {
         let table = AttributeTable::builtin();
-        let done = AtomicUsize::new(0);
-        Ok((0..total)
-            .into_par_iter()
-            .map(|k| {
-                let inputs = self.inputs(&self.point(k));
-                let outcome = run_walk(&inputs, &table).map_err(|e| e.to_string());
-                let n = done.fetch_add(1, Ordering::Relaxed) + 1;
-                progress(n, total);
-                Row { inputs, outcome }
-            })
-            .collect())
+        let chunk = (CHUNK_PER_THREAD * rayon::current_num_threads()).max(64);
+        let mut points = points.into_iter();
+        loop {
+            let batch: Vec<usize> = points.by_ref().take(chunk).collect();
+            if batch.is_empty() {
+                return Ok(());
+            }
+            let rows: Vec<Row> = batch
+                .into_par_iter()
+                .map(|k| {
+                    let row = self.walk(k, &table);
+                    progress();
+                    row
+                })
+                .collect();
+            for row in rows {
+                emit(row)?;
+            }
+        }
     }
 }
 
@@ -375,6 +640,8 @@ pub fn run_walk(inputs: &Inputs, table: &AttributeTable) -> Result<Summary> {
     let n = report.steps.len().max(1) as f64;
     let mean =
         |f: &dyn Fn(&crate::report::StepReport) -> f64| report.steps.iter().map(f).sum::<f64>() / n;
+    let distance: f64 = report.steps.iter().map(|s| s.achieved.step_length).sum();
+    let work: f64 = report.steps.iter().map(|s| s.positive_work).sum();
     Ok(Summary {
         mean_iterations: if iterations.is_empty() {
             0.0
@@ -398,26 +665,36 @@ pub fn run_walk(inputs: &Inputs, table: &AttributeTable) -> Result<Summary> {
             .iter()
             .map(|s| s.min_toe_clearance)
             .fold(f64::INFINITY, f64::min),
+        work_per_m: work / distance,
+        work_per_kg_m: work / distance / inputs.mass,
     })
+}
+
+impl Inputs {
+    /// The input cells, aligned with `Sweep::input_header`.
+    pub fn cells(&self) -> Vec<Cell> {
+        let opt = |v: Option<f64>| v.map_or(Cell::Empty, Cell::Num);
+        let mut c = vec![
+            Cell::Int(self.point),
+            opt(self.request.velocity),
+            opt(self.request.step_length),
+            opt(self.request.step_frequency),
+            Cell::Num(self.height),
+        ];
+        if let Some(k) = self.mass_per_height2 {
+            c.push(Cell::Num(k));
+        }
+        c.push(Cell::Num(self.mass));
+        c.push(Cell::Num(self.steps));
+        c.extend(self.attributes.iter().map(|(_, v)| Cell::Num(*v)));
+        c
+    }
 }
 
 impl Row {
     /// The cells of the row, aligned with `Sweep::header`.
     pub fn cells(&self) -> Vec<Cell> {
-        let i = &self.inputs;
-        let opt = |v: Option<f64>| v.map_or(Cell::Empty, Cell::Num);
-        let mut c = vec![
-            opt(i.request.velocity),
-            opt(i.request.step_length),
-            opt(i.request.step_frequency),
-            Cell::Num(i.height),
-        ];
-        if let Some(k) = i.mass_per_height2 {
-            c.push(Cell::Num(k));
-        }
-        c.push(Cell::Num(i.mass));
-        c.push(Cell::Num(i.steps));
-        c.extend(i.attributes.iter().map(|(_, v)| Cell::Num(*v)));
+        let mut c = self.inputs.cells();
         match &self.outcome {
             Ok(s) => {
                 c.push(Cell::Bool(true));
@@ -433,6 +710,8 @@ impl Row {
                     s.stance_pct,
                     s.double_support_pct,
                     s.min_toe_clearance,
+                    s.work_per_m,
+                    s.work_per_kg_m,
                 ] {
                     c.push(Cell::Num(v));
                 }
@@ -492,39 +771,57 @@ impl Format {
             }),
         }
     }
+
+    /// The text of one row, with its final newline: a CSV record, or a JSON object with the
+    /// keys of `header` in order (empty cells as null). `cells` may be a prefix of the row.
+    pub fn line(&self, header: &[String], cells: &[Cell]) -> String {
+        match self {
+            Format::Csv => csv_line(cells.iter().map(csv_text)),
+            Format::Jsonl => {
+                let mut s = String::from("{");
+                for (i, (name, cell)) in header.iter().zip(cells).enumerate() {
+                    if i > 0 {
+                        s.push(',');
+                    }
+                    s.push_str(&serde_json::Value::from(name.as_str()).to_string());
+                    s.push(':');
+                    s.push_str(&json_value(cell).to_string());
+                }
+                s.push_str("}\n");
+                s
+            }
+        }
+    }
+
+    /// The header line (CSV), or nothing (JSON Lines name the columns in every row).
+    pub fn header_line(&self, header: &[String]) -> String {
+        match self {
+            Format::Csv => csv_line(header.iter().cloned()),
+            Format::Jsonl => String::new(),
+        }
+    }
+
+    /// How a row's text starts, given its input cells (an exact prefix of `line`).
+    pub fn input_prefix(&self, header: &[String], inputs: &[Cell]) -> String {
+        let mut line = self.line(header, inputs);
+        let end = match self {
+            Format::Csv => "\n",
+            Format::Jsonl => "}\n",
+        };
+        line.truncate(line.len() - end.len());
+        line.push(',');
+        line
+    }
 }
 
-/// Write the rows atomically: CSV with a header, or JSON Lines (one object per row, keys in
-/// column order, empty cells as null).
-pub fn write_rows(path: &Path, header: &[String], rows: &[Row]) -> Result<()> {
-    let format = Format::from_path(path)?;
-    io::write_atomic(path, |out| match format {
-        Format::Csv => {
-            let mut w = csv::WriterBuilder::new()
-                .has_headers(false)
-                .from_writer(out);
-            w.write_record(header)?;
-            for row in rows {
-                w.write_record(row.cells().iter().map(csv_text))?;
-            }
-            w.flush()
-        }
-        Format::Jsonl => {
-            for row in rows {
-                out.write_all(b"{")?;
-                for (i, (name, cell)) in header.iter().zip(row.cells()).enumerate() {
-                    if i > 0 {
-                        out.write_all(b",")?;
-                    }
-                    serde_json::to_writer(&mut *out, name)?;
-                    out.write_all(b":")?;
-                    serde_json::to_writer(&mut *out, &json_value(&cell))?;
-                }
-                out.write_all(b"}\n")?;
-            }
-            Ok(())
-        }
-    })
+/// One CSV record as text (quoted where needed), with a final newline.
+fn csv_line(fields: impl Iterator<Item = String>) -> String {
+    let mut w = csv::WriterBuilder::new()
+        .has_headers(false)
+        .from_writer(Vec::new());
+    let fields: Vec<String> = fields.collect();
+    w.write_record(&fields).expect("writing to memory");
+    String::from_utf8(w.into_inner().expect("writing to memory")).expect("UTF-8 fields")
 }
 
 #[cfg(test)]
@@ -619,13 +916,14 @@ mod tests {
                 (Axis::MassPerHeight2, vec![20.0]),
             ],
         };
-        let i = s.inputs(&s.point(0));
+        let i = s.inputs(0);
         assert_eq!(i.request.velocity, Some(1.4));
         assert!((i.mass - 45.0).abs() < 1e-12);
         assert_eq!(i.steps, 10.0);
         let h = s.header();
         assert!(h.contains(&"mass_per_height2".to_string()));
-        assert_eq!(h.len(), 7 + OUTPUT_COLUMNS.len());
+        assert_eq!(h.len(), 8 + OUTPUT_COLUMNS.len());
+        assert_eq!(h[0], "point");
     }
 
     #[test]
@@ -633,10 +931,199 @@ mod tests {
         let s = Sweep {
             axes: vec![(Axis::Velocity, vec![5.0]), (Axis::Steps, vec![2.0])],
         };
-        let rows = s.run(|_, _| {}).unwrap();
+        let mut rows = Vec::new();
+        s.run(0..1, &|| {}, |r| {
+            rows.push(r);
+            Ok(())
+        })
+        .unwrap();
         assert_eq!(rows.len(), 1);
         let e = rows[0].outcome.as_ref().unwrap_err();
         assert!(e.contains("velocity"), "{e}");
         assert_eq!(rows[0].cells().len(), s.header().len());
+    }
+
+    fn table() -> AttributeTable {
+        AttributeTable::builtin()
+    }
+
+    #[test]
+    fn shard_specs_are_validated() {
+        assert_eq!(Shard::parse("1/1").unwrap(), Shard::ALL);
+        assert_eq!(
+            Shard::parse(" 3 / 8 ").unwrap(),
+            Shard { index: 3, count: 8 }
+        );
+        for bad in [
+            "0/4",
+            "5/4",
+            "1/0",
+            "0/0",
+            "-1/4",
+            "1",
+            "1/2/3",
+            "a/4",
+            "1.5/4",
+            "",
+            "2/2000000",
+        ] {
+            let e = Shard::parse(bad).unwrap_err();
+            assert!(matches!(e, Error::BadSpec { .. }), "{bad}: {e}");
+            let text = e.to_string();
+            assert!(
+                text.starts_with("--shard:") && text.contains("1 ≤ K ≤ N"),
+                "{bad}: {text}"
+            );
+            assert_eq!(e.exit_code(), 2);
+        }
+    }
+
+    #[test]
+    fn shard_points_start_where_asked() {
+        let s = Shard { index: 2, count: 3 };
+        assert_eq!(s.points(10, 0).collect::<Vec<_>>(), vec![1, 4, 7]);
+        assert_eq!(s.points(10, 2).collect::<Vec<_>>(), vec![4, 7]);
+        assert_eq!(s.points(10, 4).collect::<Vec<_>>(), vec![4, 7]);
+        assert_eq!(s.points(10, 8).count(), 0);
+        assert_eq!(Shard::ALL.points(3, 1).collect::<Vec<_>>(), vec![1, 2]);
+    }
+
+    proptest::proptest! {
+        /// The N shards of a sweep are disjoint and together hold every point exactly once, and
+        /// `points(total, from)` is `contains` filtered from `from` on.
+        #[test]
+        fn shards_partition_the_product(total in 0usize..500, count in 1usize..40, from in 0usize..520) {
+            let mut seen = vec![0u32; total];
+            for index in 1..=count {
+                let shard = Shard { index, count };
+                let points: Vec<usize> = shard.points(total, 0).collect();
+                let filtered: Vec<usize> = (0..total).filter(|&p| shard.contains(p)).collect();
+                proptest::prop_assert_eq!(&points, &filtered);
+                let later: Vec<usize> = shard.points(total, from).collect();
+                let want: Vec<usize> = filtered.iter().copied().filter(|&p| p >= from).collect();
+                proptest::prop_assert_eq!(later, want);
+                for p in points {
+                    seen[p] += 1;
+                }
+            }
+            proptest::prop_assert!(seen.iter().all(|&n| n == 1));
+        }
+    }
+
+    #[test]
+    fn sweep_file_values_and_keys() {
+        let entries = parse_sweep_toml(
+            "velocity = \"0.6:1.0:0.2\"\nstep-length = 0.7\nheight = [1.5, 1.7]\nsteps = 2\nbounciness = [0.2, 0.5]\n",
+            &table(),
+        )
+        .unwrap();
+        let get = |a: Axis| {
+            entries
+                .iter()
+                .find(|(x, _)| *x == a)
+                .map(|(_, v)| v.clone())
+        };
+        assert_eq!(get(Axis::Velocity), Some(vec![0.6, 0.8, 1.0]));
+        assert_eq!(get(Axis::StepLength), Some(vec![0.7]));
+        assert_eq!(get(Axis::Height), Some(vec![1.5, 1.7]));
+        assert_eq!(get(Axis::Steps), Some(vec![2.0]));
+        assert_eq!(
+            get(Axis::Attribute("bounciness".into())),
+            Some(vec![0.2, 0.5])
+        );
+    }
+
+    #[test]
+    fn malformed_sweep_files_say_what_is_wrong() {
+        for (text, expect) in [
+            ("velocity = ", "velocity"),
+            ("speed = 1.2", "unknown key `speed`"),
+            ("velocity = true", "`velocity` must be a number"),
+            ("velocity = []", "empty array"),
+            ("velocity = [1.0, \"x\"]", "`velocity` must be a number"),
+            ("velocity = \"1:2\"", "START:STOP:STEP"),
+            (
+                "velocity = 1.0\nstep_length = 0.7\nstep-length = 0.8",
+                "given twice",
+            ),
+            ("[velocity]\nx = 1", "`velocity` must be a number"),
+            ("velocity = nan", "not a finite number"),
+        ] {
+            let e = parse_sweep_toml(text, &table()).unwrap_err();
+            assert!(e.contains(expect), "{text:?}: {e}");
+        }
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("bad.toml");
+        std::fs::write(&path, "speed = 1").unwrap();
+        let e = read_sweep_file(&path, &table()).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::Malformed {
+                    what: "sweep file",
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        assert_eq!(e.exit_code(), 2);
+        let e = read_sweep_file(&dir.path().join("none.toml"), &table()).unwrap_err();
+        assert!(matches!(e, Error::Io { .. }), "{e}");
+    }
+
+    #[test]
+    fn flags_override_the_file_and_axes_take_product_order() {
+        let bounce = Axis::Attribute("bounciness".into());
+        let lean = Axis::Attribute("trunk_lean".into());
+        let file = vec![
+            (bounce.clone(), vec![0.2, 0.5]),
+            (Axis::Height, vec![1.6, 1.7]),
+            (Axis::Mass, vec![60.0]),
+            (Axis::Velocity, vec![1.0]),
+        ];
+        let flags = vec![
+            (lean.clone(), vec![5.0]),
+            (Axis::Velocity, vec![1.2, 1.4]),
+            (Axis::MassPerHeight2, vec![22.0]),
+        ];
+        let s = Sweep::build(file, flags).unwrap();
+        let axes: Vec<(&str, &[f64])> = s
+            .axes
+            .iter()
+            .map(|(a, v)| (a.name(), v.as_slice()))
+            .collect();
+        assert_eq!(
+            axes,
+            vec![
+                ("velocity", &[1.2, 1.4][..]),
+                ("height", &[1.6, 1.7][..]),
+                ("mass_per_height2", &[22.0][..]),
+                ("bounciness", &[0.2, 0.5][..]),
+                ("trunk_lean", &[5.0][..]),
+            ]
+        );
+        // both masses from the file, or the same flag twice, are errors
+        let e = Sweep::build(
+            vec![(Axis::Mass, vec![60.0]), (Axis::MassPerHeight2, vec![20.0])],
+            vec![],
+        )
+        .unwrap_err();
+        assert!(
+            matches!(e, Error::BadSpec { .. }) && e.to_string().contains("exclude"),
+            "{e}"
+        );
+        let e = Sweep::build(
+            vec![],
+            vec![(bounce.clone(), vec![0.1]), (bounce, vec![0.2])],
+        )
+        .unwrap_err();
+        assert!(e.to_string().contains("given twice"), "{e}");
+        let e = Sweep::build(vec![(Axis::Steps, vec![1.5])], vec![]).unwrap_err();
+        assert!(e.to_string().contains("whole number"), "{e}");
+        assert_eq!(
+            Axis::from_name("step-frequency", &table()),
+            Some(Axis::StepFrequency)
+        );
+        assert_eq!(Axis::from_name("nonsense", &table()), None);
     }
 }

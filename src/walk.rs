@@ -20,6 +20,7 @@ use crate::ode::Segment;
 use crate::params::Gait;
 use crate::plan::StepConstraints;
 use crate::report::{Achieved, Frame, Report, StepReport, Target};
+use crate::work;
 
 /// Shooting tolerance on every end condition (rad or m): 100× inside the 1e-6 the walk promises,
 /// 10× above the residual noise of the 1e-10 integrator tolerance (measured ≈ 1e-9).
@@ -438,6 +439,16 @@ impl Walker {
             .map_err(fail("swing3"))?;
         record("swing3", rep3)?;
         self.swing3_memory = Some(mem3);
+        let work = work::stance_work(&setup, &stance, work::SAMPLES)
+            + work::swing_work(
+                &sw,
+                &[
+                    (s1.sub, &s1.segment),
+                    (s2.sub, &s2.segment),
+                    (s3.sub, &s3.segment),
+                ],
+                work::SAMPLES,
+            );
 
         let step = Step {
             index,
@@ -485,6 +496,8 @@ impl Walker {
                 heel_contact_velocity: f64::NAN,
                 rhs_evaluations: 0,
                 peak_swing_knee_flexion: f64::NAN,
+                positive_work: work.positive,
+                net_work: work.net,
             },
         };
         let mut step = step;

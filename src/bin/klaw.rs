@@ -1,14 +1,16 @@
 //! The `klaw` command line: parse the flags, call the library, write the files, print a summary.
 //! No physics here. Errors print `error: <message>` and exit with `Error::exit_code()` (2 for bad
 //! input, 1 for a simulation or output failure); clap's usage errors exit 2 as well.
-use std::io::Write;
+use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::{Args, Parser, Subcommand};
+use indicatif::{ProgressBar, ProgressStyle};
 use klaw::report::Report;
 use klaw::sweep::{self as sw, Axis};
+use klaw::sweep_io as swio;
 use klaw::walk::simulate;
 use klaw::{AttributeTable, Attributes, Body, Error, Gait, GaitRequest, Result, io, plot};
 
@@ -76,20 +78,77 @@ enum Command {
             CSV or JSON Lines (by the extension of --out).\n\
             \n\
             Every value flag takes a single number X, an inclusive range START:STOP:STEP (STOP is\n\
-            included within 1e-9 relative) or a list A,B,C. Unswept quantities take the defaults of\n\
-            `klaw walk` (H 1.8 m, M 80 kg, 10 steps, v 1.4 m/s when no gait flag is given). Rows come\n\
-            in product order (the first flag in the order velocity, step-length, step-frequency,\n\
-            height, mass, steps, attr varies slowest) and are identical whatever the thread count.\n\
-            A point that fails (out of range, no convergence) gets converged = false and the reason\n\
-            in the error column; the sweep carries on.\n\
+            included within 1e-9 relative) or a list A,B,C; a sweep file (--file) can give any of\n\
+            them, and flags override it. Unswept quantities take the defaults of `klaw walk`\n\
+            (H 1.8 m, M 80 kg, 10 steps, v 1.4 m/s when no gait flag is given).\n\
+            \n\
+            Rows come in product order (velocity, step_length, step_frequency, height, mass,\n\
+            mass_per_height2, steps, then the attributes: the first varies slowest), numbered by\n\
+            the point column, and are identical whatever the thread count. They are written as the\n\
+            walks complete (memory does not grow with the sweep) to .NAME.partial next to --out,\n\
+            renamed to --out at the end (see --resume). A point that fails (out of range, no\n\
+            convergence) gets converged = false and the reason in the error column; the sweep\n\
+            carries on. Columns after the inputs: converged, error, mean_iterations and\n\
+            max_iterations (shooting trials per solve), achieved_velocity (m/s),\n\
+            achieved_step_length (m), achieved_step_frequency (steps/min), mean_hip_excursion (m),\n\
+            max_peak_swing_knee_flexion_deg, stance_pct and double_support_pct (% of the cycle),\n\
+            min_toe_clearance (m), work_per_m (J/m: the actuators' positive mechanical work per\n\
+            metre walked) and work_per_kg_m (J/(kg m)).\n\
+            \n\
+            A progress bar is drawn when stderr is a terminal, plain progress lines otherwise.\n\
             \n\
             Example: klaw sweep --velocity 0.6:2.0:0.1 --height 1.5,1.65,1.8,1.95 --mass-per-height2 23"
     )]
     Sweep(SweepArgs),
+    /// Join sweep outputs (the shards of a sweep) into one file in point order
+    #[command(
+        long_about = "Join sweep outputs, typically the shards of one sweep (klaw sweep --shard K/N), into one\n\
+            file with the rows in point order: byte-identical to the output of the unsharded sweep.\n\
+            \n\
+            The inputs must have the output's format and the same columns. A point found in more than\n\
+            one input must have the same row in each (written once, with a warning); different rows\n\
+            for a point are an error. Points missing below the largest point found are an error\n\
+            unless --allow-missing (a missing shard would leave such gaps); points after the largest\n\
+            cannot be detected. A cut-off last line (an interrupted run) is not merged (warning).\n\
+            The output is written whole or not at all.\n\
+            \n\
+            Example: klaw merge all.csv part-*.csv"
+    )]
+    Merge(MergeArgs),
+    /// Heat map (PNG/SVG) of a sweep's result column over two swept parameters
+    #[command(
+        long_about = "Draw a heat map of one result column of a sweep output (CSV or JSON Lines) over two swept\n\
+            parameters: a cell per (x, y) pair, spanning halfway to the neighbouring values, coloured\n\
+            on the viridis scale with a colour bar; points that failed are light grey with a dark\n\
+            cross. If the sweep varies other parameters too, a cell shows the mean over its converged\n\
+            walks (for converged: the fraction converged) and is failed when none converged.\n\
+            1200 × 900 px, PNG or SVG by the extension of --out, written whole or not at all; text\n\
+            needs a TrueType font (see klaw walk --help, --plot).\n\
+            \n\
+            Examples:\n\
+            klaw plot-sweep grid.csv --x velocity --y height --column converged --out converged.png\n\
+            klaw plot-sweep grid.csv --x velocity --y height --column mean_iterations --out it.svg\n\
+            klaw plot-sweep grid.csv --x velocity --y height --column peak_knee --out knee.png"
+    )]
+    PlotSweep(PlotSweepArgs),
 }
 
 #[derive(Args)]
 struct SweepArgs {
+    /// Sweep file (TOML): `name = value` for any flag below or attribute; flags override it
+    #[arg(
+        long,
+        value_name = "FILE.toml",
+        long_help = "Sweep file: a flat TOML table whose keys are the value flags of this command\n\
+            (velocity, step_length or step-length, step_frequency, height, mass, mass_per_height2,\n\
+            steps) or locomotion attribute names (models/attributes.toml), each a number, a string\n\
+            spec \"START:STOP:STEP\" or \"A,B,C\", or an array of numbers, e.g.\n\
+            \n    velocity = \"0.6:2.0:0.1\"\n    height = [1.5, 1.7, 1.9]\n    bounciness = 0.5\n\
+            \n\
+            A flag given on the command line overrides the file's entry of the same name (and\n\
+            --mass or --mass-per-height2 drops the file's mass and mass_per_height2 both)."
+    )]
+    file: Option<PathBuf>,
     /// Walking speeds v in m/s: X, START:STOP:STEP or A,B,C
     #[arg(long, value_name = "SPEC", allow_hyphen_values = true)]
     velocity: Option<String>,
@@ -119,9 +178,61 @@ struct SweepArgs {
     /// A locomotion attribute to sweep, NAME=SPEC in the units of models/attributes.toml (repeatable)
     #[arg(long, value_name = "NAME=SPEC", allow_hyphen_values = true)]
     attr: Vec<String>,
+    /// Run only the K-th of N interleaved slices (points with point mod N = K − 1), 1 ≤ K ≤ N
+    #[arg(
+        long,
+        value_name = "K/N",
+        long_help = "Run only the K-th of N disjoint slices of the sweep, 1-based: 1 ≤ K ≤ N (K = Slurm's\n\
+            SLURM_ARRAY_TASK_ID with --array=1-N). Shard K holds the points whose index (the point\n\
+            column) satisfies point mod N = K − 1, so every shard gets a like mix of fast and slow\n\
+            walks. Join the shards' outputs with `klaw merge`."
+    )]
+    shard: Option<String>,
+    /// Keep the rows already written (an interrupted run's partial file, the existing --out) and run only the rest
+    #[arg(
+        long,
+        long_help = "Keep the rows already written and run only the missing points. While a sweep runs, its\n\
+            rows go to .NAME.partial next to --out (renamed to --out when done); an interrupted run\n\
+            leaves that file. --resume keeps its complete rows and those of an existing --out,\n\
+            after checking they come from this sweep (same columns, same inputs per point, same\n\
+            shard), and writes the union in point order: the same file an uninterrupted run\n\
+            writes. Without --resume an existing partial file is an error."
+    )]
+    resume: bool,
     /// Output file: CSV (.csv) or JSON Lines (.jsonl)
     #[arg(long, value_name = "FILE.csv|FILE.jsonl", default_value = "sweep.csv")]
     out: PathBuf,
+}
+
+#[derive(Args)]
+struct PlotSweepArgs {
+    /// Sweep output to read (.csv or .jsonl)
+    input: PathBuf,
+    /// Swept parameter on the horizontal axis (a column name, e.g. velocity)
+    #[arg(long)]
+    x: String,
+    /// Swept parameter on the vertical axis (a column name, e.g. height)
+    #[arg(long)]
+    y: String,
+    /// Result column to colour by: any numeric column, e.g. converged, mean_iterations (alias
+    /// iterations), max_peak_swing_knee_flexion_deg (alias peak_knee), work_per_m
+    #[arg(long)]
+    column: String,
+    /// Heat map to write: PNG or SVG by the extension
+    #[arg(long, value_name = "FILE.png|FILE.svg")]
+    out: PathBuf,
+}
+
+#[derive(Args)]
+struct MergeArgs {
+    /// Output file: CSV (.csv) or JSON Lines (.jsonl), the inputs' format
+    out: PathBuf,
+    /// Sweep outputs to join (typically the shards of one sweep)
+    #[arg(required = true)]
+    inputs: Vec<PathBuf>,
+    /// Write the rows even when points are missing (a warning instead of an error)
+    #[arg(long)]
+    allow_missing: bool,
 }
 
 #[derive(Args)]
@@ -296,6 +407,8 @@ fn main() -> ExitCode {
         Command::Walk(args) => walk(&args),
         Command::Bench(args) => bench(&args),
         Command::Sweep(args) => sweep(&args),
+        Command::Merge(args) => merge(&args),
+        Command::PlotSweep(args) => plot_sweep(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -540,8 +653,16 @@ fn bench(args: &BenchArgs) -> Result<()> {
 fn sweep(args: &SweepArgs) -> Result<()> {
     sw::Format::from_path(&args.out)?;
     check_output_dir(&args.out)?;
+    let shard = match &args.shard {
+        Some(text) => sw::Shard::parse(text)?,
+        None => sw::Shard::ALL,
+    };
     let table = AttributeTable::builtin();
-    let mut axes = Vec::new();
+    let file = match &args.file {
+        Some(path) => sw::read_sweep_file(path, &table)?,
+        None => Vec::new(),
+    };
+    let mut flags = Vec::new();
     for (axis, flag, spec) in [
         (Axis::Velocity, "velocity", &args.velocity),
         (Axis::StepLength, "step-length", &args.step_length),
@@ -556,55 +677,121 @@ fn sweep(args: &SweepArgs) -> Result<()> {
         (Axis::Steps, "steps", &args.steps),
     ] {
         if let Some(spec) = spec {
-            let values = sw::parse_spec(flag, spec)?;
-            if axis == Axis::Steps
-                && let Some(x) = values.iter().find(|x| x.fract() != 0.0)
-            {
-                return Err(Error::BadSpec {
-                    flag: flag.into(),
-                    reason: format!("{x} is not a whole number of steps"),
-                });
-            }
-            axes.push((axis, values));
+            flags.push((axis, sw::parse_spec(flag, spec)?));
         }
     }
     for arg in &args.attr {
         let (name, values) = sw::parse_attr(arg, &table)?;
-        if axes
-            .iter()
-            .any(|(a, _)| *a == Axis::Attribute(name.clone()))
-        {
-            return Err(Error::BadSpec {
-                flag: "attr".into(),
-                reason: format!("attribute `{name}` is given twice"),
-            });
-        }
-        axes.push((Axis::Attribute(name), values));
+        flags.push((Axis::Attribute(name), values));
     }
-    let sweep = sw::Sweep { axes };
+    let sweep = sw::Sweep::build(file, flags)?;
     let total = sweep.len();
     let threads = rayon::current_num_threads();
-    eprintln!("sweep: {total} walks on {threads} threads");
+    let shard_note = if shard == sw::Shard::ALL {
+        String::new()
+    } else {
+        format!(", shard {}/{}", shard.index, shard.count)
+    };
+    eprintln!("sweep: {total} walks{shard_note} on {threads} threads");
     let start = Instant::now();
-    let rows = sweep.run(|done, total| {
-        // a line each time another 5 % is done
-        if done * 20 / total != (done - 1) * 20 / total {
-            eprintln!(
-                "sweep: {done}/{total} walks ({}%), {:.1} s",
-                done * 100 / total,
-                start.elapsed().as_secs_f64()
-            );
-        }
-    })?;
-    sw::write_rows(&args.out, &sweep.header(), &rows)?;
-    let failed = rows.iter().filter(|r| r.outcome.is_err()).count();
+    let stats = if std::io::stderr().is_terminal() {
+        let bar = ProgressBar::new(0).with_style(
+            ProgressStyle::with_template(
+                "{elapsed_precise} [{wide_bar}] {pos}/{len} walks, {per_sec}, ETA {eta}",
+            )
+            .expect("a valid template"),
+        );
+        let stats = swio::run_to_file(&sweep, &args.out, shard, args.resume, &|done, total| {
+            bar.set_length(total as u64);
+            bar.set_position(done as u64);
+        });
+        bar.finish_and_clear();
+        stats?
+    } else {
+        swio::run_to_file(&sweep, &args.out, shard, args.resume, &|done, total| {
+            // a line each time another 5 % is done
+            if done * 20 / total != (done - 1) * 20 / total {
+                eprintln!(
+                    "sweep: {done}/{total} walks ({}%), {:.1} s",
+                    done * 100 / total,
+                    start.elapsed().as_secs_f64()
+                );
+            }
+        })?
+    };
+    let mut out = std::io::stdout().lock();
+    let kept = if stats.kept > 0 {
+        format!(" ({} rows kept from the earlier run)", stats.kept)
+    } else {
+        String::new()
+    };
+    let _ = writeln!(
+        out,
+        "swept {} walks in {:.2} s: {} converged, {} failed{kept}",
+        stats.computed,
+        start.elapsed().as_secs_f64(),
+        stats.computed - stats.failed,
+        stats.failed
+    );
+    let _ = writeln!(out, "rows: {}", args.out.display());
+    Ok(())
+}
+
+fn merge(args: &MergeArgs) -> Result<()> {
+    check_output_dir(&args.out)?;
+    let stats = swio::merge(&args.out, &args.inputs, args.allow_missing)?;
+    for path in &stats.cut_off {
+        eprintln!(
+            "warning: the last line of {} is cut off (an interrupted run?): not merged",
+            path.display()
+        );
+    }
+    if stats.duplicates > 0 {
+        eprintln!(
+            "warning: {} rows were found in more than one input (identical: written once)",
+            stats.duplicates
+        );
+    }
+    if stats.missing > 0 {
+        let list: Vec<String> = stats.first_missing.iter().map(|p| p.to_string()).collect();
+        eprintln!(
+            "warning: {} points are missing (first: {})",
+            stats.missing,
+            list.join(", ")
+        );
+    }
     let mut out = std::io::stdout().lock();
     let _ = writeln!(
         out,
-        "swept {total} walks in {:.2} s: {} converged, {failed} failed",
-        start.elapsed().as_secs_f64(),
-        total - failed
+        "merged {} rows from {} files: {}",
+        stats.rows,
+        args.inputs.len(),
+        args.out.display()
     );
-    let _ = writeln!(out, "rows: {}", args.out.display());
+    Ok(())
+}
+
+fn plot_sweep(args: &PlotSweepArgs) -> Result<()> {
+    plot::figure_format(&args.out)?;
+    check_output_dir(&args.out)?;
+    let map = klaw::plot_sweep::heat_map(&args.input, &args.x, &args.y, &args.column, &args.out)?;
+    let failed = map.cells.iter().filter(|c| c.failed()).count();
+    let note = if plot::text_available() {
+        ""
+    } else {
+        " (no font found: drawn without text; set KLAW_FONT to a .ttf file)"
+    };
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(
+        out,
+        "heat map of {} over {} × {}: {} × {} values, {} cells, {failed} failed: {}{note}",
+        map.column,
+        map.x,
+        map.y,
+        map.xs.len(),
+        map.ys.len(),
+        map.cells.len(),
+        args.out.display()
+    );
     Ok(())
 }
