@@ -7,6 +7,8 @@
 //! right-handed; the origin on the ground under the first stance ankle's flat-foot position, the
 //! walk's sagittal plane at z = 0. Metres and radians.
 
+pub mod events;
+
 use crate::attributes::Attributes;
 use crate::error::{Error, Result};
 use crate::kinematics::foot::{Foot, FootPoints};

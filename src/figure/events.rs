@@ -1,0 +1,107 @@
+//! Gait events of each foot (spec §9), at their exact times (bisection on the continuous motion
+//! to 1e-9 s, not rounded to frames): heel strike (HS), foot flat (FGM: the sole angle reaches
+//! 0), heel-off (the foot pitch leaves 0), metatarsal-off (MOM: the toe joint reaches its limit
+//! θ6_max and the foot rolls on over the toe tip) and toe-off (TO: heel strike + t_stance).
+use serde::Serialize;
+
+use crate::kinematics::pelvis::Side;
+use crate::walk::{Step, Walk};
+
+/// One event.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Event {
+    pub time_s: f64,
+    /// `right` or `left`.
+    pub side: &'static str,
+    /// `HS`, `FGM`, `heel_off`, `MOM` or `TO`.
+    pub event: &'static str,
+    /// The step whose heel strike started this foot's stance.
+    pub step: usize,
+}
+
+const TIME_TOLERANCE: f64 = 1e-9;
+
+/// The first time on (a, b] where `holds` becomes true, given it is false at a and true at b.
+fn first(holds: impl Fn(f64) -> bool, mut a: f64, mut b: f64) -> f64 {
+    while b - a > TIME_TOLERANCE {
+        let m = 0.5 * (a + b);
+        if holds(m) { b = m } else { a = m }
+    }
+    b
+}
+
+/// Foot pitch (heel up +) of the stance foot of `steps[0]` at world time t, through the next
+/// step's double support (`steps[1]`, if any).
+fn pitch(steps: &[Step], t: f64) -> f64 {
+    let s = &steps[0];
+    match steps.get(1) {
+        Some(next) if t >= next.t_start => {
+            let foot = next.stance_leg.foot;
+            let p = next.swing_pose(t - next.t_start, &foot);
+            // heel above the metatarsal joint: the pitch of the hind foot
+            (p.foot.heel[1] - p.foot.meta[1]).atan2(p.foot.meta[0] - p.foot.heel[0])
+        }
+        _ => s.stance_pose(t - s.t_start).map_or(f64::NAN, |p| p.pitch),
+    }
+}
+
+/// Every event of the walk, in time order. The stance of the last step has no toe-off inside
+/// the walk: its events stop at the walk's end.
+pub fn events(walk: &Walk) -> Vec<Event> {
+    let mut out = Vec::new();
+    let end = walk.duration();
+    for (i, s) in walk.steps.iter().enumerate() {
+        let side = Side::of_step(s.index).name();
+        let push = |out: &mut Vec<Event>, event, time_s| {
+            out.push(Event {
+                time_s,
+                side,
+                event,
+                step: s.index,
+            })
+        };
+        let t0 = s.t_start;
+        push(&mut out, "HS", t0);
+        let next = walk.steps.get(i + 1);
+        let t_off = next.map(|n| n.t_start + n.constraints.timing.t_ds);
+        let stop = t_off.unwrap_or(end);
+        let span = &walk.steps[i..(i + 2).min(walk.steps.len())];
+        let p = |t: f64| pitch(span, t);
+        // foot flat: the sole angle (−pitch) comes down to 0
+        let flat = |t: f64| p(t) >= 0.0;
+        let t_fgm = s.t_start + s.stance_leg.t_fgm;
+        let Some(fgm) = [t_fgm, stop]
+            .into_iter()
+            .find(|&t| flat(t))
+            .map(|t| first(flat, t0, t))
+        else {
+            continue;
+        };
+        push(&mut out, "FGM", fgm);
+        // heel-off: the pitch leaves 0; scan in 1 ms steps, then bisect
+        let lifted = |t: f64| p(t) > 1e-12;
+        let mut t = fgm;
+        let mut found = None;
+        while t < stop {
+            let u = (t + 1e-3).min(stop);
+            if lifted(u) {
+                found = Some(first(lifted, t, u));
+                break;
+            }
+            t = u;
+        }
+        if let Some(heel_off) = found {
+            push(&mut out, "heel_off", heel_off);
+            let limit = s.stance_leg.theta6_max;
+            let rolled = |t: f64| p(t) >= limit;
+            if rolled(stop) {
+                push(&mut out, "MOM", first(rolled, heel_off, stop));
+            }
+        }
+        if let Some(t_off) = t_off {
+            push(&mut out, "TO", t_off);
+        }
+    }
+    out.sort_by(|a, b| a.time_s.total_cmp(&b.time_s));
+    out
+}
