@@ -532,11 +532,44 @@ fn bvh_forward_kinematics_reproduces_a_walk() {
         assert!(worst <= 1e-3, "max FK error {worst} m");
         // far tighter in fact: 6 decimals of degrees and metres
         assert!(worst <= 1e-5, "max FK error {worst} m");
+        if !in_place && let Ok(dir) = std::env::var("KLAW_BVH_OUT") {
+            write_blender_check(Path::new(&dir), &text, &frames, &b);
+        }
         if in_place {
             let z = parsed.joints[0].first_channel + 2;
             assert!(parsed.frames.iter().all(|f| f[z] == 0.0));
         }
     }
+}
+
+/// For the Blender check (`docs/export.md`): the BVH and, per frame, where the joints must be
+/// (BVH axes), from this file's figure: joint heads and the toe tips.
+fn write_blender_check(dir: &Path, bvh_text: &str, frames: &[(Pose, Landmarks)], b: &Body) {
+    fs::write(dir.join("walk.bvh"), bvh_text).unwrap();
+    let mut json = String::from("[");
+    for (i, (p, lm)) in frames.iter().enumerate() {
+        let (_, arms) = figure(p, b);
+        let mut items = Vec::new();
+        let mut put = |name: &str, w: DVec3| {
+            let q = bvh::to_bvh(w);
+            items.push(format!("\"{name}\": [{}, {}, {}]", q.x, q.y, q.z));
+        };
+        put("Hips", v(lm.pelvis));
+        for (side, pts, arm) in [("Right", &lm.right, &arms[0]), ("Left", &lm.left, &arms[1])] {
+            put(&format!("{side}UpLeg"), v(pts.hip));
+            put(&format!("{side}Leg"), v(pts.knee));
+            put(&format!("{side}Foot"), v(pts.ankle));
+            put(&format!("{side}ToeBase"), v(pts.mtp));
+            put(&format!("{side}ToeBase.tail"), v(pts.toe));
+            put(&format!("{side}Arm"), arm.shoulder);
+            put(&format!("{side}ForeArm"), arm.elbow);
+            put(&format!("{side}Hand"), arm.wrist);
+        }
+        let sep = if i == 0 { "" } else { "," };
+        json.push_str(&format!("{sep}\n{{{}}}", items.join(", ")));
+    }
+    json.push_str("\n]\n");
+    fs::write(dir.join("expected.json"), json).unwrap();
 }
 
 /// The rest offsets are the body table's, in the file's axes (X left, Y up, Z forward).

@@ -313,7 +313,8 @@ impl BvhWriter {
         let j = &self.joints[i];
         let pad = "\t".repeat(depth);
         let kind = if j.parent.is_none() { "ROOT" } else { "JOINT" };
-        let o = to_bvh(j.offset);
+        // + 0.0 turns −0.0 (from negating a zero) into 0.0
+        let o = to_bvh(j.offset) + DVec3::ZERO;
         writeln!(out, "{pad}{kind} {}", j.name)?;
         writeln!(out, "{pad}{{")?;
         writeln!(out, "{pad}\tOFFSET {:.6} {:.6} {:.6}", o.x, o.y, o.z)?;
@@ -330,7 +331,7 @@ impl BvhWriter {
             }
         }
         if let Some(end) = j.end_site {
-            let e = to_bvh(end);
+            let e = to_bvh(end) + DVec3::ZERO;
             writeln!(out, "{pad}\tEnd Site")?;
             writeln!(out, "{pad}\t{{")?;
             writeln!(out, "{pad}\t\tOFFSET {:.6} {:.6} {:.6}", e.x, e.y, e.z)?;
@@ -374,7 +375,7 @@ impl RowWriter for BvhWriter {
         let mut put = |out: &mut dyn Write, v: f64| -> io::Result<()> {
             let sep = if first { "" } else { " " };
             first = false;
-            write!(out, "{sep}{v:.6}")
+            write!(out, "{sep}{:.6}", v + 0.0)
         };
         for j in &self.joints {
             match j.motion {
