@@ -359,7 +359,7 @@ impl RowWriter for BvhWriter {
             .into());
         }
         let (err, name) = sk.length_error(lm, &self.body);
-        if !(err <= LENGTH_TOLERANCE) {
+        if err.is_nan() || err > LENGTH_TOLERANCE {
             return Err(Error::Geometry {
                 what: format!(
                     "frame at t = {} s: landmark {name} is {:.3} mm from where the body's segment \

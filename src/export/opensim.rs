@@ -17,13 +17,13 @@
 //!   angles exactly.
 //! - `knee_angle_*`: gait2392 about +z, range −120°…10°, so −knee flexion; Rajagopal 2015 +
 //!   knee flexion.
-//! - `ankle_angle_*` (oblique axis close to +z): + dorsiflexion; `subtalar_angle_*` (oblique,
-//!   close to +x on the right and −x on the left): + inversion; `mtp_angle_*` (close to +z):
-//!   + dorsiflexion. These three axes are oblique in the models and are about klaw's orthogonal
-//!   axes here: the values agree with the model to first order, not exactly.
+//! - `ankle_angle_*` (oblique axis close to +z): dorsiflexion positive; `subtalar_angle_*`
+//!   (oblique, close to +x on the right and −x on the left): inversion positive; `mtp_angle_*`
+//!   (close to +z): dorsiflexion positive. These three axes are oblique in the models and are
+//!   about klaw's orthogonal axes here: the values agree with the model to first order only.
 //! - `back`: `lumbar_extension` about z, `lumbar_bending` about x, `lumbar_rotation` about y:
 //!   the exact [`zxy_angles`] of the thorax in the pelvis (+ extension, + bending to the right,
-//!   + rotation with the right shoulder forward).
+//!   positive rotation with the right shoulder forward).
 //! - Rajagopal 2015 arms (`acromial`: `arm_flex` z, `arm_add` x, `arm_rot` y; `elbow_flex` about
 //!   an axis close to +z): shoulder flexion, adduction (= −abduction), internal rotation and
 //!   elbow flexion.
