@@ -90,6 +90,10 @@ pub enum Error {
         phase: &'static str,
         what: String,
     },
+    /// An export that cannot be written as asked (unknown file extension, frames out of order, no
+    /// complete steady-state gait cycle to average).
+    #[error("{what}")]
+    Export { what: String },
 }
 
 impl Error {

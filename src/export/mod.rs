@@ -1,0 +1,308 @@
+//! Motion export (issue items 7 and 8): clinical-angle CSV, OpenSim storage (`.mot` / `.sto`) and
+//! BVH, written from a stream of [`Landmarks`]; gait-cycle normalized curves. Axes, signs and
+//! the import recipes are in `docs/export.md`.
+//!
+//! Every writer streams: rows go to a scratch file next to the target while the frames are
+//! converted, then the header (which needs the row count) and the rows are written to the target
+//! by [`crate::io::write_atomic`]. Any error, in a frame or in the file system, leaves no file (and
+//! an existing target untouched).
+pub mod bvh;
+pub mod csv;
+pub mod cycle;
+pub mod opensim;
+
+use std::fs::{self, File, OpenOptions};
+use std::io::{self, BufWriter, Seek, Write};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+pub use cycle::{CycleCurves, average_cycles, cycle_average, write_cycle_csv};
+pub use opensim::OpenSimModel;
+
+use crate::body::Body;
+use crate::error::{Error, Result};
+use crate::figure::Landmarks;
+use crate::skeleton::{Clinical, Side, Skeleton};
+
+/// The export file formats, chosen by the file extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// `.csv`: one row per frame, clinical angles in degrees.
+    Csv,
+    /// `.mot`: OpenSim motion (storage) file.
+    Mot,
+    /// `.sto`: OpenSim storage file, the same content as `.mot`.
+    Sto,
+    /// `.bvh`: Biovision hierarchy, Y up, metres.
+    Bvh,
+}
+
+impl Format {
+    /// The format named by `path`'s extension (case-insensitive): `.csv`, `.mot`, `.sto`, `.bvh`.
+    pub fn from_path(path: &Path) -> Result<Format> {
+        let ext = path
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase());
+        match ext.as_deref() {
+            Some("csv") => Ok(Format::Csv),
+            Some("mot") => Ok(Format::Mot),
+            Some("sto") => Ok(Format::Sto),
+            Some("bvh") => Ok(Format::Bvh),
+            _ => Err(Error::Export {
+                what: format!(
+                    "{}: unknown output format; the extension must be .csv, .mot, .sto or .bvh",
+                    path.display()
+                ),
+            }),
+        }
+    }
+}
+
+/// Choices that only some formats use.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Options {
+    /// BVH: keep the root over the origin in the walking direction (its forward translation is
+    /// dropped; height and sideways sway remain).
+    pub in_place: bool,
+    /// `.mot` / `.sto`: the OpenSim model whose coordinates are written.
+    pub opensim_model: OpenSimModel,
+}
+
+/// One frame as the writers see it: the landmarks, their segment frames and clinical angles.
+pub(crate) struct FrameData<'a> {
+    pub index: usize,
+    pub landmarks: &'a Landmarks,
+    pub skeleton: Skeleton,
+    pub clinical: Clinical,
+}
+
+/// A format's row and header writers.
+pub(crate) trait RowWriter {
+    /// Write one frame's row. Errors other than I/O are klaw errors (a frame the format cannot
+    /// represent).
+    fn row(&mut self, out: &mut dyn Write, frame: &FrameData) -> Result<(), RowError>;
+    /// Write everything before the rows, knowing how many rows there are.
+    fn header(&self, out: &mut dyn Write, rows: usize) -> io::Result<()>;
+}
+
+/// A row that could not be written.
+pub(crate) enum RowError {
+    Io(io::Error),
+    Klaw(Error),
+}
+
+impl From<io::Error> for RowError {
+    fn from(e: io::Error) -> Self {
+        RowError::Io(e)
+    }
+}
+
+impl From<Error> for RowError {
+    fn from(e: Error) -> Self {
+        RowError::Klaw(e)
+    }
+}
+
+/// Write `frames` to `path` in `format`: `.csv` (clinical angles, one row per frame), `.mot` /
+/// `.sto` (OpenSim coordinates of `options.opensim_model`), `.bvh` (frame time 1/`fps`, root
+/// in place if `options.in_place`). The frames' times must increase strictly (for BVH: one frame
+/// every 1/fps); `body` gives the segment lengths. Written whole or not at all.
+pub fn write<I>(
+    path: &Path,
+    format: Format,
+    body: &Body,
+    fps: f64,
+    frames: I,
+    options: &Options,
+) -> Result<()>
+where
+    I: IntoIterator<Item = Landmarks>,
+{
+    Error::check_range("fps", fps, 1e-3, 1e6, "frames/s")?;
+    match format {
+        Format::Csv => run(path, body, frames, csv::FrameCsv::new()),
+        Format::Mot | Format::Sto => run(
+            path,
+            body,
+            frames,
+            opensim::Storage::new(options.opensim_model, body),
+        ),
+        Format::Bvh => run(
+            path,
+            body,
+            frames,
+            bvh::BvhWriter::new(body, fps, options.in_place),
+        ),
+    }
+}
+
+fn io_error(path: &Path, source: io::Error) -> Error {
+    Error::Io {
+        action: "writing",
+        path: path.to_path_buf(),
+        source,
+    }
+}
+
+/// The scratch file that holds the rows until the header can be written; removed on drop.
+struct Spool {
+    path: PathBuf,
+    file: Option<BufWriter<File>>,
+}
+
+impl Spool {
+    fn new(target: &Path) -> io::Result<Spool> {
+        static COUNTER: AtomicU64 = AtomicU64::new(0);
+        let dir = match target.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d,
+            _ => Path::new("."),
+        };
+        let name = target
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .ok_or_else(|| {
+                io::Error::new(io::ErrorKind::InvalidInput, "the path does not name a file")
+            })?;
+        loop {
+            let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+            let path = dir.join(format!(".{name}.{}.{n}.rows.tmp", std::process::id()));
+            match OpenOptions::new()
+                .read(true)
+                .write(true)
+                .create_new(true)
+                .open(&path)
+            {
+                Ok(f) => {
+                    return Ok(Spool {
+                        path,
+                        file: Some(BufWriter::new(f)),
+                    });
+                }
+                Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
+                Err(e) => return Err(e),
+            }
+        }
+    }
+}
+
+impl Drop for Spool {
+    fn drop(&mut self) {
+        self.file = None;
+        let _ = fs::remove_file(&self.path);
+    }
+}
+
+fn run<I, W>(path: &Path, body: &Body, frames: I, mut writer: W) -> Result<()>
+where
+    I: IntoIterator<Item = Landmarks>,
+    W: RowWriter,
+{
+    let mut spool = Spool::new(path).map_err(|e| io_error(path, e))?;
+    let out = spool
+        .file
+        .as_mut()
+        .expect("the spool is open until dropped");
+    let mut rows = 0;
+    let mut last_time = f64::NEG_INFINITY;
+    for (index, lm) in frames.into_iter().enumerate() {
+        let skeleton = Skeleton::new(&lm, body)?;
+        if lm.time <= last_time {
+            return Err(Error::Export {
+                what: format!(
+                    "frame {index}: time {} s does not follow the previous frame's {last_time} s",
+                    lm.time
+                ),
+            });
+        }
+        last_time = lm.time;
+        let frame = FrameData {
+            index,
+            landmarks: &lm,
+            clinical: skeleton.clinical(lm.time, lm.step),
+            skeleton,
+        };
+        writer.row(out, &frame).map_err(|e| match e {
+            RowError::Io(e) => io_error(path, e),
+            RowError::Klaw(e) => e,
+        })?;
+        rows += 1;
+    }
+    if rows == 0 {
+        return Err(Error::Export {
+            what: format!("{}: no frames to export", path.display()),
+        });
+    }
+    let mut file = spool
+        .file
+        .take()
+        .expect("the spool is open until dropped")
+        .into_inner()
+        .map_err(|e| io_error(path, e.into_error()))?;
+    file.rewind().map_err(|e| io_error(path, e))?;
+    crate::io::write_atomic(path, |out| {
+        writer.header(out, rows)?;
+        io::copy(&mut file, out)?;
+        Ok(())
+    })
+}
+
+/// A named clinical angle (rad) of a frame.
+pub struct AngleColumn {
+    /// Column name without unit suffix, e.g. `hip_flexion_r`.
+    pub name: String,
+    pub get: Box<dyn Fn(&Clinical) -> f64 + Send + Sync>,
+}
+
+/// The clinical angle columns of the CSV exports, in order: pelvis tilt / list / rotation, lumbar
+/// extension / bending / rotation, then per side (`_r`, then `_l`) hip flexion / adduction /
+/// rotation, knee flexion, ankle dorsiflexion, mtp dorsiflexion, shoulder flexion / abduction,
+/// elbow flexion. Signs as in [`Clinical`]; shoulder abduction is + away from the body.
+pub fn angle_columns() -> Vec<AngleColumn> {
+    fn col(name: &str, get: impl Fn(&Clinical) -> f64 + Send + Sync + 'static) -> AngleColumn {
+        AngleColumn {
+            name: name.to_string(),
+            get: Box::new(get),
+        }
+    }
+    let mut cols = vec![
+        col("pelvis_tilt", |c| c.pelvis_tilt),
+        col("pelvis_list", |c| c.pelvis_list),
+        col("pelvis_rotation", |c| c.pelvis_rotation),
+        col("lumbar_extension", |c| c.lumbar_extension),
+        col("lumbar_bending", |c| c.lumbar_bending),
+        col("lumbar_rotation", |c| c.lumbar_rotation),
+    ];
+    for side in [Side::Right, Side::Left] {
+        let s = side.suffix();
+        cols.extend([
+            col(&format!("hip_flexion_{s}"), move |c| {
+                c.leg(side).hip.flexion
+            }),
+            col(&format!("hip_adduction_{s}"), move |c| {
+                c.leg(side).hip.adduction
+            }),
+            col(&format!("hip_rotation_{s}"), move |c| {
+                c.leg(side).hip.rotation
+            }),
+            col(&format!("knee_flexion_{s}"), move |c| {
+                c.leg(side).knee.flexion
+            }),
+            col(&format!("ankle_dorsiflexion_{s}"), move |c| {
+                c.leg(side).ankle.flexion
+            }),
+            col(&format!("mtp_dorsiflexion_{s}"), move |c| {
+                c.leg(side).mtp.flexion
+            }),
+            col(&format!("shoulder_flexion_{s}"), move |c| {
+                c.arm(side).shoulder.flexion
+            }),
+            col(&format!("shoulder_abduction_{s}"), move |c| {
+                -c.arm(side).shoulder.adduction
+            }),
+            col(&format!("elbow_flexion_{s}"), move |c| {
+                c.arm(side).elbow.flexion
+            }),
+        ]);
+    }
+    cols
+}

@@ -1,0 +1,518 @@
+//! The exported skeleton (issue items 7 and 8; spec §7 "Clinical angles" and "Upper body"): the
+//! world frame of every segment of the figure and the clinical joint angles, read off a
+//! [`Landmarks`] and the [`Body`].
+//!
+//! Every segment frame is, at the anatomical zero pose (legs vertical, soles flat, arms hanging),
+//! parallel to the world frame of [`crate::figure`]: x forward, y up (along the segment, distal to
+//! proximal), z to the figure's right. The rotation of a joint is the child frame in the parent
+//! frame, `R = Pᵀ · C`, and each joint angle set is its exact Euler decomposition
+//!
+//! `R = R_z(a) · R_x(b) · R_y(c)`
+//!
+//! (about the lateral axis first, then the forward axis, then the long axis: gait2392's hip order,
+//! and the BVH channel order `Xrotation Zrotation Yrotation` once the BVH axes are mapped, see
+//! `docs/export.md`). The clinical angles are those outputs with per-joint and per-side signs:
+//! - flexion = `a` (hip and shoulder flexion, ankle and mtp dorsiflexion, elbow flexion) or `−a`
+//!   (knee flexion: the shank turns backwards);
+//! - adduction = `b` on the right and `−b` on the left (the distal segment towards the midline:
+//!   hip adduction, knee varus, ankle inversion, shoulder adduction);
+//! - rotation = `c` on the right and `−c` on the left (internal rotation).
+//!
+//! Segment frames from the points: the thigh's y axis runs knee → hip and its z axis is the knee
+//! axis; the shank's y runs ankle → knee, z the knee axis; the foot's x runs heel → mtp (the
+//! horizontal sole line at rest) and its y points to the ankle, so the ankle sits l9 above the
+//! sole, the heel l8 behind and the mtp √(l12² − l9²) ahead of it; the toe's x runs mtp → toe
+//! tip, its z is the foot's lateral axis. The pelvis and thorax frames are the angles of
+//! [`Landmarks`] as its doc defines them; the arms are placed by forward kinematics from the
+//! thorax: shoulders at (0, spine, ±shoulder_width/2) in the thorax frame (its origin is the
+//! pelvis centre), upper arm `R_thorax · R_z(flexion) · R_x(∓abduction)` (right −, left +),
+//! forearm and hand `R_upper · R_z(elbow flexion)`.
+use glam::{DMat3, DVec3};
+
+use crate::body::Body;
+use crate::error::{Error, Result};
+use crate::figure::{ArmAngles, Landmarks, LegPoints};
+
+/// Largest disagreement (m) between the landmarks and the rigid segments of the body table that
+/// the BVH export accepts: its offsets are the body's lengths, so beyond this the file could not
+/// reproduce the landmarks.
+pub const LENGTH_TOLERANCE: f64 = 1e-3;
+
+/// `R_z(a) · R_x(b) · R_y(c)`.
+pub fn zxy_matrix(a: f64, b: f64, c: f64) -> DMat3 {
+    DMat3::from_rotation_z(a) * DMat3::from_rotation_x(b) * DMat3::from_rotation_y(c)
+}
+
+/// The angles `[a, b, c]` with `m = R_z(a) · R_x(b) · R_y(c)`, b in [−90°, 90°].
+///
+/// With `m = R_z R_x R_y`: m₂₁ = sin b, (m₀₁, m₁₁) = cos b (−sin a, cos a),
+/// (m₂₀, m₂₂) = cos b (−sin c, cos c).
+pub fn zxy_angles(m: &DMat3) -> [f64; 3] {
+    let r = |i: usize, j: usize| m.col(j)[i];
+    let b = r(2, 1).clamp(-1.0, 1.0).asin();
+    let a = (-r(0, 1)).atan2(r(1, 1));
+    let c = (-r(2, 0)).atan2(r(2, 2));
+    [a, b, c]
+}
+
+/// `R_y(r) · R_x(p) · R_z(q)`: the order of the pelvis and lumbar angles of [`Landmarks`].
+pub fn yxz_matrix(r: f64, p: f64, q: f64) -> DMat3 {
+    DMat3::from_rotation_y(r) * DMat3::from_rotation_x(p) * DMat3::from_rotation_z(q)
+}
+
+/// The angles `[r, p, q]` with `m = R_y(r) · R_x(p) · R_z(q)`, p in [−90°, 90°].
+///
+/// With `m = R_y R_x R_z`: m₁₂ = −sin p, (m₀₂, m₂₂) = cos p (sin r, cos r),
+/// (m₁₀, m₁₁) = cos p (sin q, cos q).
+pub fn yxz_angles(m: &DMat3) -> [f64; 3] {
+    let e = |i: usize, j: usize| m.col(j)[i];
+    let p = (-e(1, 2)).clamp(-1.0, 1.0).asin();
+    let r = e(0, 2).atan2(e(2, 2));
+    let q = e(1, 0).atan2(e(1, 1));
+    [r, p, q]
+}
+
+/// A segment's pose: its origin (a joint centre) and its axes (the columns), world frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Frame {
+    pub origin: DVec3,
+    pub axes: DMat3,
+}
+
+impl Frame {
+    /// The world position of a point given in this frame.
+    pub fn point(&self, local: DVec3) -> DVec3 {
+        self.origin + self.axes * local
+    }
+}
+
+/// Which side of the figure.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Side {
+    Right,
+    Left,
+}
+
+impl Side {
+    /// +1 on the right, −1 on the left: the sign of the figure's lateral axis (world +z).
+    pub fn sign(self) -> f64 {
+        match self {
+            Side::Right => 1.0,
+            Side::Left => -1.0,
+        }
+    }
+
+    /// The suffix of column and coordinate names: `r` or `l`.
+    pub fn suffix(self) -> &'static str {
+        match self {
+            Side::Right => "r",
+            Side::Left => "l",
+        }
+    }
+}
+
+/// The frames of one leg: thigh (origin at the hip), shank (knee), foot (ankle), toe (mtp).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LegFrames {
+    pub thigh: Frame,
+    pub shank: Frame,
+    pub foot: Frame,
+    pub toe: Frame,
+}
+
+/// The frames of one arm: upper arm (origin at the shoulder), forearm (elbow), hand (wrist).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ArmFrames {
+    pub upper_arm: Frame,
+    pub forearm: Frame,
+    pub hand: Frame,
+}
+
+/// Every segment of the figure at one instant.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Skeleton {
+    /// Origin at the pelvis centre (midpoint of the hip joints).
+    pub pelvis: Frame,
+    /// Origin at the pelvis centre too: the lumbar rotation is about that point.
+    pub thorax: Frame,
+    pub right: LegFrames,
+    pub left: LegFrames,
+    pub right_arm: ArmFrames,
+    pub left_arm: ArmFrames,
+}
+
+/// The three rotations of one joint, clinical signs (rad); see the module doc for each joint's
+/// meaning: flexion (knee flexion, dorsiflexion, …), adduction (towards the midline: adduction,
+/// varus, inversion), rotation (internal +).
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct Joint3 {
+    pub flexion: f64,
+    pub adduction: f64,
+    pub rotation: f64,
+}
+
+/// One leg's joints.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct LegAngles {
+    pub hip: Joint3,
+    pub knee: Joint3,
+    /// flexion = dorsiflexion, adduction = inversion, rotation = adduction of the foot (toe-in).
+    pub ankle: Joint3,
+    /// flexion = dorsiflexion (toes up).
+    pub mtp: Joint3,
+}
+
+/// One arm's joints.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct ArmJoints {
+    /// adduction = −abduction of [`ArmAngles`].
+    pub shoulder: Joint3,
+    pub elbow: Joint3,
+}
+
+/// All clinical angles of one frame (rad; degrees only at the file edges).
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct Clinical {
+    pub time: f64,
+    pub step: usize,
+    /// Pelvis centre, world frame (m).
+    pub pelvis: [f64; 3],
+    /// Anterior +.
+    pub pelvis_tilt: f64,
+    /// Right side up +.
+    pub pelvis_list: f64,
+    /// Right side forward +.
+    pub pelvis_rotation: f64,
+    /// Thorax relative to the pelvis: extension + (trunk back), bending + to the right, rotation +
+    /// with the right shoulder forward.
+    pub lumbar_extension: f64,
+    pub lumbar_bending: f64,
+    pub lumbar_rotation: f64,
+    pub right: LegAngles,
+    pub left: LegAngles,
+    pub right_arm: ArmJoints,
+    pub left_arm: ArmJoints,
+}
+
+impl Clinical {
+    pub fn leg(&self, side: Side) -> &LegAngles {
+        match side {
+            Side::Right => &self.right,
+            Side::Left => &self.left,
+        }
+    }
+
+    pub fn arm(&self, side: Side) -> &ArmJoints {
+        match side {
+            Side::Right => &self.right_arm,
+            Side::Left => &self.left_arm,
+        }
+    }
+}
+
+fn finite(name: &str, value: f64) -> Result<f64> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(Error::NotFinite {
+            name: name.to_string(),
+            value,
+        })
+    }
+}
+
+fn point(name: &str, p: [f64; 3]) -> Result<DVec3> {
+    for (axis, v) in ["x", "y", "z"].iter().zip(p) {
+        finite(&format!("{name}.{axis}"), v)?;
+    }
+    Ok(DVec3::from_array(p))
+}
+
+fn geometry(time: f64, what: String) -> Error {
+    Error::Geometry {
+        what: format!("frame at t = {time} s: {what}"),
+    }
+}
+
+/// `v / |v|`, or an error naming `what` when v is (nearly) zero.
+fn unit(v: DVec3, time: f64, what: &str) -> Result<DVec3> {
+    let n = v.length();
+    if n > 1e-9 {
+        Ok(v / n)
+    } else {
+        Err(geometry(time, format!("{what} has zero length")))
+    }
+}
+
+/// The component of `hint` perpendicular to the unit vector `axis`, normalized.
+fn perpendicular(hint: DVec3, axis: DVec3, time: f64, what: &str) -> Result<DVec3> {
+    let hint = unit(hint, time, what)?;
+    let p = hint - hint.dot(axis) * axis;
+    if p.length() < 1e-6 {
+        return Err(geometry(time, format!("{what} is parallel to the segment")));
+    }
+    Ok(p.normalize())
+}
+
+fn leg_frames(leg: &LegPoints, side: Side, time: f64) -> Result<LegFrames> {
+    let s = side.suffix();
+    let hip = point(&format!("{s}.hip"), leg.hip)?;
+    let knee = point(&format!("{s}.knee"), leg.knee)?;
+    let ankle = point(&format!("{s}.ankle"), leg.ankle)?;
+    let heel = point(&format!("{s}.heel"), leg.heel)?;
+    let mtp = point(&format!("{s}.mtp"), leg.mtp)?;
+    let toe = point(&format!("{s}.toe"), leg.toe)?;
+    let knee_axis = point(&format!("{s}.knee_axis"), leg.knee_axis)?;
+
+    // y along the segment, z the knee axis, x = y × z (forward)
+    let y_z = |origin: DVec3, y: DVec3, z: DVec3, what: &str| -> Result<Frame> {
+        let y = unit(y, time, &format!("the {what} of the {s} leg"))?;
+        let z = perpendicular(z, y, time, &format!("the {s} knee axis"))?;
+        Ok(Frame {
+            origin,
+            axes: DMat3::from_cols(y.cross(z), y, z),
+        })
+    };
+    let thigh = y_z(hip, hip - knee, knee_axis, "thigh")?;
+    let shank = y_z(knee, knee - ankle, knee_axis, "shank")?;
+    // foot: x heel → mtp, y towards the ankle, z = x × y
+    let x = unit(mtp - heel, time, &format!("the {s} foot's heel–mtp line"))?;
+    let y = perpendicular(ankle - heel, x, time, &format!("the {s} heel–ankle line"))?;
+    let foot = Frame {
+        origin: ankle,
+        axes: DMat3::from_cols(x, y, x.cross(y)),
+    };
+    // toe: x mtp → toe tip, z the foot's lateral axis, y = z × x
+    let x = unit(toe - mtp, time, &format!("the {s} toe"))?;
+    let z = perpendicular(
+        foot.axes.z_axis,
+        x,
+        time,
+        &format!("the {s} foot's lateral axis"),
+    )?;
+    let toe = Frame {
+        origin: mtp,
+        axes: DMat3::from_cols(x, z.cross(x), z),
+    };
+    Ok(LegFrames {
+        thigh,
+        shank,
+        foot,
+        toe,
+    })
+}
+
+fn arm_frames(thorax: &Frame, arm: &ArmAngles, side: Side, body: &Body) -> Result<ArmFrames> {
+    let s = side.suffix();
+    let flexion = finite(&format!("{s}.shoulder_flexion"), arm.shoulder_flexion)?;
+    let abduction = finite(&format!("{s}.shoulder_abduction"), arm.shoulder_abduction)?;
+    let elbow = finite(&format!("{s}.elbow_flexion"), arm.elbow_flexion)?;
+    let f = &body.figure;
+    let shoulder = thorax.point(DVec3::new(
+        0.0,
+        f.spine,
+        side.sign() * f.shoulder_width / 2.0,
+    ));
+    let upper = thorax.axes * zxy_matrix(flexion, -side.sign() * abduction, 0.0);
+    let upper_arm = Frame {
+        origin: shoulder,
+        axes: upper,
+    };
+    let fore = upper * DMat3::from_rotation_z(elbow);
+    let forearm = Frame {
+        origin: upper_arm.point(DVec3::new(0.0, -f.upper_arm, 0.0)),
+        axes: fore,
+    };
+    let hand = Frame {
+        origin: forearm.point(DVec3::new(0.0, -f.forearm, 0.0)),
+        axes: fore,
+    };
+    Ok(ArmFrames {
+        upper_arm,
+        forearm,
+        hand,
+    })
+}
+
+impl Skeleton {
+    /// The segment frames of `lm`. Errors: a non-finite number ([`Error::NotFinite`], naming the
+    /// field), a degenerate segment or a knee axis along a segment ([`Error::Geometry`]).
+    pub fn new(lm: &Landmarks, body: &Body) -> Result<Self> {
+        let t = finite("time", lm.time)?;
+        let pelvis_origin = point("pelvis", lm.pelvis)?;
+        let tilt = finite("pelvis_tilt", lm.pelvis_tilt)?;
+        let list = finite("pelvis_list", lm.pelvis_list)?;
+        let rotation = finite("pelvis_rotation", lm.pelvis_rotation)?;
+        let pelvis = Frame {
+            origin: pelvis_origin,
+            axes: yxz_matrix(rotation, -list, -tilt),
+        };
+        let lumbar = yxz_matrix(
+            finite("lumbar_rotation", lm.lumbar_rotation)?,
+            finite("lumbar_bending", lm.lumbar_bending)?,
+            finite("lumbar_extension", lm.lumbar_extension)?,
+        );
+        let thorax = Frame {
+            origin: pelvis_origin,
+            axes: pelvis.axes * lumbar,
+        };
+        Ok(Skeleton {
+            pelvis,
+            thorax,
+            right: leg_frames(&lm.right, Side::Right, t)?,
+            left: leg_frames(&lm.left, Side::Left, t)?,
+            right_arm: arm_frames(&thorax, &lm.right_arm, Side::Right, body)?,
+            left_arm: arm_frames(&thorax, &lm.left_arm, Side::Left, body)?,
+        })
+    }
+
+    pub fn leg(&self, side: Side) -> &LegFrames {
+        match side {
+            Side::Right => &self.right,
+            Side::Left => &self.left,
+        }
+    }
+
+    pub fn arm(&self, side: Side) -> &ArmFrames {
+        match side {
+            Side::Right => &self.right_arm,
+            Side::Left => &self.left_arm,
+        }
+    }
+
+    /// The clinical angles of these frames (the module doc gives the definitions).
+    pub fn clinical(&self, time: f64, step: usize) -> Clinical {
+        let [r, p, q] = yxz_angles(&self.pelvis.axes);
+        let [lr, lb, le] = yxz_angles(&(self.pelvis.axes.transpose() * self.thorax.axes));
+        let leg = |side: Side| {
+            let l = self.leg(side);
+            let s = side.sign();
+            LegAngles {
+                hip: joint(&self.pelvis.axes, &l.thigh.axes, s, 1.0),
+                knee: joint(&l.thigh.axes, &l.shank.axes, s, -1.0),
+                ankle: joint(&l.shank.axes, &l.foot.axes, s, 1.0),
+                mtp: joint(&l.foot.axes, &l.toe.axes, s, 1.0),
+            }
+        };
+        let arm = |side: Side| {
+            let a = self.arm(side);
+            let s = side.sign();
+            ArmJoints {
+                shoulder: joint(&self.thorax.axes, &a.upper_arm.axes, s, 1.0),
+                elbow: joint(&a.upper_arm.axes, &a.forearm.axes, s, 1.0),
+            }
+        };
+        Clinical {
+            time,
+            step,
+            pelvis: self.pelvis.origin.to_array(),
+            pelvis_tilt: -q,
+            pelvis_list: -p,
+            pelvis_rotation: r,
+            lumbar_extension: le,
+            lumbar_bending: lb,
+            lumbar_rotation: lr,
+            right: leg(Side::Right),
+            left: leg(Side::Left),
+            right_arm: arm(Side::Right),
+            left_arm: arm(Side::Left),
+        }
+    }
+
+    /// The largest distance (m) between a landmark and where the body's rigid segments put it:
+    /// hips at pelvis ± R (0, 0, l0/2), knee l3 below the hip and ankle l4 below the knee along
+    /// their segments, heel (−l8, −l9, 0) and mtp (√(l12² − l9²), −l9, 0) in the foot frame, toe
+    /// tip l13 along the toe. Returns the distance and the landmark's name.
+    pub fn length_error(&self, lm: &Landmarks, body: &Body) -> (f64, String) {
+        let h12 = body.ankle_to_metatarsal_horizontal();
+        let mut worst = (0.0, String::new());
+        for side in [Side::Right, Side::Left] {
+            let (l, pts) = match side {
+                Side::Right => (&self.right, &lm.right),
+                Side::Left => (&self.left, &lm.left),
+            };
+            let hip = self
+                .pelvis
+                .point(DVec3::new(0.0, 0.0, side.sign() * body.l0 / 2.0));
+            let checks = [
+                ("hip", hip, pts.hip),
+                (
+                    "knee",
+                    l.thigh.point(DVec3::new(0.0, -body.l3, 0.0)),
+                    pts.knee,
+                ),
+                (
+                    "ankle",
+                    l.shank.point(DVec3::new(0.0, -body.l4, 0.0)),
+                    pts.ankle,
+                ),
+                (
+                    "heel",
+                    l.foot.point(DVec3::new(-body.l8, -body.l9, 0.0)),
+                    pts.heel,
+                ),
+                ("mtp", l.foot.point(DVec3::new(h12, -body.l9, 0.0)), pts.mtp),
+                ("toe", l.toe.point(DVec3::new(body.l13, 0.0, 0.0)), pts.toe),
+            ];
+            for (name, model, given) in checks {
+                let d = model.distance(DVec3::from_array(given));
+                if d > worst.0 || d.is_nan() {
+                    worst = (d, format!("{}.{name}", side.suffix()));
+                }
+            }
+        }
+        worst
+    }
+}
+
+/// The clinical angles of the joint from `parent` to `child` axes.
+fn joint(parent: &DMat3, child: &DMat3, side: f64, flexion_sign: f64) -> Joint3 {
+    let [a, b, c] = zxy_angles(&(parent.transpose() * *child));
+    Joint3 {
+        flexion: flexion_sign * a,
+        adduction: side * b,
+        rotation: side * c,
+    }
+}
+
+/// The clinical angles of one frame: [`Skeleton::new`] then [`Skeleton::clinical`].
+pub fn clinical(lm: &Landmarks, body: &Body) -> Result<Clinical> {
+    Ok(Skeleton::new(lm, body)?.clinical(lm.time, lm.step))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::FRAC_PI_2;
+
+    fn close(a: DMat3, b: DMat3) -> bool {
+        (a - b).to_cols_array().iter().all(|d| d.abs() < 1e-12)
+    }
+
+    /// Decomposition inverts composition, checked against glam's own Euler conversion (an
+    /// independent implementation): glam's intrinsic ZXY is R_z·R_x·R_y, its YXZ is R_y·R_x·R_z.
+    #[test]
+    fn euler_round_trips_and_matches_glam() {
+        let angles = [
+            (0.3, -0.4, 1.2),
+            (-2.5, 1.1, -3.0),
+            (1.0, 0.0, 0.0),
+            (0.0, -1.5, 0.2),
+        ];
+        for (a, b, c) in angles {
+            let m = zxy_matrix(a, b, c);
+            let [x, y, z] = zxy_angles(&m);
+            assert!((x - a).abs() < 1e-12 && (y - b).abs() < 1e-12 && (z - c).abs() < 1e-12);
+            let g = DMat3::from_euler(glam::EulerRot::ZXY, a, b, c);
+            assert!(close(m, g));
+            let m = yxz_matrix(a, b, c);
+            let [x, y, z] = yxz_angles(&m);
+            assert!((x - a).abs() < 1e-12 && (y - b).abs() < 1e-12 && (z - c).abs() < 1e-12);
+            assert!(close(m, DMat3::from_euler(glam::EulerRot::YXZ, a, b, c)));
+        }
+        // near gimbal lock the angles still recompose to the same matrix
+        let m = zxy_matrix(0.4, FRAC_PI_2 - 1e-4, -0.3);
+        let [a, b, c] = zxy_angles(&m);
+        assert!(close(zxy_matrix(a, b, c), m));
+    }
+}
