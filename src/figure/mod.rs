@@ -206,3 +206,20 @@ fn shifted(f: &FootPoints, dx: f64) -> FootPoints {
         toe: s(f.toe),
     }
 }
+
+/// The figure at `fps` frames per second from t = 0 to the walk's last heel strike (inclusive),
+/// one step at a time (nothing is collected).
+pub fn frames<'a>(
+    walk: &'a crate::walk::Walk,
+    fps: f64,
+) -> impl Iterator<Item = Result<Landmarks>> + 'a {
+    let n = (walk.duration() * fps + 1e-9).floor() as usize;
+    let mut i = 0;
+    (0..=n).filter_map(move |k| {
+        let t = k as f64 / fps;
+        while i + 1 < walk.steps.len() && t >= walk.steps[i + 1].t_start {
+            i += 1;
+        }
+        walk.steps.get(i).map(|s| landmarks(s, t, &walk.attrs))
+    })
+}
