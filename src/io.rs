@@ -157,6 +157,20 @@ pub fn write_frames_csv(path: &Path, frames: &[Frame]) -> Result<()> {
     })
 }
 
+/// Write gait events as CSV: `time_s, side, event, step`, one row per event.
+pub fn write_events_csv(path: &Path, events: &[crate::figure::events::Event]) -> Result<()> {
+    write_atomic(path, |out| {
+        let mut w = csv::Writer::from_writer(out);
+        if events.is_empty() {
+            w.write_record(["time_s", "side", "event", "step"])?;
+        }
+        for e in events {
+            w.serialize(e)?;
+        }
+        w.flush()
+    })
+}
+
 /// Write the report as pretty-printed JSON (with a final newline).
 pub fn write_report_json(path: &Path, report: &Report) -> Result<()> {
     write_atomic(path, |out| {

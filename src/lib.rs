@@ -22,6 +22,7 @@ pub mod plot;
 pub mod plot_sweep;
 pub mod report;
 pub mod skeleton;
+pub mod stream;
 pub mod sweep;
 pub mod sweep_io;
 pub mod walk;

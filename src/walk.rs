@@ -720,7 +720,12 @@ impl Step {
     /// The swing-side hip joint relative to the pelvis centre in the swing leg's plane, at step
     /// time τ: the offset the swing dynamics hang from.
     pub fn swing_offset(&self, tau: f64) -> [f64; 2] {
-        swing_hip_offset(&self.determinants, self.side, &self.constraints, &self.pelvis(tau))
+        swing_hip_offset(
+            &self.determinants,
+            self.side,
+            &self.constraints,
+            &self.pelvis(tau),
+        )
     }
 
     /// The stance leg's pose at step time τ (x relative to the stance ankle).

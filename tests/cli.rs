@@ -67,8 +67,7 @@ fn json(path: &Path) -> serde_json::Value {
     serde_json::from_str(&fs::read_to_string(path).unwrap()).unwrap()
 }
 
-/// NOTE: the row-count assertion depends on `Walk::frames`, which is still a stub while the
-/// engine is being written: this test FAILS until the frames land (by design, not ignored).
+/// The default walk writes the whole figure's motion: the issue's columns, one row per frame.
 #[test]
 fn default_walk_writes_every_frame() {
     let dir = tempfile::tempdir().unwrap();
@@ -80,7 +79,30 @@ fn default_walk_writes_every_frame() {
 
     let mut reader = csv::Reader::from_path(dir.path().join("walk.csv")).unwrap();
     let header = reader.headers().unwrap().clone();
-    for column in ["time_s", "step", "phase", "hip_x_m", "swing_toe_y_m"] {
+    let mut columns = vec![
+        "time_s".to_string(),
+        "pelvis_tx_m".into(),
+        "pelvis_ty_m".into(),
+        "pelvis_tz_m".into(),
+        "pelvis_tilt_deg".into(),
+        "pelvis_list_deg".into(),
+        "pelvis_rotation_deg".into(),
+    ];
+    for side in ["r", "l"] {
+        for joint in [
+            "hip_flexion",
+            "hip_adduction",
+            "hip_rotation",
+            "knee_flexion",
+            "ankle_dorsiflexion",
+            "mtp_dorsiflexion",
+            "shoulder_flexion",
+            "elbow_flexion",
+        ] {
+            columns.push(format!("{joint}_{side}_deg"));
+        }
+    }
+    for column in &columns {
         assert!(
             header.iter().any(|h| h == column),
             "{column} missing from {header:?}"
@@ -107,7 +129,6 @@ fn default_walk_writes_every_frame() {
     );
 }
 
-/// NOTE: depends on `Walk::report`, a stub until the engine lands: FAILS until then.
 #[test]
 fn report_names_targets_and_shooting_iterations() {
     let dir = tempfile::tempdir().unwrap();
@@ -200,9 +221,23 @@ fn out_of_range_flags_name_the_value_and_the_range() {
     bad_input(d, &["bench", "--repeat", "0"], &["repeat", "0"]);
     bad_input(
         d,
-        &["walk", "--out", "x", "--report", "x"],
+        &["walk", "--out", "x.csv", "--report", "x.csv"],
         &["--out", "--report", "same"],
     );
+    bad_input(
+        d,
+        &[
+            "walk",
+            "--out",
+            "x.csv",
+            "--events",
+            "e.csv",
+            "--cycle-out",
+            "e.csv",
+        ],
+        &["--events", "--cycle-out", "same"],
+    );
+    bad_input(d, &["walk", "--out", "x.txt"], &["x.txt", ".bvh"]);
     // nothing was written by a rejected invocation
     assert!(files(d).is_empty(), "{:?}", files(d));
 }

@@ -164,3 +164,40 @@ fn nothing_jumps_at_a_phase_boundary() {
         }
     }
 }
+
+/// Gait events: each foot runs HS → FGM → heel-off → MOM → TO; toe-off is heel strike +
+/// t_stance (t_step of the step + t_ds of the next, by eq. 2); and the figure agrees with each
+/// event 1 µs either side: the toe comes down at FGM, the heel rises at heel-off, the foot
+/// passes θ6_max at MOM.
+#[test]
+fn events_match_the_figure() {
+    let (_, attrs, w) = walk_of(1.4, 1.8);
+    let events = klaw::figure::events::events(&w);
+    let e = 1e-6;
+    let foot = |t: f64, side: &str| {
+        let f = figure_at(&w, &attrs, t);
+        if side == "right" { f.right } else { f.left }
+    };
+    for s in &w.steps[..w.steps.len() - 1] {
+        let side = if s.index % 2 == 0 { "right" } else { "left" };
+        let mine: Vec<_> = events.iter().filter(|ev| ev.step == s.index).collect();
+        let names: Vec<&str> = mine.iter().map(|ev| ev.event).collect();
+        assert_eq!(
+            names,
+            ["HS", "FGM", "heel_off", "MOM", "TO"],
+            "step {}",
+            s.index
+        );
+        assert!(mine.windows(2).all(|p| p[0].time_s < p[1].time_s));
+        assert!(mine.iter().all(|ev| ev.side == side));
+        let next = &w.steps[s.index + 1];
+        let stance = s.constraints.timing.t_step + next.constraints.timing.t_ds;
+        assert!((mine[4].time_s - mine[0].time_s - stance).abs() < 1e-12);
+        let (fgm, off, mom) = (mine[1].time_s, mine[2].time_s, mine[3].time_s);
+        assert!(foot(fgm - e, side).toe[1] > 1e-9 && foot(fgm + e, side).toe[1].abs() < 1e-9);
+        assert!(foot(off - e, side).heel[1].abs() < 1e-9 && foot(off + e, side).heel[1] > 0.0);
+        let pitch = |l: &LegPoints| foot_pitch(l);
+        let limit = s.stance_leg.theta6_max;
+        assert!(pitch(&foot(mom - e, side)) < limit && pitch(&foot(mom + e, side)) > limit - 1e-9);
+    }
+}

@@ -185,7 +185,7 @@ fn klaw_walk_rejects_bad_plot_paths_before_simulating() {
             2,
         ),
         (
-            &["walk", "--out", "w.png", "--plot", "w.png"],
+            &["walk", "--state-out", "w.png", "--plot", "w.png"],
             "same file",
             2,
         ),

@@ -9,10 +9,11 @@ use std::time::Instant;
 use clap::{Args, Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 use klaw::report::Report;
+use klaw::stream::{Gather, WalkStream};
 use klaw::sweep::{self as sw, Axis};
 use klaw::sweep_io as swio;
 use klaw::walk::simulate;
-use klaw::{AttributeTable, Attributes, Body, Error, Gait, GaitRequest, Result, io, plot};
+use klaw::{AttributeTable, Attributes, Body, Error, Gait, GaitRequest, Result, export, io, plot};
 
 const DEFAULT_HEIGHT: f64 = 1.8;
 const DEFAULT_MASS: f64 = 80.0;
@@ -350,16 +351,43 @@ struct WalkArgs {
     )]
     fps: f64,
 
-    /// Frame CSV to write
+    /// Motion of the whole figure: .csv, .mot/.sto (OpenSim) or .bvh by the extension
     #[arg(
         long,
-        value_name = "FILE.csv",
+        value_name = "FILE.csv|.mot|.sto|.bvh",
         default_value = "walk.csv",
-        long_help = "Frame CSV to write: a header of column names (time_s, step, phase, joint angles in\n\
-            degrees, positions in m), then one row per frame. The file is written whole or not at\n\
-            all; an existing file is replaced only on success."
+        long_help = "Motion of the whole figure, one frame per 1/fps, in the format of the extension:\n\
+            .csv: time_s, pelvis_tx/ty/tz_m (pelvis centre), pelvis tilt/list/rotation, and for each\n\
+            side (_r, _l) hip flexion/adduction/rotation, knee flexion, ankle dorsiflexion, mtp\n\
+            dorsiflexion, shoulder flexion/abduction, elbow flexion, lumbar angles, all *_deg with\n\
+            clinical signs;\n\
+            .mot/.sto: OpenSim storage with gait2392 coordinates (see --opensim-model);\n\
+            .bvh: a skeleton for Blender and game engines (Y up, metres; see --in-place).\n\
+            Frames are streamed: a walk of any length runs in bounded memory. docs/export.md has\n\
+            the column and sign tables. Written whole or not at all."
     )]
     out: PathBuf,
+
+    /// BVH: keep the root over the origin in the walking direction
+    #[arg(long)]
+    in_place: bool,
+
+    /// .mot/.sto: the OpenSim model whose coordinates are written
+    #[arg(long, value_name = "MODEL", default_value = "gait2392", value_parser = ["gait2392", "rajagopal2015"])]
+    opensim_model: String,
+
+    /// The engine's state per frame (θ1..θ4, w, hip and swing-leg points) as CSV [default: none]
+    #[arg(long, value_name = "FILE.csv")]
+    state_out: Option<PathBuf>,
+
+    /// Gait events (HS, FGM, heel_off, MOM, TO of each foot) at their exact times, as CSV
+    #[arg(long, value_name = "FILE.csv")]
+    events: Option<PathBuf>,
+
+    /// Joint angles over the gait cycle (0..100 %, right heel strike at 0), averaged over the
+    /// steady cycles (all but the first), as CSV
+    #[arg(long, value_name = "FILE.csv")]
+    cycle_out: Option<PathBuf>,
 
     /// Figure of the walk to write: PNG or SVG by the extension
     #[arg(
@@ -518,63 +546,89 @@ fn walk(args: &WalkArgs) -> Result<()> {
     let body = Body::standard(args.height, args.mass)?;
     let attrs = load_attributes(args.style.as_deref(), args.attributes.as_deref())?;
     let gaits = gaits(args, &body, &attrs)?;
-    // the walk lasts Σ 60 / sf: refuse a frame count that would not fit in memory
+    // the walk lasts Σ 60 / sf
     let expected_duration: f64 = gaits.iter().map(|g| 60.0 / g.step_frequency).sum();
     let expected_frames = (expected_duration * fps).round() + 1.0;
-    Error::check_range(
-        "frame count (duration · fps + 1)",
-        expected_frames,
-        1.0,
-        MAX_FRAMES,
-        "frames",
-    )?;
-    check_output_dir(&args.out)?;
-    if let Some(report) = &args.report {
-        check_output_dir(report)?;
-        if report == &args.out {
+    let format = export::Format::from_path(&args.out)?;
+    let plot = (!args.no_plot).then_some(args.plot.as_path());
+    let outputs = [
+        Some((args.out.as_path(), "--out")),
+        args.report.as_deref().map(|p| (p, "--report")),
+        plot.map(|p| (p, "--plot")),
+        args.state_out.as_deref().map(|p| (p, "--state-out")),
+        args.events.as_deref().map(|p| (p, "--events")),
+        args.cycle_out.as_deref().map(|p| (p, "--cycle-out")),
+    ];
+    let outputs: Vec<(&Path, &str)> = outputs.into_iter().flatten().collect();
+    if let Some(plot) = plot {
+        plot::figure_format(plot)?;
+    }
+    for (i, (path, flag)) in outputs.iter().enumerate() {
+        check_output_dir(path)?;
+        if let Some((_, other)) = outputs[..i].iter().find(|(p, _)| p == path) {
             return Err(Error::Malformed {
                 what: "output path",
-                path: report.clone(),
-                reason: "--out and --report name the same file".to_string(),
+                path: path.to_path_buf(),
+                reason: format!("{other} and {flag} name the same file"),
             });
         }
     }
-    let plot = (!args.no_plot).then_some(args.plot.as_path());
-    if let Some(plot) = plot {
-        plot::figure_format(plot)?;
-        check_output_dir(plot)?;
-        for (other, flag) in [
-            (Some(&args.out), "--out"),
-            (args.report.as_ref(), "--report"),
-        ] {
-            if other.is_some_and(|o| o == plot) {
-                return Err(Error::Malformed {
-                    what: "output path",
-                    path: plot.to_path_buf(),
-                    reason: format!("--plot and {flag} name the same file"),
-                });
-            }
-        }
+    let options = export::Options {
+        in_place: args.in_place,
+        opensim_model: match args.opensim_model.as_str() {
+            "rajagopal2015" => export::OpenSimModel::Rajagopal2015,
+            _ => export::OpenSimModel::Gait2392,
+        },
+    };
+    let gather = Gather {
+        events: args.events.is_some(),
+        state_frames: plot.is_some() || args.state_out.is_some(),
+        clinical: args.cycle_out.is_some(),
+    };
+    if gather.state_frames {
+        // the state frames are kept for the figure: refuse a count that would not fit in memory
+        Error::check_range(
+            "frame count with --plot or --state-out (duration · fps + 1)",
+            expected_frames,
+            1.0,
+            MAX_FRAMES,
+            "frames; use --no-plot for longer walks",
+        )?;
     }
 
-    let walk = simulate(body, attrs, &gaits)?;
-    let frames = walk.frames(fps);
-    io::write_frames_csv(&args.out, &frames)?;
-    let report = walk.report();
+    let mut stream = WalkStream::new(body, attrs, &gaits, fps, gather);
+    export::try_write(&args.out, format, &body, fps, &mut stream, &options)?;
+    stream.finish();
+    let report = Report {
+        height: body.height,
+        mass: body.mass,
+        steps: std::mem::take(&mut stream.reports),
+    };
     if let Some(path) = &args.report {
         io::write_report_json(path, &report)?;
     }
-    if let Some(plot) = plot {
-        plot::walk_figure(&frames, plot)?;
+    if let Some(path) = &args.state_out {
+        io::write_frames_csv(path, &stream.state_frames)?;
     }
+    if let Some(path) = &args.events {
+        io::write_events_csv(path, &stream.events)?;
+    }
+    if let Some(path) = &args.cycle_out {
+        let curves = export::cycle_average(&stream.clinical, &stream.right_heel_strikes, 1)?;
+        export::write_cycle_csv(path, &curves)?;
+    }
+    if let Some(plot) = plot {
+        plot::walk_figure(&stream.state_frames, plot)?;
+    }
+    let frames = (stream.duration() * fps + 1e-9).floor() as usize + 1;
 
     let mut out = std::io::stdout().lock();
     let _ = writeln!(
         out,
         "walked {} steps: {:.3} s simulated, {} frames at {} frames/s",
-        walk.steps.len(),
-        walk.duration(),
-        frames.len(),
+        report.steps.len(),
+        stream.duration(),
+        frames,
         fps
     );
     let _ = match iteration_stats(&report) {
@@ -584,7 +638,16 @@ fn walk(args: &WalkArgs) -> Result<()> {
         ),
         None => writeln!(out, "shooting: no solves recorded"),
     };
-    let _ = writeln!(out, "frames: {}", args.out.display());
+    let _ = writeln!(out, "motion: {}", args.out.display());
+    for (path, what) in [
+        (&args.state_out, "engine state"),
+        (&args.events, "events"),
+        (&args.cycle_out, "gait cycle"),
+    ] {
+        if let Some(p) = path {
+            let _ = writeln!(out, "{what}: {}", p.display());
+        }
+    }
     if let Some(path) = &args.report {
         let _ = writeln!(out, "report: {}", path.display());
     }

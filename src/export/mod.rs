@@ -118,6 +118,22 @@ pub fn write<I>(
 where
     I: IntoIterator<Item = Landmarks>,
 {
+    try_write(path, format, body, fps, frames.into_iter().map(Ok), options)
+}
+
+/// [`write`] for frames that may fail to be made (e.g. `figure::frames`): the first error is
+/// returned and no file is written.
+pub fn try_write<I>(
+    path: &Path,
+    format: Format,
+    body: &Body,
+    fps: f64,
+    frames: I,
+    options: &Options,
+) -> Result<()>
+where
+    I: IntoIterator<Item = Result<Landmarks>>,
+{
     Error::check_range("fps", fps, 1e-3, 1e6, "frames/s")?;
     match format {
         Format::Csv => run(path, body, frames, csv::FrameCsv::new()),
@@ -194,7 +210,7 @@ impl Drop for Spool {
 
 fn run<I, W>(path: &Path, body: &Body, frames: I, mut writer: W) -> Result<()>
 where
-    I: IntoIterator<Item = Landmarks>,
+    I: IntoIterator<Item = Result<Landmarks>>,
     W: RowWriter,
 {
     let mut spool = Spool::new(path).map_err(|e| io_error(path, e))?;
@@ -205,6 +221,7 @@ where
     let mut rows = 0;
     let mut last_time = f64::NEG_INFINITY;
     for (index, lm) in frames.into_iter().enumerate() {
+        let lm = lm?;
         let skeleton = Skeleton::new(&lm, body)?;
         if lm.time <= last_time {
             return Err(Error::Export {

@@ -48,60 +48,66 @@ fn pitch(steps: &[Step], t: f64) -> f64 {
 /// Every event of the walk, in time order. The stance of the last step has no toe-off inside
 /// the walk: its events stop at the walk's end.
 pub fn events(walk: &Walk) -> Vec<Event> {
+    let mut out: Vec<Event> = (0..walk.steps.len())
+        .flat_map(|i| {
+            step_events(
+                &walk.steps[i..(i + 2).min(walk.steps.len())],
+                walk.duration(),
+            )
+        })
+        .collect();
+    out.sort_by(|a, b| a.time_s.total_cmp(&b.time_s));
+    out
+}
+
+/// The events of the stance that starts with `steps[0]`, through the next step's double
+/// support (`steps[1]`, when there is one; without it they stop at `end`).
+pub fn step_events(steps: &[Step], end: f64) -> Vec<Event> {
     let mut out = Vec::new();
-    let end = walk.duration();
-    for (i, s) in walk.steps.iter().enumerate() {
-        let side = Side::of_step(s.index).name();
-        let push = |out: &mut Vec<Event>, event, time_s| {
-            out.push(Event {
-                time_s,
-                side,
-                event,
-                step: s.index,
-            })
-        };
-        let t0 = s.t_start;
-        push(&mut out, "HS", t0);
-        let next = walk.steps.get(i + 1);
-        let t_off = next.map(|n| n.t_start + n.constraints.timing.t_ds);
-        let stop = t_off.unwrap_or(end);
-        let span = &walk.steps[i..(i + 2).min(walk.steps.len())];
-        let p = |t: f64| pitch(span, t);
-        // foot flat: the sole angle (−pitch) comes down to 0
-        let flat = |t: f64| p(t) >= 0.0;
-        let t_fgm = s.t_start + s.stance_leg.t_fgm;
-        let Some(fgm) = [t_fgm, stop]
-            .into_iter()
-            .find(|&t| flat(t))
-            .map(|t| first(flat, t0, t))
-        else {
-            continue;
-        };
-        push(&mut out, "FGM", fgm);
+    let s = &steps[0];
+    let side = Side::of_step(s.index).name();
+    let mut push = |event, time_s| {
+        out.push(Event {
+            time_s,
+            side,
+            event,
+            step: s.index,
+        })
+    };
+    let t0 = s.t_start;
+    push("HS", t0);
+    let t_off = steps.get(1).map(|n| n.t_start + n.constraints.timing.t_ds);
+    let stop = t_off.unwrap_or(end);
+    let p = |t: f64| pitch(steps, t);
+    // foot flat: the sole angle (−pitch) comes down to 0
+    let flat = |t: f64| p(t) >= 0.0;
+    let t_fgm = s.t_start + s.stance_leg.t_fgm;
+    if let Some(fgm) = [t_fgm, stop]
+        .into_iter()
+        .find(|&t| flat(t))
+        .map(|t| first(flat, t0, t))
+    {
+        push("FGM", fgm);
         // heel-off: the pitch leaves 0; scan in 1 ms steps, then bisect
         let lifted = |t: f64| p(t) > 1e-12;
         let mut t = fgm;
-        let mut found = None;
         while t < stop {
             let u = (t + 1e-3).min(stop);
             if lifted(u) {
-                found = Some(first(lifted, t, u));
+                let heel_off = first(lifted, t, u);
+                push("heel_off", heel_off);
+                let limit = s.stance_leg.theta6_max;
+                let rolled = |t: f64| p(t) >= limit;
+                if rolled(stop) {
+                    push("MOM", first(rolled, heel_off, stop));
+                }
                 break;
             }
             t = u;
         }
-        if let Some(heel_off) = found {
-            push(&mut out, "heel_off", heel_off);
-            let limit = s.stance_leg.theta6_max;
-            let rolled = |t: f64| p(t) >= limit;
-            if rolled(stop) {
-                push(&mut out, "MOM", first(rolled, heel_off, stop));
-            }
-        }
-        if let Some(t_off) = t_off {
-            push(&mut out, "TO", t_off);
-        }
     }
-    out.sort_by(|a, b| a.time_s.total_cmp(&b.time_s));
+    if let Some(t_off) = t_off {
+        push("TO", t_off);
+    }
     out
 }

@@ -1,0 +1,155 @@
+//! A walk simulated one step at a time and sampled into figure frames as the steps come, so that
+//! a walk of any length runs in bounded memory: one step is alive (two while the gait events of
+//! the finished one are found: they need the new step's double support). Per-step
+//! reports, events, the engine's state frames and the clinical angles for cycle averaging are
+//! gathered on the side, each only when asked for.
+use crate::attributes::Attributes;
+use crate::body::Body;
+use crate::error::Result;
+use crate::figure::events::{Event, step_events};
+use crate::figure::{Landmarks, landmarks};
+use crate::params::Gait;
+use crate::report::{Frame, StepReport};
+use crate::skeleton::{Clinical, clinical};
+use crate::walk::{Step, Walker};
+
+/// What to gather besides the figure frames.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Gather {
+    pub events: bool,
+    pub state_frames: bool,
+    pub clinical: bool,
+}
+
+/// The frames of a walk, as an iterator of figure frames (`Err` ends it: a step failed).
+pub struct WalkStream<'a> {
+    walker: Walker,
+    gaits: std::slice::Iter<'a, Gait>,
+    fps: f64,
+    /// Frames 0..=last, at k / fps.
+    next_frame: usize,
+    last_frame: usize,
+    duration: f64,
+    current: Option<Step>,
+    gather: Gather,
+    failed: bool,
+    pub reports: Vec<StepReport>,
+    pub events: Vec<Event>,
+    pub state_frames: Vec<Frame>,
+    pub clinical: Vec<Clinical>,
+    /// Heel strikes of the right foot (the start of every even step).
+    pub right_heel_strikes: Vec<f64>,
+}
+
+impl<'a> WalkStream<'a> {
+    /// One step per gait, frames at `fps` from t = 0 to the last heel strike (inclusive).
+    pub fn new(body: Body, attrs: Attributes, gaits: &'a [Gait], fps: f64, gather: Gather) -> Self {
+        // the walk lasts Σ 60 / sf, known before anything is simulated
+        let duration: f64 = gaits.iter().map(|g| 60.0 / g.step_frequency).sum();
+        WalkStream {
+            walker: Walker::new(body, attrs),
+            gaits: gaits.iter(),
+            fps,
+            next_frame: 0,
+            last_frame: (duration * fps + 1e-9).floor() as usize,
+            duration,
+            current: None,
+            gather,
+            failed: false,
+            reports: Vec::new(),
+            events: Vec::new(),
+            state_frames: Vec::new(),
+            clinical: Vec::new(),
+            right_heel_strikes: Vec::new(),
+        }
+    }
+
+    /// Simulated duration (s).
+    pub fn duration(&self) -> f64 {
+        self.duration
+    }
+
+    pub fn attributes(&self) -> &Attributes {
+        &self.walker.attrs
+    }
+
+    /// Simulate the next step; the step before it is then complete (its events are known).
+    fn advance(&mut self) -> Option<Result<()>> {
+        let gait = *self.gaits.next()?;
+        let step = match self.walker.step(gait) {
+            Ok(s) => s,
+            Err(e) => return Some(Err(e)),
+        };
+        if step.index.is_multiple_of(2) {
+            self.right_heel_strikes.push(step.t_start);
+        }
+        self.reports.push(step.report.clone());
+        if let Some(done) = self.current.take()
+            && self.gather.events
+        {
+            self.events
+                .extend(step_events(&[done, step.clone()], self.duration));
+        }
+        self.current = Some(step);
+        Some(Ok(()))
+    }
+
+    /// Call after the iteration: the events of the last stance (which ends with the walk) and
+    /// the events in time order.
+    pub fn finish(&mut self) {
+        if self.gather.events
+            && let Some(last) = &self.current
+        {
+            self.events
+                .extend(step_events(std::slice::from_ref(last), self.duration));
+            self.events.sort_by(|a, b| a.time_s.total_cmp(&b.time_s));
+            self.gather.events = false;
+        }
+    }
+
+    fn frame(&mut self, t: f64) -> Option<Result<Landmarks>> {
+        loop {
+            let need = match &self.current {
+                None => true,
+                Some(s) => t >= s.t_start + s.constraints.timing.t_step && self.gaits.len() > 0,
+            };
+            if !need {
+                break;
+            }
+            if let Err(e) = self.advance()? {
+                return Some(Err(e));
+            }
+        }
+        let step = self.current.as_ref()?;
+        let lm = landmarks(step, t, &self.walker.attrs);
+        if self.gather.state_frames {
+            self.state_frames.push(step.frame(t, &step.stance_leg.foot));
+        }
+        if self.gather.clinical
+            && let Ok(l) = &lm
+        {
+            match clinical(l, &self.walker.body) {
+                Ok(c) => self.clinical.push(c),
+                Err(e) => return Some(Err(e)),
+            }
+        }
+        Some(lm)
+    }
+}
+
+impl Iterator for WalkStream<'_> {
+    type Item = Result<Landmarks>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.failed || self.next_frame > self.last_frame {
+            return None;
+        }
+        let t = self.next_frame as f64 / self.fps;
+        self.next_frame += 1;
+        let item = self.frame(t);
+        if matches!(item, Some(Err(_))) {
+            self.failed = true;
+        }
+        item
+    }
+}
