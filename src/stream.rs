@@ -16,6 +16,8 @@ use crate::walk::{Step, Walker};
 /// What to gather besides the figure frames.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Gather {
+    /// Keep every step's report (otherwise only the shooting statistics are kept).
+    pub reports: bool,
     pub events: bool,
     pub state_frames: bool,
     pub clinical: bool,
@@ -34,6 +36,11 @@ pub struct WalkStream<'a> {
     gather: Gather,
     failed: bool,
     pub reports: Vec<StepReport>,
+    /// Steps simulated, and shooting iterations over all solves: count, sum and largest.
+    pub steps: usize,
+    pub solves: usize,
+    pub iterations: usize,
+    pub max_iterations: usize,
     pub events: Vec<Event>,
     pub state_frames: Vec<Frame>,
     pub clinical: Vec<Clinical>,
@@ -57,6 +64,10 @@ impl<'a> WalkStream<'a> {
             gather,
             failed: false,
             reports: Vec::new(),
+            steps: 0,
+            solves: 0,
+            iterations: 0,
+            max_iterations: 0,
             events: Vec::new(),
             state_frames: Vec::new(),
             clinical: Vec::new(),
@@ -83,7 +94,15 @@ impl<'a> WalkStream<'a> {
         if step.index.is_multiple_of(2) {
             self.right_heel_strikes.push(step.t_start);
         }
-        self.reports.push(step.report.clone());
+        self.steps += 1;
+        for solve in &step.solves {
+            self.solves += 1;
+            self.iterations += solve.report.iterations;
+            self.max_iterations = self.max_iterations.max(solve.report.iterations);
+        }
+        if self.gather.reports {
+            self.reports.push(step.report.clone());
+        }
         if let Some(done) = self.current.take()
             && self.gather.events
         {

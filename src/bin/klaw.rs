@@ -529,17 +529,6 @@ fn load_attributes(style: Option<&str>, path: Option<&Path>) -> Result<Attribute
     table.resolve(&overrides, &source)
 }
 
-/// Mean and max shooting iterations over every solve of the report, and the number of solves.
-fn iteration_stats(report: &Report) -> Option<(f64, usize, usize)> {
-    let iterations: Vec<usize> = report
-        .steps
-        .iter()
-        .flat_map(|s| s.solves.iter().map(|r| r.report.iterations))
-        .collect();
-    let max = *iterations.iter().max()?;
-    let mean = iterations.iter().sum::<usize>() as f64 / iterations.len() as f64;
-    Some((mean, max, iterations.len()))
-}
 
 fn walk(args: &WalkArgs) -> Result<()> {
     let fps = Error::check_range("fps", args.fps, MIN_FPS, MAX_FPS, "frames/s")?;
@@ -581,6 +570,7 @@ fn walk(args: &WalkArgs) -> Result<()> {
         },
     };
     let gather = Gather {
+        reports: args.report.is_some(),
         events: args.events.is_some(),
         state_frames: plot.is_some() || args.state_out.is_some(),
         clinical: args.cycle_out.is_some(),
@@ -599,12 +589,12 @@ fn walk(args: &WalkArgs) -> Result<()> {
     let mut stream = WalkStream::new(body, attrs, &gaits, fps, gather);
     export::try_write(&args.out, format, &body, fps, &mut stream, &options)?;
     stream.finish();
-    let report = Report {
-        height: body.height,
-        mass: body.mass,
-        steps: std::mem::take(&mut stream.reports),
-    };
     if let Some(path) = &args.report {
+        let report = Report {
+            height: body.height,
+            mass: body.mass,
+            steps: std::mem::take(&mut stream.reports),
+        };
         io::write_report_json(path, &report)?;
     }
     if let Some(path) = &args.state_out {
@@ -626,18 +616,18 @@ fn walk(args: &WalkArgs) -> Result<()> {
     let _ = writeln!(
         out,
         "walked {} steps: {:.3} s simulated, {} frames at {} frames/s",
-        report.steps.len(),
+        stream.steps,
         stream.duration(),
         frames,
         fps
     );
-    let _ = match iteration_stats(&report) {
-        Some((mean, max, n)) => writeln!(
-            out,
-            "shooting: {n} solves, {mean:.1} iterations per solve on average, {max} at most"
-        ),
-        None => writeln!(out, "shooting: no solves recorded"),
-    };
+    let _ = writeln!(
+        out,
+        "shooting: {} solves, {:.1} iterations per solve on average, {} at most",
+        stream.solves,
+        stream.iterations as f64 / stream.solves.max(1) as f64,
+        stream.max_iterations
+    );
     let _ = writeln!(out, "motion: {}", args.out.display());
     for (path, what) in [
         (&args.state_out, "engine state"),
