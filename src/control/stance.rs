@@ -47,23 +47,27 @@ pub struct StanceSetup {
 /// y_ref = ȳ(u) + (e/2)(1 + cos πu), u = sin θ1 / sin θ1^± clipped to [−1, 1], with ȳ blending
 /// the two heel-strike heights (ȳ = y_hs when they are equal).
 pub fn hip_reference(s: &StanceSetup, theta1: f64) -> (f64, f64) {
-    let denom = if theta1 < 0.0 {
-        s.theta1_start.sin()
-    } else {
-        s.theta1_end.sin()
-    };
-    let raw = theta1.sin() / denom;
+    let (s1, c1) = theta1.sin_cos();
+    hip_reference_sc(s, s1, c1, s.theta1_start.sin(), s.theta1_end.sin())
+}
+
+/// [`hip_reference`] from sin θ1, cos θ1 and the two denominators sin θ1^− (start), sin θ1^+
+/// (end): one `sin_cos` of πu/2, since cos(π(1+u)/2) = −sin(πu/2), sin(π(1+u)/2) = cos(πu/2),
+/// 1 + cos πu = 2 cos²(πu/2) and sin πu = 2 sin(πu/2) cos(πu/2).
+fn hip_reference_sc(s: &StanceSetup, s1: f64, c1: f64, sin_start: f64, sin_end: f64) -> (f64, f64) {
+    let denom = if s1 < 0.0 { sin_start } else { sin_end };
+    let raw = s1 / denom;
     let (u, du) = if raw.abs() >= 1.0 {
         (raw.signum(), 0.0)
     } else {
-        (raw, theta1.cos() / denom)
+        (raw, c1 / denom)
     };
-    let half = 0.5 * PI * (1.0 + u);
+    let (sh, ch) = (0.5 * PI * u).sin_cos();
     let dy = s.y_end - s.y_start;
-    let base = s.y_start + dy * 0.5 * (1.0 - half.cos());
-    let dbase = dy * 0.25 * PI * half.sin();
-    let bump = 0.5 * s.bounce * (1.0 + (PI * u).cos());
-    let dbump = -0.5 * s.bounce * PI * (PI * u).sin();
+    let base = s.y_start + dy * 0.5 * (1.0 + sh);
+    let dbase = dy * 0.25 * PI * ch;
+    let bump = s.bounce * ch * ch;
+    let dbump = -s.bounce * PI * sh * ch;
     (base + bump, (dbase + dbump) * du)
 }
 
@@ -82,13 +86,33 @@ pub struct StanceForces<'a> {
     /// Leg extension p (m) of the position actuator, blended in over the second half-step.
     pub p: f64,
     pub locked: bool,
+    /// sin θ1^− and sin θ1^+ of the hip reference (constants of the step).
+    sin_start: f64,
+    sin_end: f64,
 }
 
-impl StanceForces<'_> {
+impl<'a> StanceForces<'a> {
+    pub fn new(setup: &'a StanceSetup, tau1: f64, p: f64, locked: bool) -> Self {
+        StanceForces {
+            setup,
+            tau1,
+            p,
+            locked,
+            sin_start: setup.theta1_start.sin(),
+            sin_end: setup.theta1_end.sin(),
+        }
+    }
+
     /// Generalized forces Q = (F_w, F_θ1 − F_θ2, F_θ2) at (t, y).
     pub fn generalized(&self, t: f64, y: &StanceState) -> Vector3<f64> {
+        let (s1, c1) = y[1].sin_cos();
+        self.generalized_sc(t, y, s1, c1)
+    }
+
+    /// [`Self::generalized`] with sin θ1, cos θ1 known.
+    fn generalized_sc(&self, t: f64, y: &StanceState, s1: f64, c1: f64) -> Vector3<f64> {
         let s = self.setup;
-        let (w, th1, th2, wd, th1d, th2d) = (y[0], y[1], y[2], y[3], y[4], y[5]);
+        let (w, th2, wd, th1d, th2d) = (y[0], y[2], y[3], y[4], y[5]);
         let f2 = -s.k_2 * (th2 - s.theta2_ref) - s.d_2 * th2d;
         let f1 = if t < TORQUE_OFF * s.t_step {
             self.tau1
@@ -99,8 +123,7 @@ impl StanceForces<'_> {
             0.0
         } else {
             // pa = w_ref − l1 + (m2 g cos θ1 + d_w ẇ_ref)/k_w + p s(t), F_w = k_w (l1 + pa − w) − d_w ẇ ≥ 0
-            let (c1, s1) = (th1.cos(), th1.sin());
-            let (y_ref, dy_ref) = hip_reference(s, th1);
+            let (y_ref, dy_ref) = hip_reference_sc(s, s1, c1, self.sin_start, self.sin_end);
             let w_ref = (y_ref - s.model.l9) / c1;
             let dw_ref = dy_ref / c1 + (y_ref - s.model.l9) * s1 / (c1 * c1);
             let wd_ref = dw_ref * th1d;
@@ -117,9 +140,15 @@ impl StanceForces<'_> {
     pub fn accelerations(&self, t: f64, y: &StanceState) -> Vector3<f64> {
         let q = Vector3::new(y[0], y[1], y[2]);
         let qd = Vector3::new(y[3], y[4], y[5]);
-        self.setup
-            .model
-            .accelerations(&q, &qd, &self.generalized(t, y), self.locked)
+        let (s1, c1) = y[1].sin_cos();
+        self.setup.model.accelerations_with(
+            s1,
+            c1,
+            &q,
+            &qd,
+            &self.generalized_sc(t, y, s1, c1),
+            self.locked,
+        )
     }
 }
 
@@ -262,12 +291,7 @@ impl StanceRun {
         let (mut t, mut y, mut locked) = (0.0, y0, false);
         'outer: for t_break in breaks {
             while t < t_break {
-                let forces = StanceForces {
-                    setup,
-                    tau1,
-                    p,
-                    locked,
-                };
+                let forces = StanceForces::new(setup, tau1, p, locked);
                 let out = ode::integrate(&forces, t, y, t_break)?;
                 run.evaluations += out.evaluations;
                 t = out.segment.t1;
@@ -315,12 +339,7 @@ impl StanceRun {
         let (y, locked) = self.state(t);
         let q = Vector3::new(y[0], y[1], y[2]);
         let qd = Vector3::new(y[3], y[4], y[5]);
-        let forces = StanceForces {
-            setup,
-            tau1: self.tau1,
-            p: self.p,
-            locked,
-        };
+        let forces = StanceForces::new(setup, self.tau1, self.p, locked);
         let qdd = forces.accelerations(t, &y);
         let m = &setup.model;
         [
