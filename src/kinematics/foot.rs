@@ -92,6 +92,17 @@ impl Foot {
     /// above the ground and the toe on or above `floor` (the floor drops to the ground when
     /// both cannot hold).
     pub fn clear_pitch(&self, rule: f64, ankle_y: f64, theta6: f64, floor: f64) -> f64 {
+        // Fast path (no bisection): both heights are monotone on the bisection ranges, so the
+        // rule lies in [min_pitch, max_pitch] exactly when the heel is on or above the ground
+        // and M and T on or above the floor at the rule's own pitch.
+        if rule >= -(self.l8 / self.l9).atan() && rule <= std::f64::consts::FRAC_PI_3 {
+            let heel = ankle_y + pitch([-self.l8, -self.l9], rule)[1];
+            let meta = ankle_y + pitch([self.h12, -self.l9], rule)[1];
+            let toe = meta + pitch([self.l13, 0.0], rule - theta6)[1];
+            if heel >= 0.0 && meta.min(toe) >= floor {
+                return rule;
+            }
+        }
         let lo = self.min_pitch(ankle_y);
         let mut hi = self.max_pitch(ankle_y, theta6, floor);
         if hi < lo {
