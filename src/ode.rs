@@ -82,6 +82,25 @@ pub struct Outcome<const N: usize> {
     pub event: Option<usize>,
     /// Right-hand side evaluations.
     pub evaluations: u32,
+    /// Some step was chosen by the step-size control (always, without a mesh to follow).
+    pub adapted: bool,
+}
+
+impl<const N: usize> Outcome<N> {
+    /// This integration followed by `next`, which starts where this one ends: one segment,
+    /// the evaluations added, `next`'s event.
+    pub fn then(mut self, next: Outcome<N>) -> Outcome<N> {
+        debug_assert!(self.segment.t1 == next.segment.t0);
+        self.segment.steps.extend_from_slice(&next.segment.steps);
+        self.segment.t1 = next.segment.t1;
+        self.segment.y1 = next.segment.y1;
+        Outcome {
+            segment: self.segment,
+            event: next.event,
+            evaluations: self.evaluations + next.evaluations,
+            adapted: self.adapted || next.adapted,
+        }
+    }
 }
 
 // Dormand–Prince 5(4) coefficients (Hairer, Nørsett & Wanner, Table II.5.2; dense output II.6).
@@ -181,16 +200,82 @@ pub fn integrate<P: Phase<N, K>, const N: usize, const K: usize>(
     y0: SVector<f64, N>,
     t1: f64,
 ) -> Result<Outcome<N>, String> {
+    integrate_with(phase, t0, y0, t1, TOLERANCE)
+}
+
+/// [`integrate`] with relative and absolute tolerance `tol`.
+pub fn integrate_with<P: Phase<N, K>, const N: usize, const K: usize>(
+    phase: &P,
+    t0: f64,
+    y0: SVector<f64, N>,
+    t1: f64,
+    tol: f64,
+) -> Result<Outcome<N>, String> {
+    integrate_on(phase, t0, y0, t1, tol, Mesh::Adaptive)
+}
+
+/// Which step sequence [`integrate_on`] follows.
+#[derive(Clone, Copy, Debug)]
+pub enum Mesh<'a, const N: usize> {
+    /// None: the step-size control chooses every step.
+    Adaptive,
+    /// The steps of this segment from t0 on (one of them must start at t0, else adaptive).
+    Aligned(&'a Segment<N>),
+    /// The step sizes of this segment in order, from t0 whatever its own start (a subphase
+    /// that starts at an event, whose time moves from trial to trial).
+    Shifted(&'a Segment<N>),
+}
+
+/// A frozen mesh is followed while every step's error estimate stays within this multiple of
+/// the tolerance; beyond it the step-size control takes over from that step on.
+pub const FROZEN_MESH_LIMIT: f64 = 2.0;
+
+/// [`integrate_with`] on the step sequence of `mesh` (a previous integration from the same t0,
+/// typically the previous shooting trial), so that the end state is a smooth function of the
+/// phase's parameters: an adaptive integrator's end state jumps by about its global error
+/// whenever a trial changes the step sequence, and in ill-conditioned phases (swing1 at the
+/// grid's corners) those jumps reach 1e3 times the tolerance and stall the shooting. The mesh
+/// is followed while each step's error estimate stays within [`FROZEN_MESH_LIMIT`] times the
+/// tolerance (and, past its end, the control takes over); `Outcome::adapted` tells whether any
+/// step was chosen by the control, i.e. whether this integration's mesh should replace it.
+pub fn integrate_on<P: Phase<N, K>, const N: usize, const K: usize>(
+    phase: &P,
+    t0: f64,
+    y0: SVector<f64, N>,
+    t1: f64,
+    tol: f64,
+    mesh: Mesh<'_, N>,
+) -> Result<Outcome<N>, String> {
     if !y0.iter().all(|v| v.is_finite()) {
         return Err(format!("non-finite state at t = {t0}"));
     }
-    let tol = TOLERANCE;
+    let follow: &[DenseStep<N>] = match mesh {
+        Mesh::Shifted(m) => &m.steps,
+        Mesh::Aligned(m) => {
+            let i = m.steps.partition_point(|s| s.t < t0);
+            match m.steps.get(i) {
+                Some(s) if s.t == t0 => {
+                    let j = i + m.steps[i..].partition_point(|s| s.t < t1);
+                    &m.steps[i..j]
+                }
+                _ => &[],
+            }
+        }
+        Mesh::Adaptive => &[],
+    };
+    let mut next = 0;
+    let mut adapted = follow.is_empty();
     let h_max = t1 - t0;
     let mut g_last = phase.events(t0, &y0);
     let mut k1 = phase.rhs(t0, &y0);
     let mut evaluations = 1u32;
-    let mut h = initial_step(phase, t0, &y0, &k1, h_max, tol);
-    evaluations += 2;
+    let mut h = match follow.first() {
+        Some(s) => s.h,
+        None => {
+            evaluations += 2;
+            initial_step(phase, t0, &y0, &k1, h_max, tol)
+        }
+    };
     let mut steps: Vec<DenseStep<N>> = Vec::with_capacity(64);
     let (mut t, mut y) = (t0, y0);
     let mut fac_old = 1e-4_f64;
@@ -226,9 +311,14 @@ pub fn integrate<P: Phase<N, K>, const N: usize, const K: usize>(
         if !err.is_finite() {
             return Err(format!("the state became non-finite at t = {t}"));
         }
+        let following = next < follow.len();
+        if following && err > FROZEN_MESH_LIMIT {
+            next = follow.len();
+            adapted = true;
+        }
         // PI control of the step size
         let fac11 = err.powf(ALPHA);
-        if err <= 1.0 {
+        if err <= 1.0 || (following && err <= FROZEN_MESH_LIMIT) {
             let fac = (fac11 / fac_old.powf(BETA) / SAFETY).clamp(FACC2, FACC1);
             let mut h_new = (h / fac).min(h_max);
             if reject {
@@ -256,7 +346,18 @@ pub fn integrate<P: Phase<N, K>, const N: usize, const K: usize>(
             if last {
                 break;
             }
-            h = h_new;
+            h = if following {
+                next += 1;
+                match follow.get(next) {
+                    Some(s) => s.h,
+                    None => {
+                        adapted = true;
+                        h_new
+                    }
+                }
+            } else {
+                h_new
+            };
         } else {
             h /= FACC1.min(fac11 / SAFETY);
             reject = true;
@@ -308,6 +409,7 @@ pub fn integrate<P: Phase<N, K>, const N: usize, const K: usize>(
         segment,
         event: hit,
         evaluations,
+        adapted,
     })
 }
 
@@ -364,5 +466,62 @@ mod tests {
             assert!((y[0] - t.cos()).abs() < 1e-8, "t {t}: {}", y[0]);
         }
         assert!((out.segment.y1[0] - 3.0_f64.cos()).abs() < 1e-9);
+    }
+
+    /// A damped oscillator x'' = −ω² x − 0.1 x' with parameter ω.
+    struct Damped(f64);
+    impl Phase<2, 0> for Damped {
+        fn rhs(&self, _t: f64, y: &SVector<f64, 2>) -> SVector<f64, 2> {
+            SVector::<f64, 2>::new(y[1], -self.0 * self.0 * y[0] - 0.1 * y[1])
+        }
+    }
+
+    #[test]
+    fn a_frozen_mesh_is_followed_while_accurate() {
+        let y0 = SVector::<f64, 2>::new(1.0, 0.0);
+        let tol = 1e-6;
+        let first = integrate_with(&Damped(3.0), 0.0, y0, 5.0, tol).unwrap();
+        assert!(first.adapted);
+        // on its own mesh, the same integration again, with no step-size choices
+        let again = integrate_on(
+            &Damped(3.0),
+            0.0,
+            y0,
+            5.0,
+            tol,
+            Mesh::Aligned(&first.segment),
+        )
+        .unwrap();
+        assert!(!again.adapted);
+        assert_eq!(again.segment.y1, first.segment.y1);
+        assert_eq!(
+            again.evaluations + 2,
+            first.evaluations,
+            "no initial-step trials"
+        );
+        // a nearby parameter follows the same mesh, as accurately as the adaptive integration
+        let near = integrate_on(
+            &Damped(3.01),
+            0.0,
+            y0,
+            5.0,
+            tol,
+            Mesh::Aligned(&first.segment),
+        )
+        .unwrap();
+        let adaptive = integrate_with(&Damped(3.01), 0.0, y0, 5.0, tol).unwrap();
+        assert!(!near.adapted);
+        assert!((near.segment.y1 - adaptive.segment.y1).amax() < 1e-5);
+        // a very different one leaves the mesh where its error estimate grows
+        let far = integrate_on(
+            &Damped(6.0),
+            0.0,
+            y0,
+            5.0,
+            tol,
+            Mesh::Aligned(&first.segment),
+        )
+        .unwrap();
+        assert!(far.adapted);
     }
 }

@@ -167,8 +167,20 @@ impl Walker {
             }
         };
         let best = std::cell::RefCell::new(None::<StanceRun>);
+        // every trial follows the step sequences of the last one that chose its own steps
+        let mesh = std::cell::RefCell::new(None::<StanceRun>);
         let residual = |x: Vector2<f64>| {
-            let run = StanceRun::simulate(&setup, y0, x[0], x[1])?;
+            let run = StanceRun::simulate_on(
+                &setup,
+                y0,
+                x[0],
+                x[1],
+                crate::ode::TOLERANCE,
+                mesh.borrow().as_ref(),
+            )?;
+            if run.adapted {
+                *mesh.borrow_mut() = Some(run.clone());
+            }
             self.count(run.evaluations);
             let r = run.residual;
             let mut b = best.borrow_mut();
@@ -408,6 +420,8 @@ impl Walker {
         y0: SwingState,
     ) -> std::result::Result<(SwingTrial, SolveReport, Memory2), String> {
         let best = std::cell::RefCell::new(None::<SwingTrial>);
+        // every trial follows the step sequence of the last one that chose its own steps
+        let mesh = std::cell::RefCell::new(None::<Segment<4>>);
         let start = match memory {
             Some(m) => Start2::Warm(m),
             None => Start2::Cold {
@@ -417,7 +431,17 @@ impl Walker {
         };
         let (_, report, mem) = shooting::solve2(
             |x| {
-                let trial = SwingTrial::simulate(sw, sub(x), t0, y0)?;
+                let trial = SwingTrial::simulate_on(
+                    sw,
+                    sub(x),
+                    t0,
+                    y0,
+                    crate::ode::TOLERANCE,
+                    mesh.borrow().as_ref(),
+                )?;
+                if trial.adapted {
+                    *mesh.borrow_mut() = Some(trial.segment.clone());
+                }
                 let r = trial.residual;
                 self.count(trial.evaluations);
                 keep_best(&best, trial);
@@ -440,6 +464,8 @@ impl Walker {
         y0: SwingState,
     ) -> std::result::Result<(SwingTrial, SolveReport, Memory1), String> {
         let best = std::cell::RefCell::new(None::<SwingTrial>);
+        // every trial follows the step sequence of the last one that chose its own steps
+        let mesh = std::cell::RefCell::new(None::<Segment<4>>);
         let start = match memory {
             Some(m) => Start1::Warm(m),
             None => Start1::Cold {
@@ -449,7 +475,17 @@ impl Walker {
         };
         let (_, report, mem) = shooting::solve1(
             |x| {
-                let trial = SwingTrial::simulate(sw, sub(x), t0, y0)?;
+                let trial = SwingTrial::simulate_on(
+                    sw,
+                    sub(x),
+                    t0,
+                    y0,
+                    crate::ode::TOLERANCE,
+                    mesh.borrow().as_ref(),
+                )?;
+                if trial.adapted {
+                    *mesh.borrow_mut() = Some(trial.segment.clone());
+                }
                 let r = trial.residual[0];
                 self.count(trial.evaluations);
                 keep_best(&best, trial);
