@@ -72,6 +72,33 @@ fn main() {
         exact[0], exact[1], exact[2], exact[3]
     );
 
+    // one trial of each phase of step 5, with the step sequence chosen afresh
+    {
+        use klaw::control::stance::StanceRun;
+        use klaw::control::swing::SwingTrial;
+        let s = &w.steps[5];
+        let y0 = s.stance.segments[0].0.y0;
+        let run = StanceRun::simulate(&s.stance_setup, y0, s.stance.tau1, s.stance.p).unwrap();
+        let t = s.constraints.timing;
+        let path =
+            klaw::control::stance::HipPath::new(&s.stance, &s.stance_setup, t.t_ds, t.t_step);
+        let setup = swing_setup(s, &body, &attrs, &path);
+        let mut line = format!(
+            "  evaluations per trial at step 5: stance {}",
+            run.evaluations
+        );
+        for (sub, seg) in &s.swing {
+            let tr = SwingTrial::simulate(&setup, *sub, seg.t0, seg.y0).unwrap();
+            line += &format!(
+                ", {} {} ({:.3} s)",
+                sub.name(),
+                tr.evaluations,
+                seg.t1 - seg.t0
+            );
+        }
+        println!("{line}; stance {:.3} s", t.t_step);
+    }
+
     // the same for swing1 (hip magnitude A)
     use klaw::control::stance::HipPath;
     use klaw::control::swing::{self, Subphase, SwingSetup, SwingTrial};

@@ -8,9 +8,13 @@
 //! to the nearest solver step).
 use nalgebra::SVector;
 
-/// Relative and absolute integrator tolerance: the shooting residuals must be smooth functions
-/// of the unknowns at the level of the solver tolerance (spec §6: ≤ 1e-10).
-pub const TOLERANCE: f64 = 1e-10;
+/// Relative and absolute integrator tolerance. Spec §6 asks for residuals that are smooth in the
+/// unknowns at the level of the shooting tolerance, by rtol = atol ≤ 1e-10 *or* a fixed step
+/// sequence per (sub)phase: the shooting trials follow a frozen mesh ([`integrate_on`]), so the
+/// tolerance is set by accuracy alone. At 1e-8 the converged magnitudes, integrated again at
+/// 1e-12, meet the step's end conditions to ≤ 1.2e-7 over the grid (`examples/evals.rs`; 6.4e-7
+/// at 1e-7, too close to the 1e-6 promise); docs/engine.md has the table.
+pub const TOLERANCE: f64 = 1e-8;
 
 /// How precisely event times are located (s).
 pub const EVENT_TIME_TOLERANCE: f64 = 1e-13;
@@ -439,7 +443,14 @@ mod tests {
 
     #[test]
     fn event_is_located_on_the_dense_output() {
-        let out = integrate(&Oscillator, 0.0, SVector::<f64, 2>::new(1.0, 0.0), 3.0).unwrap();
+        let out = integrate_with(
+            &Oscillator,
+            0.0,
+            SVector::<f64, 2>::new(1.0, 0.0),
+            3.0,
+            1e-10,
+        )
+        .unwrap();
         assert_eq!(out.event, Some(0));
         assert!(
             (out.segment.t1 - std::f64::consts::FRAC_PI_2).abs() < 1e-9,
@@ -458,7 +469,7 @@ mod tests {
                 SVector::<f64, 2>::new(y[1], -y[0])
             }
         }
-        let out = integrate(&Free, 0.0, SVector::<f64, 2>::new(1.0, 0.0), 3.0).unwrap();
+        let out = integrate_with(&Free, 0.0, SVector::<f64, 2>::new(1.0, 0.0), 3.0, 1e-10).unwrap();
         assert_eq!(out.event, None);
         for i in 0..=30 {
             let t = 0.1 * i as f64;
