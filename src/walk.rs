@@ -575,7 +575,7 @@ pub struct SwingPose {
 impl Step {
     /// Hip (relative to the stance ankle x) and stance state at step time τ.
     pub fn hip(&self, tau: f64) -> [f64; 2] {
-        self.stance.hip(&self.stance_setup, tau)[0]
+        self.stance.hip_position(&self.stance_setup, tau)
     }
 
     /// The swing foot's ankle dorsiflexion θ5 and toe angle θ6 at step time τ ≥ t_ds (spec §5

@@ -385,6 +385,13 @@ impl StanceRun {
         (seg.state(t), *locked)
     }
 
+    /// Hip position at t (relative to the stance ankle's x): [`Self::hip`]`[0]` without the
+    /// dynamics.
+    pub fn hip_position(&self, setup: &StanceSetup, t: f64) -> [f64; 2] {
+        let (y, _) = self.state(t);
+        setup.model.hip(&Vector3::new(y[0], y[1], y[2]))
+    }
+
     /// Hip position, velocity and acceleration at t (relative to the stance ankle's x).
     pub fn hip(&self, setup: &StanceSetup, t: f64) -> [[f64; 2]; 3] {
         let (y, locked) = self.state(t);
