@@ -320,14 +320,14 @@ pub fn integrate_on<P: Phase<N, K>, const N: usize, const K: usize>(
             next = follow.len();
             adapted = true;
         }
-        // PI control of the step size
-        let fac11 = err.powf(ALPHA);
         if err <= 1.0 || (following && err <= FROZEN_MESH_LIMIT) {
-            let fac = (fac11 / fac_old.powf(BETA) / SAFETY).clamp(FACC2, FACC1);
-            let mut h_new = (h / fac).min(h_max);
-            if reject {
-                h_new = h_new.min(h);
-            }
+            // PI control of the next step (needed only off the mesh: two `powf`)
+            let (h_acc, err_old, rejected) = (h, fac_old, reject);
+            let h_new = move || {
+                let fac = (err.powf(ALPHA) / err_old.powf(BETA) / SAFETY).clamp(FACC2, FACC1);
+                let h_new = (h_acc / fac).min(h_max);
+                if rejected { h_new.min(h_acc) } else { h_new }
+            };
             fac_old = err.max(1e-4);
             reject = false;
             let ydiff = y_new - y;
@@ -356,14 +356,14 @@ pub fn integrate_on<P: Phase<N, K>, const N: usize, const K: usize>(
                     Some(s) => s.h,
                     None => {
                         adapted = true;
-                        h_new
+                        h_new()
                     }
                 }
             } else {
-                h_new
+                h_new()
             };
         } else {
-            h /= FACC1.min(fac11 / SAFETY);
+            h /= FACC1.min(err.powf(ALPHA) / SAFETY);
             reject = true;
         }
     }
