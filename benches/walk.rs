@@ -1,28 +1,41 @@
 //! Criterion benchmarks of the walking simulation (H = 1.8 m, M = 80 kg, v = 1.4 m/s):
-//! `one_step` (a fresh 1-step walk), `walk_10_steps` (simulation only) and
-//! `walk_10_steps_with_frames` (simulation, then frames sampled at 100 frames/s).
-//! Short measurement windows keep `cargo bench` to well under two minutes on two cores.
+//! - `one_step`: a fresh 1-step walk (cold shooting start);
+//! - `walk_10_steps`: simulation only;
+//! - `walk_10_steps_with_frames`: simulation, then frames sampled at 100 frames/s;
+//! - `walk_10_steps_frames_csv`: the same, then the frames written as CSV to a temporary file;
+//! - `sweep_1000_walks` (group `sweep`): 1 000 walks of 10 steps, v = 0.6…1.99 m/s (250 values)
+//!   × H = 1.5, 1.65, 1.8, 1.95 m (M = 23 H²), on the rayon pool (all cores), as `klaw sweep`
+//!   runs them (`walk::simulate` per point; the sweep's summary rows are not built).
+//!
+//! Short measurement windows keep the first group to about half a minute on two cores; the sweep
+//! (≈ 4 s a run) takes its minimum of 10 samples, ≈ 1 minute: skip it with
+//! `cargo bench --bench walk -- walk_ one_step`, or run it alone with `-- sweep`.
 use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use klaw::walk::simulate;
 use klaw::{AttributeTable, Attributes, Body, Gait, GaitRequest};
+use rayon::prelude::*;
 
 const HEIGHT: f64 = 1.8;
 const MASS: f64 = 80.0;
 const VELOCITY: f64 = 1.4;
 const FPS: f64 = 100.0;
 
+fn gait(body: &Body, attrs: &Attributes, v: f64) -> Gait {
+    GaitRequest {
+        velocity: Some(v),
+        ..GaitRequest::default()
+    }
+    .complete(body, attrs)
+    .expect("the gait is valid")
+}
+
 fn setup() -> (Body, Attributes, Gait) {
     let body = Body::standard(HEIGHT, MASS).expect("the default body is valid");
     let attrs = AttributeTable::builtin().defaults();
-    let gait = GaitRequest {
-        velocity: Some(VELOCITY),
-        ..GaitRequest::default()
-    }
-    .complete(&body, &attrs)
-    .expect("the default gait is valid");
+    let gait = gait(&body, &attrs, VELOCITY);
     (body, attrs, gait)
 }
 
@@ -46,6 +59,38 @@ fn ten_steps(c: &mut Criterion) {
             walk.frames(black_box(FPS))
         })
     });
+    let dir = tempfile::tempdir().expect("a temporary directory");
+    let path = dir.path().join("walk.csv");
+    c.bench_function("walk_10_steps_frames_csv", |b| {
+        b.iter(|| {
+            let walk = simulate(black_box(body), attrs.clone(), black_box(&ten)).expect("walks");
+            klaw::io::write_frames_csv(&path, &walk.frames(FPS)).expect("writes")
+        })
+    });
+}
+
+fn sweep(c: &mut Criterion) {
+    let attrs = AttributeTable::builtin().defaults();
+    let points: Vec<(Body, Gait)> = [1.5, 1.65, 1.8, 1.95]
+        .iter()
+        .flat_map(|&h| {
+            let body = Body::standard(h, 23.0 * h * h).expect("a valid body");
+            let attrs = &attrs;
+            (0..250).map(move |i| (body, gait(&body, attrs, 0.6 + 0.0056 * i as f64)))
+        })
+        .collect();
+    assert_eq!(points.len(), 1000);
+    c.bench_function("sweep_1000_walks", |b| {
+        b.iter(|| {
+            points
+                .par_iter()
+                .map(|(body, g)| {
+                    let walk = simulate(*body, attrs.clone(), &[*g; 10]).expect("walks");
+                    walk.duration()
+                })
+                .sum::<f64>()
+        })
+    });
 }
 
 fn config(measurement_s: u64) -> Criterion {
@@ -55,16 +100,17 @@ fn config(measurement_s: u64) -> Criterion {
         .measurement_time(Duration::from_secs(measurement_s))
 }
 
-// a 10-step walk takes ≈ 25 ms: criterion's 20 linear samples need 210 of them (≈ 5.5 s), so
-// those benchmarks get a longer window than the 5 ms single step
 criterion_group! {
-    name = short;
-    config = config(5);
-    targets = one_step
+    name = walks;
+    config = config(4);
+    targets = one_step, ten_steps
 }
 criterion_group! {
-    name = long;
-    config = config(8);
-    targets = ten_steps
+    name = sweeps;
+    config = Criterion::default()
+        .sample_size(10)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(30));
+    targets = sweep
 }
-criterion_main!(short, long);
+criterion_main!(walks, sweeps);

@@ -22,9 +22,12 @@ use crate::plan::StepConstraints;
 use crate::report::{Achieved, Frame, Report, StepReport, Target};
 use crate::work;
 
-/// Shooting tolerance on every end condition (rad or m): 100× inside the 1e-6 the walk promises,
-/// 10× above the residual noise of the 1e-10 integrator tolerance (measured ≈ 1e-9).
-pub const SOLVE_TOLERANCE: f64 = 2e-8;
+/// Shooting tolerance on every end condition (rad or m): 100× inside the 1e-6 the walk promises.
+/// The residuals are smooth (frozen mesh, `ode::integrate_on`), so no noise floor sets it; the
+/// heel-contact check does: it differences the heel height over 1e-6 s (0.1 m/s × 1e-6 s =
+/// 1e-7 m), and at 1e-7 the end-state error of ≈ 1e-7 m brought the grid's highest heel contact
+/// velocity to −0.02 m/s and one walk to +1e-8 (docs/engine.md).
+pub const SOLVE_TOLERANCE: f64 = 1e-8;
 /// Trial integrations allowed per solve.
 pub const MAX_ITERATIONS: usize = 25;
 /// Fraction of swing1 at which the swing ankle is back at neutral.
@@ -201,16 +204,30 @@ impl Walker {
         let start = match self.stance_memory {
             Some(m) => Start2::Warm(m),
             None => {
+                // [ours] the default walk's step-0 solution, body-scaled (τ1 = 1.97 M l1,
+                // p = 0.0057 l1): grid 7 223 -> 6 854 evaluations per step (docs/engine.md)
                 let scale = self.body.mass * self.body.l1;
                 Start2::Cold {
-                    x0: Vector2::new(0.5 * scale, 0.0),
+                    x0: Vector2::new(2.0 * scale, 0.0055 * self.body.l1),
                     h: Vector2::new(0.01 * scale, 1e-3),
                 }
             }
         };
         let best = std::cell::RefCell::new(None::<StanceRun>);
+        // every trial follows the step sequences of the last one that chose its own steps
+        let mesh = std::cell::RefCell::new(None::<StanceRun>);
         let residual = |x: Vector2<f64>| {
-            let run = StanceRun::simulate(&setup, y0, x[0], x[1])?;
+            let run = StanceRun::simulate_on(
+                &setup,
+                y0,
+                x[0],
+                x[1],
+                crate::ode::TOLERANCE,
+                mesh.borrow().as_ref(),
+            )?;
+            if run.adapted {
+                *mesh.borrow_mut() = Some(run.clone());
+            }
             self.count(run.evaluations);
             let r = run.residual;
             let mut b = best.borrow_mut();
@@ -536,6 +553,8 @@ impl Walker {
         y0: SwingState,
     ) -> std::result::Result<(SwingTrial, SolveReport, Memory2), String> {
         let best = std::cell::RefCell::new(None::<SwingTrial>);
+        // every trial follows the step sequence of the last one that chose its own steps
+        let mesh = std::cell::RefCell::new(None::<Segment<4>>);
         let start = match memory {
             Some(m) => Start2::Warm(m),
             None => Start2::Cold {
@@ -545,7 +564,17 @@ impl Walker {
         };
         let (_, report, mem) = shooting::solve2(
             |x| {
-                let trial = SwingTrial::simulate(sw, sub(x), t0, y0)?;
+                let trial = SwingTrial::simulate_on(
+                    sw,
+                    sub(x),
+                    t0,
+                    y0,
+                    crate::ode::TOLERANCE,
+                    mesh.borrow().as_ref(),
+                )?;
+                if trial.adapted {
+                    *mesh.borrow_mut() = Some(trial.segment.clone());
+                }
                 let r = trial.residual;
                 self.count(trial.evaluations);
                 keep_best(&best, trial);
@@ -568,6 +597,8 @@ impl Walker {
         y0: SwingState,
     ) -> std::result::Result<(SwingTrial, SolveReport, Memory1), String> {
         let best = std::cell::RefCell::new(None::<SwingTrial>);
+        // every trial follows the step sequence of the last one that chose its own steps
+        let mesh = std::cell::RefCell::new(None::<Segment<4>>);
         let start = match memory {
             Some(m) => Start1::Warm(m),
             None => Start1::Cold {
@@ -577,7 +608,17 @@ impl Walker {
         };
         let (_, report, mem) = shooting::solve1(
             |x| {
-                let trial = SwingTrial::simulate(sw, sub(x), t0, y0)?;
+                let trial = SwingTrial::simulate_on(
+                    sw,
+                    sub(x),
+                    t0,
+                    y0,
+                    crate::ode::TOLERANCE,
+                    mesh.borrow().as_ref(),
+                )?;
+                if trial.adapted {
+                    *mesh.borrow_mut() = Some(trial.segment.clone());
+                }
                 let r = trial.residual[0];
                 self.count(trial.evaluations);
                 keep_best(&best, trial);
@@ -696,7 +737,7 @@ pub struct SwingPose {
 impl Step {
     /// The dynamic hip, the pelvis centre (x relative to the stance ankle), at step time τ.
     pub fn hip(&self, tau: f64) -> [f64; 2] {
-        self.stance.hip(&self.stance_setup, tau)[0]
+        self.stance.hip_position(&self.stance_setup, tau)
     }
 
     /// The pelvis's determinants at step time τ.

@@ -106,12 +106,7 @@ pub fn stance_work(setup: &StanceSetup, run: &StanceRun, n: usize) -> Work {
     run.segments
         .iter()
         .map(|(seg, locked)| {
-            let forces = StanceForces {
-                setup,
-                tau1: run.tau1,
-                p: run.p,
-                locked: *locked,
-            };
+            let forces = StanceForces::new(setup, run.tau1, run.p, *locked);
             integrate(
                 |t| stance_powers(&forces, t, &seg.state(t)),
                 seg.t0,

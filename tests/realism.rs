@@ -76,7 +76,10 @@ fn peak(x: &[f64], range: std::ops::Range<usize>, max: bool) -> (f64, usize) {
 
 fn within(name: &str, x: f64, lo: f64, hi: f64, at: &str) {
     println!("{at}: {name} {x:.2} [{lo}, {hi}]");
-    assert!((lo..=hi).contains(&x), "{at}: {name} {x:.2} outside [{lo}, {hi}]");
+    assert!(
+        (lo..=hi).contains(&x),
+        "{at}: {name} {x:.2} outside [{lo}, {hi}]"
+    );
 }
 
 #[test]
@@ -100,7 +103,13 @@ fn default_walks_against_the_published_ranges() {
             within("hip range", hmax - hmin, 40.0, 52.0, &at);
             // deviation: the peak extension reaches the norm (−5…−15°) at 1.2 m/s and for the
             // taller body, not at 1.5 m/s (≈ −2°)
-            within("hip peak extension (partly a deviation)", hmin, -15.0, 1.0, &at);
+            within(
+                "hip peak extension (partly a deviation)",
+                hmin,
+                -15.0,
+                1.0,
+                &at,
+            );
             within("hip peak extension at %", hmin_at as f64, 48.0, 62.0, &at);
             // knee: 0–8° at heel strike, stance peak 10–25° at 12–18 %, swing peak at 70–75 %
             within("knee at HS", knee[0], 0.0, 8.0, &at);
@@ -113,17 +122,35 @@ fn default_walks_against_the_published_ranges() {
             // ankle: −5…+3° at heel strike; stance dorsiflexion peak (deviation)
             within("ankle at HS", ankle[0], -5.0, 3.0, &at);
             let (dmax, _) = peak(&ankle, 10..60, true);
-            within("ankle stance dorsiflexion peak (deviation)", dmax, 18.0, 30.0, &at);
+            within(
+                "ankle stance dorsiflexion peak (deviation)",
+                dmax,
+                18.0,
+                30.0,
+                &at,
+            );
             // deviation: the push-off plantarflexion around toe-off (norm −15…−25° at 60–65 %)
             let (pmin, _) = peak(&ankle, 55..75, false);
-            within("ankle plantarflexion at push-off (deviation)", pmin, -14.0, -4.0, &at);
+            within(
+                "ankle plantarflexion at push-off (deviation)",
+                pmin,
+                -14.0,
+                -4.0,
+                &at,
+            );
             // pelvis: list ±4–5°, rotation ±3–5°, vertical excursion 4–5 cm (± 1 cm)
             let list = c.col("pelvis_list");
             let rot = c.col("pelvis_rotation");
             within("pelvic list", peak(&list, 0..101, true).0, 3.5, 5.0, &at);
             within("pelvic rotation", peak(&rot, 0..101, true).0, 3.0, 5.0, &at);
             // 4–5 cm is the norm; ≈ 6 cm at 1.5 m/s (the ε·E bounce grows with the step)
-            within("pelvis vertical excursion (m)", c.pelvis_excursion, 0.035, 0.065, &at);
+            within(
+                "pelvis vertical excursion (m)",
+                c.pelvis_excursion,
+                0.035,
+                0.065,
+                &at,
+            );
         }
     }
 }

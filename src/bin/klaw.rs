@@ -529,7 +529,6 @@ fn load_attributes(style: Option<&str>, path: Option<&Path>) -> Result<Attribute
     table.resolve(&overrides, &source)
 }
 
-
 fn walk(args: &WalkArgs) -> Result<()> {
     let fps = Error::check_range("fps", args.fps, MIN_FPS, MAX_FPS, "frames/s")?;
     let body = Body::standard(args.height, args.mass)?;

@@ -80,6 +80,8 @@ pub struct Memory1 {
     pub x: f64,
     /// The last secant slope estimate `dr/dx` (NaN if none was formed).
     pub slope: f64,
+    /// The points returned by the two solves before this one (NaN if none).
+    pub earlier: [f64; 2],
 }
 
 /// What a 2-D solve remembers: the solution and the last Broyden Jacobian.
@@ -89,6 +91,32 @@ pub struct Memory2 {
     pub x: Vector2<f64>,
     /// The last Jacobian estimate (NaN entries if none was formed).
     pub jacobian: Matrix2<f64>,
+    /// The points returned by the two solves before this one (NaN if none).
+    pub earlier: [Vector2<f64>; 2],
+}
+
+/// The next solution predicted from the last three of a sequence converging geometrically:
+/// x + λ (x − x₋₁), λ the ratio of the last two differences (least squares over the components,
+/// each relative to its own size), clipped to [−0.5, 0.5]; `x` itself when the history is
+/// incomplete. Successive steps of a walk approach the limit cycle with λ ≈ −0.13.
+fn extrapolate<const D: usize>(x: [f64; D], earlier: [[f64; D]; 2]) -> [f64; D] {
+    let (mut num, mut den) = (0.0, 0.0);
+    for i in 0..D {
+        let (d1, d0) = (x[i] - earlier[0][i], earlier[0][i] - earlier[1][i]);
+        let w = 1.0 / x[i].abs().max(1e-12).powi(2);
+        num += w * d1 * d0;
+        den += w * d0 * d0;
+    }
+    let lambda = num / den;
+    if !(den > 0.0 && lambda.is_finite()) {
+        return x;
+    }
+    let lambda = lambda.clamp(-0.5, 0.5);
+    let mut out = x;
+    for i in 0..D {
+        out[i] += lambda * (x[i] - earlier[0][i]);
+    }
+    out
 }
 
 /// How a 1-D solve starts.
@@ -968,7 +996,16 @@ pub fn solve1<R: Fn(f64) -> Result<f64, String>>(
 ) -> Result<(f64, SolveReport, Memory1), String> {
     let mut solver = match start {
         Start1::Cold { x0, dx } => BisectionSecant::cold(x0, dx, opts.tol, opts.max_iterations),
-        Start1::Warm(m) => BisectionSecant::warm(m.x, m.slope, opts.tol, opts.max_iterations),
+        Start1::Warm(m) => BisectionSecant::warm(
+            extrapolate([m.x], [[m.earlier[0]], [m.earlier[1]]])[0],
+            m.slope,
+            opts.tol,
+            opts.max_iterations,
+        ),
+    };
+    let earlier = match start {
+        Start1::Cold { .. } => [f64::NAN; 2],
+        Start1::Warm(m) => [m.x, m.earlier[0]],
     };
     let mut problem = Problem::new(Residual1(residual));
     run_to_end(&mut solver, &mut problem)?;
@@ -985,7 +1022,15 @@ pub fn solve1<R: Fn(f64) -> Result<f64, String>>(
                     residual: f64::INFINITY,
                     converged: false,
                 };
-                Ok((x, report, Memory1 { x, slope: f64::NAN }))
+                Ok((
+                    x,
+                    report,
+                    Memory1 {
+                        x,
+                        slope: f64::NAN,
+                        earlier,
+                    },
+                ))
             }
         };
     };
@@ -1000,6 +1045,7 @@ pub fn solve1<R: Fn(f64) -> Result<f64, String>>(
         Memory1 {
             x,
             slope: solver.slope(),
+            earlier,
         },
     ))
 }
@@ -1017,10 +1063,18 @@ pub fn solve2<R: Fn(Vector2<f64>) -> Result<Vector2<f64>, String>>(
 ) -> Result<(Vector2<f64>, SolveReport, Memory2), String> {
     let (mut solver, x0) = match start {
         Start2::Cold { x0, h } => (Broyden2::cold(x0, h, opts.tol, opts.max_iterations), x0),
-        Start2::Warm(m) => (
-            Broyden2::warm(m.x, m.jacobian, opts.tol, opts.max_iterations),
-            m.x,
-        ),
+        Start2::Warm(m) => {
+            let x = extrapolate(m.x.into(), [m.earlier[0].into(), m.earlier[1].into()]);
+            let x = Vector2::from(x);
+            (
+                Broyden2::warm(x, m.jacobian, opts.tol, opts.max_iterations),
+                x,
+            )
+        }
+    };
+    let earlier = match start {
+        Start2::Cold { .. } => [Vector2::repeat(f64::NAN); 2],
+        Start2::Warm(m) => [m.x, m.earlier[0]],
     };
     let mut problem = Problem::new(Residual2(residual));
     run_to_end(&mut solver, &mut problem)?;
@@ -1034,7 +1088,15 @@ pub fn solve2<R: Fn(Vector2<f64>) -> Result<Vector2<f64>, String>>(
                     residual: f64::INFINITY,
                     converged: false,
                 };
-                Ok((x0, report, Memory2 { x: x0, jacobian }))
+                Ok((
+                    x0,
+                    report,
+                    Memory2 {
+                        x: x0,
+                        jacobian,
+                        earlier,
+                    },
+                ))
             }
         };
     };
@@ -1044,7 +1106,15 @@ pub fn solve2<R: Fn(Vector2<f64>) -> Result<Vector2<f64>, String>>(
         residual,
         converged: residual <= opts.tol,
     };
-    Ok((x, report, Memory2 { x, jacobian }))
+    Ok((
+        x,
+        report,
+        Memory2 {
+            x,
+            jacobian,
+            earlier,
+        },
+    ))
 }
 
 #[cfg(test)]
@@ -1171,11 +1241,28 @@ mod tests {
     }
 
     #[test]
+    fn extrapolation_predicts_a_geometric_sequence() {
+        // x_n = 3 + (-0.13)^n (1, -2): the next point from the last three, exactly
+        let x = |n: i32| {
+            let c = (-0.13f64).powi(n);
+            [3.0 + c, 5.0 - 2.0 * c]
+        };
+        let p = extrapolate(x(2), [x(1), x(0)]);
+        assert!((p[0] - x(3)[0]).abs() < 1e-12 && (p[1] - x(3)[1]).abs() < 1e-12);
+        // no history, or no change: the last point
+        assert_eq!(extrapolate([1.0], [[f64::NAN], [f64::NAN]]), [1.0]);
+        assert_eq!(extrapolate([1.0], [[1.0], [1.0]]), [1.0]);
+        // a ratio beyond ±0.5 is clipped
+        assert_eq!(extrapolate([4.0], [[2.0], [1.0]]), [5.0]);
+    }
+
+    #[test]
     fn warm_start_with_bad_slope_recovers() {
         // A slope of the wrong sign sends the first trial uphill; the secant recovers.
         let mem = Memory1 {
             x: 2.0,
             slope: -10.0,
+            earlier: [f64::NAN; 2],
         };
         let (x, rep, _) = solve1(cubic(5.0), Start1::Warm(mem), &opts()).unwrap();
         println!("warm, wrong slope: {rep:?}");
@@ -1184,6 +1271,7 @@ mod tests {
         let mem = Memory1 {
             x: 2.0,
             slope: f64::NAN,
+            earlier: [f64::NAN; 2],
         };
         let (x, rep, _) = solve1(cubic(5.0), Start1::Warm(mem), &opts()).unwrap();
         assert!(rep.converged && (x - CUBIC_ROOT).abs() < 1e-9, "{rep:?}");

@@ -47,23 +47,27 @@ pub struct StanceSetup {
 /// y_ref = ȳ(u) + (e/2)(1 + cos πu), u = sin θ1 / sin θ1^± clipped to [−1, 1], with ȳ blending
 /// the two heel-strike heights (ȳ = y_hs when they are equal).
 pub fn hip_reference(s: &StanceSetup, theta1: f64) -> (f64, f64) {
-    let denom = if theta1 < 0.0 {
-        s.theta1_start.sin()
-    } else {
-        s.theta1_end.sin()
-    };
-    let raw = theta1.sin() / denom;
+    let (s1, c1) = theta1.sin_cos();
+    hip_reference_sc(s, s1, c1, s.theta1_start.sin(), s.theta1_end.sin())
+}
+
+/// [`hip_reference`] from sin θ1, cos θ1 and the two denominators sin θ1^− (start), sin θ1^+
+/// (end): one `sin_cos` of πu/2, since cos(π(1+u)/2) = −sin(πu/2), sin(π(1+u)/2) = cos(πu/2),
+/// 1 + cos πu = 2 cos²(πu/2) and sin πu = 2 sin(πu/2) cos(πu/2).
+fn hip_reference_sc(s: &StanceSetup, s1: f64, c1: f64, sin_start: f64, sin_end: f64) -> (f64, f64) {
+    let denom = if s1 < 0.0 { sin_start } else { sin_end };
+    let raw = s1 / denom;
     let (u, du) = if raw.abs() >= 1.0 {
         (raw.signum(), 0.0)
     } else {
-        (raw, theta1.cos() / denom)
+        (raw, c1 / denom)
     };
-    let half = 0.5 * PI * (1.0 + u);
+    let (sh, ch) = (0.5 * PI * u).sin_cos();
     let dy = s.y_end - s.y_start;
-    let base = s.y_start + dy * 0.5 * (1.0 - half.cos());
-    let dbase = dy * 0.25 * PI * half.sin();
-    let bump = 0.5 * s.bounce * (1.0 + (PI * u).cos());
-    let dbump = -0.5 * s.bounce * PI * (PI * u).sin();
+    let base = s.y_start + dy * 0.5 * (1.0 + sh);
+    let dbase = dy * 0.25 * PI * ch;
+    let bump = s.bounce * ch * ch;
+    let dbump = -s.bounce * PI * sh * ch;
     (base + bump, (dbase + dbump) * du)
 }
 
@@ -82,13 +86,33 @@ pub struct StanceForces<'a> {
     /// Leg extension p (m) of the position actuator, blended in over the second half-step.
     pub p: f64,
     pub locked: bool,
+    /// sin θ1^− and sin θ1^+ of the hip reference (constants of the step).
+    sin_start: f64,
+    sin_end: f64,
 }
 
-impl StanceForces<'_> {
+impl<'a> StanceForces<'a> {
+    pub fn new(setup: &'a StanceSetup, tau1: f64, p: f64, locked: bool) -> Self {
+        StanceForces {
+            setup,
+            tau1,
+            p,
+            locked,
+            sin_start: setup.theta1_start.sin(),
+            sin_end: setup.theta1_end.sin(),
+        }
+    }
+
     /// Generalized forces Q = (F_w, F_θ1 − F_θ2, F_θ2) at (t, y).
     pub fn generalized(&self, t: f64, y: &StanceState) -> Vector3<f64> {
+        let (s1, c1) = y[1].sin_cos();
+        self.generalized_sc(t, y, s1, c1)
+    }
+
+    /// [`Self::generalized`] with sin θ1, cos θ1 known.
+    fn generalized_sc(&self, t: f64, y: &StanceState, s1: f64, c1: f64) -> Vector3<f64> {
         let s = self.setup;
-        let (w, th1, th2, wd, th1d, th2d) = (y[0], y[1], y[2], y[3], y[4], y[5]);
+        let (w, th2, wd, th1d, th2d) = (y[0], y[2], y[3], y[4], y[5]);
         let f2 = -s.k_2 * (th2 - s.theta2_ref) - s.d_2 * th2d;
         let f1 = if t < TORQUE_OFF * s.t_step {
             self.tau1
@@ -99,8 +123,7 @@ impl StanceForces<'_> {
             0.0
         } else {
             // pa = w_ref − l1 + (m2 g cos θ1 + d_w ẇ_ref)/k_w + p s(t), F_w = k_w (l1 + pa − w) − d_w ẇ ≥ 0
-            let (c1, s1) = (th1.cos(), th1.sin());
-            let (y_ref, dy_ref) = hip_reference(s, th1);
+            let (y_ref, dy_ref) = hip_reference_sc(s, s1, c1, self.sin_start, self.sin_end);
             let w_ref = (y_ref - s.model.l9) / c1;
             let dw_ref = dy_ref / c1 + (y_ref - s.model.l9) * s1 / (c1 * c1);
             let wd_ref = dw_ref * th1d;
@@ -117,9 +140,15 @@ impl StanceForces<'_> {
     pub fn accelerations(&self, t: f64, y: &StanceState) -> Vector3<f64> {
         let q = Vector3::new(y[0], y[1], y[2]);
         let qd = Vector3::new(y[3], y[4], y[5]);
-        self.setup
-            .model
-            .accelerations(&q, &qd, &self.generalized(t, y), self.locked)
+        let (s1, c1) = y[1].sin_cos();
+        self.setup.model.accelerations_with(
+            s1,
+            c1,
+            &q,
+            &qd,
+            &self.generalized_sc(t, y, s1, c1),
+            self.locked,
+        )
     }
 }
 
@@ -156,13 +185,20 @@ pub struct StanceRun {
     pub residual: Vector2<f64>,
     /// Right-hand-side evaluations spent.
     pub evaluations: u32,
+    /// Some integration step was chosen by the step-size control (no mesh was followed
+    /// throughout).
+    pub adapted: bool,
 }
 
 /// The hip's acceleration over an interval, tabulated on a uniform grid from the stance run
 /// and interpolated by Catmull–Rom cubics: the swing's right-hand side reads the moving hip
 /// here instead of re-evaluating the stance dynamics at every stage (spec §5: the swing uses
-/// the hip of the same step's stance). The table is split where the leg torque switches off
-/// (the acceleration jumps there); ghost points at the ends are extrapolated linearly.
+/// the hip of the same step's stance). The table is split wherever the stance run has a segment
+/// boundary — the leg torque switching off, the position actuator's blend starting, the leg
+/// locking or releasing — since the acceleration or its derivative jumps there; ghost points
+/// at the ends of a piece are extrapolated linearly. The swing integrations stop at the same
+/// [`HipPath::breaks`], so no integrator step straddles a jump (measured: stepping across the
+/// torque switch-off left a 2e-7 global error in swing1 at a 1e-10 tolerance).
 /// Grid ≤ 0.5 ms: interpolation error ≈ h⁴ a⁗ / 384. A kinematic offset of the swing-side hip
 /// joint from the dynamic hip (the determinants of gait, spec §7) adds its acceleration, by
 /// central second differences (step 1e-4 s: truncation ≈ h² f⁗ / 12 ≈ 1e-8 m/s²).
@@ -201,23 +237,29 @@ impl HipPath {
                 a[1] + (m[1] - 2.0 * o[1] + p[1]) / (H * H),
             ]
         };
-        let off = TORQUE_OFF * setup.t_step;
-        let bounds: Vec<(f64, f64)> = if off > t0 && off < t1 {
-            vec![(t0, off), (off, t1)]
-        } else {
-            vec![(t0, t1)]
-        };
-        let pieces = bounds
-            .into_iter()
-            .map(|(a, b)| {
+        let mut cuts = vec![t0];
+        cuts.extend(
+            run.segments
+                .iter()
+                .map(|(seg, _)| seg.t1)
+                .filter(|&t| t > t0 && t < t1),
+        );
+        cuts.push(t1);
+        // the ends of a piece are its inner limits (the state or the forces jump at a cut)
+        let eps = 1e-12 * setup.t_step;
+        let pieces = cuts
+            .windows(2)
+            .map(|w| {
+                let (a, b) = (w[0], w[1]);
                 let n = ((b - a) / HIP_PATH_STEP).ceil().max(2.0) as usize;
                 let dt = (b - a) / n as f64;
                 let mut acc = Vec::with_capacity(n + 3);
                 acc.push([0.0; 2]);
                 for i in 0..=n {
-                    // the right end of a piece is its left limit (the torque is still on there)
                     let t = if i == n {
-                        b - 1e-12 * setup.t_step
+                        b - eps
+                    } else if i == 0 {
+                        a + eps
                     } else {
                         a + i as f64 * dt
                     };
@@ -235,6 +277,11 @@ impl HipPath {
             })
             .collect();
         HipPath { pieces }
+    }
+
+    /// The times inside the tabulated interval where the acceleration may jump.
+    pub fn breaks(&self) -> impl Iterator<Item = f64> + '_ {
+        self.pieces[..self.pieces.len() - 1].iter().map(|p| p.t1)
     }
 
     /// The hip acceleration at t (clamped to the tabulated interval).
@@ -267,6 +314,32 @@ impl StanceRun {
         tau1: f64,
         p: f64,
     ) -> Result<Self, String> {
+        Self::simulate_with(setup, y0, tau1, p, ode::TOLERANCE)
+    }
+
+    /// [`Self::simulate`] at integrator tolerance `tol` (to measure the integration error).
+    pub fn simulate_with(
+        setup: &StanceSetup,
+        y0: StanceState,
+        tau1: f64,
+        p: f64,
+        tol: f64,
+    ) -> Result<Self, String> {
+        Self::simulate_on(setup, y0, tau1, p, tol, None)
+    }
+
+    /// [`Self::simulate_with`] on the step sequences of `mesh`, a previous trial of the same
+    /// stance ([`ode::integrate_on`]): its i-th segment's steps for the i-th segment (from the
+    /// same start time, or shifted when the segment starts at an event), when the subphases
+    /// agree.
+    pub fn simulate_on(
+        setup: &StanceSetup,
+        y0: StanceState,
+        tau1: f64,
+        p: f64,
+        tol: f64,
+        mesh: Option<&StanceRun>,
+    ) -> Result<Self, String> {
         let breaks = [TORQUE_OFF * setup.t_step, 0.5 * setup.t_step, setup.t_step];
         let mut run = StanceRun {
             tau1,
@@ -275,18 +348,20 @@ impl StanceRun {
             aborted: false,
             residual: Vector2::zeros(),
             evaluations: 0,
+            adapted: false,
         };
         let (mut t, mut y, mut locked) = (0.0, y0, false);
         'outer: for t_break in breaks {
             while t < t_break {
-                let forces = StanceForces {
-                    setup,
-                    tau1,
-                    p,
-                    locked,
+                let forces = StanceForces::new(setup, tau1, p, locked);
+                let follow = match mesh.and_then(|m| m.segments.get(run.segments.len())) {
+                    Some((seg, l)) if *l == locked && seg.t0 == t => ode::Mesh::Aligned(seg),
+                    Some((seg, l)) if *l == locked => ode::Mesh::Shifted(seg),
+                    _ => ode::Mesh::Adaptive,
                 };
-                let out = ode::integrate(&forces, t, y, t_break)?;
+                let out = ode::integrate_on(&forces, t, y, t_break, tol, follow)?;
                 run.evaluations += out.evaluations;
+                run.adapted |= out.adapted;
                 t = out.segment.t1;
                 y = out.segment.y1;
                 run.segments.push((out.segment, locked));
@@ -327,17 +402,19 @@ impl StanceRun {
         (seg.state(t), *locked)
     }
 
+    /// Hip position at t (relative to the stance ankle's x): [`Self::hip`]`[0]` without the
+    /// dynamics.
+    pub fn hip_position(&self, setup: &StanceSetup, t: f64) -> [f64; 2] {
+        let (y, _) = self.state(t);
+        setup.model.hip(&Vector3::new(y[0], y[1], y[2]))
+    }
+
     /// Hip position, velocity and acceleration at t (relative to the stance ankle's x).
     pub fn hip(&self, setup: &StanceSetup, t: f64) -> [[f64; 2]; 3] {
         let (y, locked) = self.state(t);
         let q = Vector3::new(y[0], y[1], y[2]);
         let qd = Vector3::new(y[3], y[4], y[5]);
-        let forces = StanceForces {
-            setup,
-            tau1: self.tau1,
-            p: self.p,
-            locked,
-        };
+        let forces = StanceForces::new(setup, self.tau1, self.p, locked);
         let qdd = forces.accelerations(t, &y);
         let m = &setup.model;
         [

@@ -157,6 +157,8 @@ pub struct SwingTrial {
     pub segment: Segment<4>,
     pub residual: Vector2<f64>,
     pub evaluations: u32,
+    /// The integration chose (some of) its own steps rather than following a given mesh.
+    pub adapted: bool,
 }
 
 impl SwingTrial {
@@ -168,12 +170,59 @@ impl SwingTrial {
         t0: f64,
         y0: SwingState,
     ) -> Result<Self, String> {
+        Self::simulate_with(setup, sub, t0, y0, ode::TOLERANCE)
+    }
+
+    /// [`Self::simulate`] at integrator tolerance `tol` (to measure the integration error).
+    pub fn simulate_with(
+        setup: &SwingSetup,
+        sub: Subphase,
+        t0: f64,
+        y0: SwingState,
+        tol: f64,
+    ) -> Result<Self, String> {
+        Self::simulate_on(setup, sub, t0, y0, tol, None)
+    }
+
+    /// [`Self::simulate_with`] on the step sequence of `mesh`, a previous trial of the same
+    /// subphase ([`ode::integrate_on`]): the shooting's residual stays smooth in the unknowns.
+    pub fn simulate_on(
+        setup: &SwingSetup,
+        sub: Subphase,
+        t0: f64,
+        y0: SwingState,
+        tol: f64,
+        mesh: Option<&Segment<4>>,
+    ) -> Result<Self, String> {
         let t_end = match sub {
             Subphase::Swing1 { .. } => setup.t1,
             Subphase::Swing2 { .. } => setup.t2,
             Subphase::Swing3 { .. } => setup.t_end,
         };
-        let out = ode::integrate(&SwingForces { setup, sub }, t0, y0, t_end)?;
+        // piecewise between the hip path's breaks, where the hip acceleration jumps
+        let forces = SwingForces { setup, sub };
+        let stops = setup
+            .hip_path
+            .breaks()
+            .filter(|&b| b > t0 && b < t_end)
+            .chain(std::iter::once(t_end));
+        let mut out: Option<ode::Outcome<4>> = None;
+        for stop in stops {
+            let (t, y) = out
+                .as_ref()
+                .map_or((t0, y0), |o| (o.segment.t1, o.segment.y1));
+            let follow = mesh.map_or(ode::Mesh::Adaptive, ode::Mesh::Aligned);
+            let piece = ode::integrate_on(&forces, t, y, stop, tol, follow)?;
+            let event = piece.event.is_some();
+            out = Some(match out {
+                None => piece,
+                Some(o) => o.then(piece),
+            });
+            if event {
+                break;
+            }
+        }
+        let out = out.expect("at least one piece");
         let y = out.segment.y1;
         let residual = match sub {
             Subphase::Swing1 { .. } => Vector2::new(y[0] - setup.theta3_target, y[0] + y[1]),
@@ -194,6 +243,7 @@ impl SwingTrial {
             segment: out.segment,
             residual,
             evaluations: out.evaluations,
+            adapted: out.adapted,
         })
     }
 }

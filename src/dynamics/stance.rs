@@ -60,8 +60,8 @@ impl StanceModel {
 
     /// Mass matrix M(q) of the telescopic model.
     pub fn mass_matrix(&self, q: &Vector3<f64>) -> Matrix3<f64> {
-        let (w, d) = (q[0], q[1] - q[2]);
-        let (s12, c12) = d.sin_cos();
+        let tr = Trig::new(q[1], q[2]);
+        let (w, s12, c12) = (q[0], tr.s12, tr.c12);
         let m2a = self.m2 * self.a;
         Matrix3::new(
             self.m2,
@@ -78,11 +78,13 @@ impl StanceModel {
 
     /// Bias terms b(q, q̇): centrifugal, Coriolis and gravity, M q̈ + b = Q.
     pub fn bias(&self, q: &Vector3<f64>, qd: &Vector3<f64>) -> Vector3<f64> {
-        let (w, t1, t2) = (q[0], q[1], q[2]);
+        self.bias_with(&Trig::new(q[1], q[2]), q, qd)
+    }
+
+    fn bias_with(&self, tr: &Trig, q: &Vector3<f64>, qd: &Vector3<f64>) -> Vector3<f64> {
+        let w = q[0];
         let (wd, t1d, t2d) = (qd[0], qd[1], qd[2]);
-        let (s1, c1) = t1.sin_cos();
-        let s2 = t2.sin();
-        let (s12, c12) = (t1 - t2).sin_cos();
+        let (s1, c1, s2, s12, c12) = (tr.s1, tr.c1, tr.s2, tr.s12, tr.c12);
         let (m2, a, g) = (self.m2, self.a, self.g);
         Vector3::new(
             -m2 * w * t1d * t1d - m2 * a * c12 * t2d * t2d + m2 * g * c1,
@@ -101,14 +103,45 @@ impl StanceModel {
         force: &Vector3<f64>,
         locked: bool,
     ) -> Vector3<f64> {
-        let m = self.mass_matrix(q);
-        let rhs = force - self.bias(q, qd);
+        let (s1, c1) = q[1].sin_cos();
+        self.accelerations_with(s1, c1, q, qd, force, locked)
+    }
+
+    /// [`Self::accelerations`] with sin θ1 and cos θ1 already known (the stance right-hand side
+    /// needs them for its forces too). M is solved by its structure — M[0][1] = 0 — with the
+    /// Schur complement of the θ2 row: three divisions, no factorization, no allocation.
+    pub(crate) fn accelerations_with(
+        &self,
+        s1: f64,
+        c1: f64,
+        q: &Vector3<f64>,
+        qd: &Vector3<f64>,
+        force: &Vector3<f64>,
+        locked: bool,
+    ) -> Vector3<f64> {
+        let tr = Trig::with(s1, c1, q[2]);
+        let r = force - self.bias_with(&tr, q, qd);
+        let w = q[0];
+        let m2a = self.m2 * self.a;
+        let (m02, m12) = (m2a * tr.s12, m2a * w * tr.c12);
+        let m11 = self.j1 + self.m2 * w * w;
+        let j2 = self.trunk_inertia();
         if locked {
-            let m2 = Matrix2::new(m[(1, 1)], m[(1, 2)], m[(2, 1)], m[(2, 2)]);
-            let acc = solve2(&m2, &Vector2::new(rhs[1], rhs[2]));
-            Vector3::new(0.0, acc[0], acc[1])
+            // rows θ1, θ2 of M (Cramer's rule)
+            let det = m11 * j2 - m12 * m12;
+            Vector3::new(
+                0.0,
+                (r[1] * j2 - m12 * r[2]) / det,
+                (m11 * r[2] - m12 * r[1]) / det,
+            )
         } else {
-            solve3(&m, &rhs)
+            let (e0, e1) = (m02 / self.m2, m12 / m11);
+            let t2dd = (r[2] - e0 * r[0] - e1 * r[1]) / (j2 - e0 * m02 - e1 * m12);
+            Vector3::new(
+                (r[0] - m02 * t2dd) / self.m2,
+                (r[1] - m12 * t2dd) / m11,
+                t2dd,
+            )
         }
     }
 
@@ -152,6 +185,33 @@ impl StanceModel {
             wdd * s1 + 2.0 * wd * t1d * c1 + w * t1dd * c1 - w * t1d * t1d * s1,
             wdd * c1 - 2.0 * wd * t1d * s1 - w * t1dd * s1 - w * t1d * t1d * c1,
         ]
+    }
+}
+
+/// sin and cos of θ1, θ2 and θ1 − θ2 from two `sin_cos` calls.
+struct Trig {
+    s1: f64,
+    c1: f64,
+    s2: f64,
+    s12: f64,
+    c12: f64,
+}
+
+impl Trig {
+    fn new(theta1: f64, theta2: f64) -> Self {
+        let (s1, c1) = theta1.sin_cos();
+        Self::with(s1, c1, theta2)
+    }
+
+    fn with(s1: f64, c1: f64, theta2: f64) -> Self {
+        let (s2, c2) = theta2.sin_cos();
+        Trig {
+            s1,
+            c1,
+            s2,
+            s12: s1 * c2 - c1 * s2,
+            c12: c1 * c2 + s1 * s2,
+        }
     }
 }
 

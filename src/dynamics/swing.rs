@@ -51,7 +51,11 @@ impl SwingModel {
 
     /// Mass matrix in relative coordinates (θ3, θ4).
     pub fn mass_matrix(&self, q: &Vector2<f64>) -> Matrix2<f64> {
-        let c = self.m4 * self.l3 * self.r4 * q[1].cos();
+        self.mass_matrix_c4(q[1].cos())
+    }
+
+    fn mass_matrix_c4(&self, c4: f64) -> Matrix2<f64> {
+        let c = self.m4 * self.l3 * self.r4 * c4;
         let shank = self.i4 + self.m4 * self.r4 * self.r4;
         let a11 =
             self.i3 + self.m3 * self.r3 * self.r3 + self.m4 * self.l3 * self.l3 + shank + 2.0 * c;
@@ -60,9 +64,11 @@ impl SwingModel {
 
     /// Bias terms for a hip accelerating at `hip_acc` = (ẍ_h, ÿ_h).
     pub fn bias(&self, q: &Vector2<f64>, qd: &Vector2<f64>, hip_acc: [f64; 2]) -> Vector2<f64> {
-        let (s3, c3) = q[0].sin_cos();
-        let s4 = q[1].sin();
-        let (sp, cp) = (q[0] + q[1]).sin_cos();
+        self.bias_with(&Trig::new(q), qd, hip_acc)
+    }
+
+    fn bias_with(&self, tr: &Trig, qd: &Vector2<f64>, hip_acc: [f64; 2]) -> Vector2<f64> {
+        let (s3, c3, s4, sp, cp) = (tr.s3, tr.c3, tr.s4, tr.sp, tr.cp);
         let (t3d, t4d) = (qd[0], qd[1]);
         let k = self.m3 * self.r3 + self.m4 * self.l3;
         let c = self.m4 * self.l3 * self.r4;
@@ -77,6 +83,7 @@ impl SwingModel {
     }
 
     /// q̈ = M⁻¹ (Q − b). With `locked` the knee is held (θ̇4 = θ̈4 = 0): a single pendulum.
+    /// Two `sin_cos` calls (θ3, θ4; the shank's angle by the addition formulas), no allocation.
     pub fn accelerations(
         &self,
         q: &Vector2<f64>,
@@ -85,8 +92,9 @@ impl SwingModel {
         hip_acc: [f64; 2],
         locked: bool,
     ) -> Vector2<f64> {
-        let m = self.mass_matrix(q);
-        let rhs = torque - self.bias(q, qd, hip_acc);
+        let tr = Trig::new(q);
+        let m = self.mass_matrix_c4(tr.c4);
+        let rhs = torque - self.bias_with(&tr, qd, hip_acc);
         if locked {
             Vector2::new(rhs[0] / m[(0, 0)], 0.0)
         } else {
@@ -131,5 +139,30 @@ impl SwingModel {
             self.l3 * s3 + self.l4 * sp,
             self.l4 * sp,
         )
+    }
+}
+
+/// sin and cos of θ3, θ4 and φ = θ3 + θ4 from two `sin_cos` calls.
+struct Trig {
+    s3: f64,
+    c3: f64,
+    s4: f64,
+    c4: f64,
+    sp: f64,
+    cp: f64,
+}
+
+impl Trig {
+    fn new(q: &Vector2<f64>) -> Self {
+        let (s3, c3) = q[0].sin_cos();
+        let (s4, c4) = q[1].sin_cos();
+        Trig {
+            s3,
+            c3,
+            s4,
+            c4,
+            sp: s3 * c4 + c3 * s4,
+            cp: c3 * c4 - s3 * s4,
+        }
     }
 }
