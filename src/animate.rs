@@ -280,12 +280,12 @@ fn view_chart<'a, DB: DrawingBackend>(
     let (x1, y1) = chart.backend_coord(&(u_hi, v_hi));
     let sx = f64::from(x1 - x0) / (u_hi - u_lo);
     let sy = f64::from(y0 - y1) / (v_hi - v_lo);
-    let (ox, oy) = area.get_base_pixel();
+    // backend coordinates: already in the whole image's pixels
     let map = ViewMap {
         u0: u_lo,
         v0: v_lo,
-        px0: f64::from(x0 + ox),
-        py0: f64::from(y0 + oy),
+        px0: f64::from(x0),
+        py0: f64::from(y0),
         scale: 0.5 * (sx + sy),
     };
     Ok((chart, map))
@@ -439,7 +439,11 @@ fn draw_frame<DB: DrawingBackend>(
                         "t = {:.2} s, step {} ({} stance); dots: feet on the ground",
                         lm.time,
                         lm.step + 1,
-                        if lm.step.is_multiple_of(2) { "right" } else { "left" }
+                        if lm.step.is_multiple_of(2) {
+                            "right"
+                        } else {
+                            "left"
+                        }
                     ),
                 ]
             } else {
