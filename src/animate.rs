@@ -341,6 +341,35 @@ enum Limb {
     Trunk,
 }
 
+/// `lines` broken at spaces so that each fits in `width` pixels (a word longer than that stays
+/// whole).
+fn wrap<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    lines: &[String],
+    width: u32,
+    style: &TextStyle,
+) -> std::result::Result<Vec<String>, String> {
+    let mut out = Vec::new();
+    for line in lines {
+        let mut current = String::new();
+        for word in line.split(' ') {
+            let candidate = if current.is_empty() {
+                word.to_string()
+            } else {
+                format!("{current} {word}")
+            };
+            let (tw, _) = area.estimate_text_size(&candidate, style).map_err(msg)?;
+            if tw > width && !current.is_empty() {
+                out.push(std::mem::replace(&mut current, word.to_string()));
+            } else {
+                current = candidate;
+            }
+        }
+        out.push(current);
+    }
+    Ok(out)
+}
+
 /// The foot points on the ground.
 fn contacts(lm: &Landmarks) -> Vec<[f64; 3]> {
     [&lm.right, &lm.left]
@@ -359,12 +388,50 @@ fn draw_frame<DB: DrawingBackend>(
     text: bool,
 ) -> std::result::Result<FrameViews, String> {
     root.fill(&WHITE).map_err(msg)?;
-    let (w, _) = root.dim_in_pixel();
-    let (side_area, front_area) = root.split_horizontally(w * 2 / 3);
+    let (w, h) = root.dim_in_pixel();
+    let side_w = w * 2 / 3;
+    let (side_area, front_area) = root.split_horizontally(side_w);
     let f = &body.figure;
-    // the head's top, with room above for the text
-    let top = lm.pelvis[1] + f.spine + f.neck + f.head;
-    let v_range = (-0.12, top.max(body.height) + if text { 0.32 } else { 0.08 });
+    // the text, wrapped to each view's width, in the room above the figure
+    let font_px = (h / 30).clamp(12, 16) as i32;
+    let style = (FONT, font_px).into_font().color(&BLACK);
+    let line_px = font_px + 4;
+    let (side_lines, front_lines) = if text {
+        let stance = if lm.step.is_multiple_of(2) {
+            "right"
+        } else {
+            "left"
+        };
+        let side = [
+            format!("side view: {title}"),
+            format!(
+                "t = {:.2} s, step {} ({stance} stance); dots: feet on the ground",
+                lm.time,
+                lm.step + 1
+            ),
+        ];
+        let front = ["front view: walker's right on the left".to_string()];
+        let width = |px: u32| px.saturating_sub(2 * MARGIN + 12);
+        (
+            wrap(root, &side, width(side_w), &style)?,
+            wrap(root, &front, width(w - side_w), &style)?,
+        )
+    } else {
+        (Vec::new(), Vec::new())
+    };
+    let text_px = match side_lines.len().max(front_lines.len()) {
+        0 => 0.0,
+        n => f64::from(n as i32 * line_px + 8),
+    };
+    // the head's top; the vertical range leaves text_px above it
+    let top = (lm.pelvis[1] + f.spine + f.neck + f.head).max(body.height) + 0.05;
+    let ph = f64::from(h.saturating_sub(2 * MARGIN));
+    let headroom = if ph > text_px + 40.0 {
+        text_px * (top + 0.12) / (ph - text_px)
+    } else {
+        0.0
+    };
+    let v_range = (-0.12, top + headroom);
     let segs = segments(lm, sk, body);
     let dots = contacts(lm);
     let head_centre = sk
@@ -430,35 +497,13 @@ fn draw_frame<DB: DrawingBackend>(
                     .map(|&p| Circle::new(project(p), CONTACT_RADIUS, CONTACT_COLOR.filled())),
             )
             .map_err(msg)?;
-        if text {
-            let style = (FONT, 15).into_font().color(&BLACK);
-            let lines: Vec<String> = if side_view {
-                vec![
-                    format!("side view: {title}"),
-                    format!(
-                        "t = {:.2} s, step {} ({} stance); dots: feet on the ground",
-                        lm.time,
-                        lm.step + 1,
-                        if lm.step.is_multiple_of(2) {
-                            "right"
-                        } else {
-                            "left"
-                        }
-                    ),
-                ]
-            } else {
-                vec![
-                    "front view".to_string(),
-                    "walker's right on the left".to_string(),
-                ]
-            };
-            chart
-                .draw_series(lines.into_iter().enumerate().map(|(i, line)| {
-                    EmptyElement::at((u_lo, v_range.1))
-                        + Text::new(line, (6, 4 + 19 * i as i32), style.clone())
-                }))
-                .map_err(msg)?;
-        }
+        let lines = if side_view { &side_lines } else { &front_lines };
+        chart
+            .draw_series(lines.iter().enumerate().map(|(i, line)| {
+                EmptyElement::at((u_lo, v_range.1))
+                    + Text::new(line.clone(), (6, 4 + line_px * i as i32), style.clone())
+            }))
+            .map_err(msg)?;
         maps.push(map);
     }
     Ok(FrameViews {
