@@ -184,3 +184,50 @@ fn bad_paths_options_and_frames_are_typed_errors() {
         .collect();
     assert_eq!(names, vec!["walk.gif".to_string()], "temporary files left");
 }
+
+/// `klaw animate`: a GIF of the requested size; a bad extension or size exits 2 and writes
+/// nothing.
+#[test]
+fn cli_writes_the_gif() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_klaw"))
+            .args(args)
+            .output()
+            .unwrap()
+    };
+    let out = dir.path().join("w.gif");
+    let o = run(&[
+        "animate",
+        "--steps",
+        "1",
+        "--fps",
+        "10",
+        "--size",
+        "300x150",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let frames = decode(&out);
+    assert!(!frames.is_empty());
+    assert_eq!(frames[0].0.dimensions(), (300, 150));
+    for args in [
+        vec!["animate", "--out", "w.png"],
+        vec!["animate", "--size", "300", "--out", "v.gif"],
+        vec!["animate", "--fps", "0", "--out", "v.gif"],
+    ] {
+        let mut args: Vec<String> = args.iter().map(|s| s.to_string()).collect();
+        let last = args.len() - 1;
+        args[last] = dir.path().join(&args[last]).to_string_lossy().into_owned();
+        let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = run(&refs);
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+    }
+    let mut names: Vec<String> = fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(names, vec!["w.gif".to_string()]);
+}

@@ -398,3 +398,33 @@ fn default_walk_figure_and_errors() {
     let e = GaitCycle::from_walk(&default_walk(5)).unwrap_err();
     assert!(matches!(e, Error::Export { .. }), "{e}");
 }
+
+/// `klaw plot`: writes the figure and prints one line per check (23 for the bundled table: 9
+/// norms on both legs, 5 on the pelvis); a bad extension exits 2 before simulating.
+#[test]
+fn cli_writes_the_figure_and_prints_the_checks() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("cycle.png");
+    let run = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_klaw"))
+            .args(args)
+            .output()
+            .unwrap()
+    };
+    let o = run(&["plot", "--steps", "6", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let checks = stdout
+        .lines()
+        .filter(|l| l.ends_with(": inside") || l.ends_with(": OUTSIDE"))
+        .count();
+    assert_eq!(checks, 23, "{stdout}");
+    assert_eq!(
+        image::open(&out).unwrap().to_rgb8().dimensions(),
+        CYCLE_FIGURE_SIZE
+    );
+    let bad = dir.path().join("cycle.jpg");
+    let o = run(&["plot", "--out", bad.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(!bad.exists());
+}
