@@ -91,6 +91,12 @@ impl AtomicFile {
         })
     }
 
+    /// The temporary file, for writers that open the file by name (its content is what
+    /// `commit` renames over the target; write nothing through [`AtomicFile::writer`] then).
+    pub fn temp_path(&self) -> &Path {
+        &self.guard.path
+    }
+
     /// Where to write.
     pub fn writer(&mut self) -> &mut BufWriter<File> {
         &mut self.out

@@ -1,5 +1,6 @@
 //! klaw: goal-directed, dynamically simulated human walking after Bruderlin & Calvert,
 //! "Goal-directed, dynamic animation of human walking" (SIGGRAPH 1989).
+pub mod animate;
 pub mod attributes;
 pub mod body;
 pub mod control;
@@ -19,6 +20,7 @@ pub mod export;
 pub mod figure;
 pub mod io;
 pub mod plot;
+pub mod plot_cycle;
 pub mod plot_sweep;
 pub mod report;
 pub mod skeleton;

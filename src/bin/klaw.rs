@@ -132,6 +132,139 @@ enum Command {
             klaw plot-sweep grid.csv --x velocity --y height --column peak_knee --out knee.png"
     )]
     PlotSweep(PlotSweepArgs),
+    /// Joint angle curves over the gait cycle with the normal ranges shaded (PNG/SVG)
+    #[command(
+        long_about = "Simulate a walk (the flags of `klaw walk`; default: v 1.4 m/s, H 1.8 m, M 80 kg, 10 steps)\n\
+            and draw its joint angle curves over the gait cycle: hip flexion, knee flexion, ankle\n\
+            dorsiflexion, pelvic list, pelvic rotation and pelvis height against 0-100 % of the cycle,\n\
+            averaged over the steady cycles (the first cycle of each leg is left out, so at least 6\n\
+            steps are needed: heel strikes start the even steps on the right, the odd ones on the\n\
+            left; the walk is sampled at 200 frames/s). The right leg\n\
+            and the pelvis run from right heel strike, the left leg (dashed) from left heel strike.\n\
+            The published normal ranges of models/gait-norms.toml are shaded over their cycle\n\
+            windows, and each is checked: the values are printed, outside ranges flagged.\n\
+            1500 x 1000 px, PNG or SVG by the extension of --out, written whole or not at all.\n\
+            \n\
+            Example: klaw plot --velocity 1.2 --out slow-cycle.svg"
+    )]
+    Plot(PlotArgs),
+    /// Stick-figure animation of a walk, side and front view (animated GIF)
+    #[command(
+        long_about = "Simulate a walk (the flags of `klaw walk`) and write a stick-figure animation of it as an\n\
+            animated GIF: a side view (x forward, y up; the camera follows the pelvis, ticks on the\n\
+            ground every 0.25 m) and a front view (the walker coming towards you: its right side on\n\
+            the left of the picture). Legs (hip, knee, ankle, heel, metatarsal joint, toe), pelvis,\n\
+            spine, shoulders, head and arms; the right side blue, the left red. A black dot marks\n\
+            every foot point on the ground (heel, metatarsal joint or toe tip within 1 mm of it).\n\
+            One GIF frame per 1/fps s of walk time, shown for 1/fps s (GIF delays are whole\n\
+            hundredths of a second). Written whole or not at all.\n\
+            \n\
+            Example: klaw animate --velocity 1.2 --out slow.gif --fps 20 --size 600x300"
+    )]
+    Animate(AnimateArgs),
+}
+
+/// The walk of `klaw plot` and `klaw animate`: the gait, body and attribute flags of
+/// `klaw walk`.
+#[derive(Args)]
+struct FigureWalkArgs {
+    /// Walking speed v in m/s, range [0.4, 2.5] [default: 1.4 if no gait flag is given]
+    #[arg(long, value_name = "M/S", allow_negative_numbers = true)]
+    velocity: Option<f64>,
+    /// Step length sl in m [default: from the normalizing formula]
+    #[arg(long, value_name = "M", allow_negative_numbers = true)]
+    step_length: Option<f64>,
+    /// Step frequency sf in steps/min, range [50, 182] [default: from the normalizing formula]
+    #[arg(long, value_name = "STEPS/MIN", allow_negative_numbers = true)]
+    step_frequency: Option<f64>,
+    /// Body height H in m, range [1.2, 2.2]
+    #[arg(long, value_name = "M", default_value_t = DEFAULT_HEIGHT, allow_negative_numbers = true)]
+    height: f64,
+    /// Body mass M in kg, range [25, 200]
+    #[arg(long, value_name = "KG", default_value_t = DEFAULT_MASS, allow_negative_numbers = true)]
+    mass: f64,
+    /// Number of steps, range [1, 1000000] [default: 10, or the schedule's length]
+    #[arg(long, value_name = "N")]
+    steps: Option<usize>,
+    /// Per-step gait requests from a .toml or .csv file (see klaw walk --help)
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["velocity", "step_length", "step_frequency"])]
+    schedule: Option<PathBuf>,
+    /// Locomotion attribute overrides: a TOML file `name = value`
+    #[arg(long, value_name = "FILE")]
+    attributes: Option<PathBuf>,
+    /// Style preset: normal, brisk, elderly, march or long-stride
+    #[arg(long, value_name = "NAME")]
+    style: Option<String>,
+}
+
+impl FigureWalkArgs {
+    /// These flags as `klaw walk`'s, its outputs switched off, to share `gaits`.
+    fn walk_args(&self) -> WalkArgs {
+        WalkArgs {
+            velocity: self.velocity,
+            step_length: self.step_length,
+            step_frequency: self.step_frequency,
+            height: self.height,
+            mass: self.mass,
+            steps: self.steps,
+            schedule: self.schedule.clone(),
+            attributes: self.attributes.clone(),
+            style: self.style.clone(),
+            fps: DEFAULT_FPS,
+            out: PathBuf::from("walk.csv"),
+            plot: PathBuf::from("walk.png"),
+            no_plot: true,
+            report: None,
+        }
+    }
+
+    /// Simulate the walk; also the title line of its parameters.
+    fn simulate(&self) -> Result<(klaw::walk::Walk, String)> {
+        let body = Body::standard(self.height, self.mass)?;
+        let attrs = load_attributes(self.style.as_deref(), self.attributes.as_deref())?;
+        let gaits = gaits(&self.walk_args(), &body, &attrs)?;
+        let style = match (&self.style, &self.attributes) {
+            (Some(s), Some(a)) => format!("{s} + {}", a.display()),
+            (Some(s), None) => s.clone(),
+            (None, Some(a)) => a.display().to_string(),
+            (None, None) => "default".to_string(),
+        };
+        let title = klaw::plot_cycle::parameters_title(&gaits, &body, &style);
+        Ok((simulate(body, attrs, &gaits)?, title))
+    }
+}
+
+#[derive(Args)]
+struct PlotArgs {
+    #[command(flatten)]
+    walk: FigureWalkArgs,
+    /// Figure to write: PNG or SVG by the extension
+    #[arg(
+        long,
+        value_name = "FILE.png|FILE.svg",
+        default_value = "plots/gait-cycle.png"
+    )]
+    out: PathBuf,
+}
+
+#[derive(Args)]
+struct AnimateArgs {
+    #[command(flatten)]
+    walk: FigureWalkArgs,
+    /// Animation to write (.gif)
+    #[arg(long, value_name = "FILE.gif", default_value = "walk.gif")]
+    out: PathBuf,
+    /// Frames per second of walk time (also the playback rate), range [1, 100]
+    #[arg(
+        long,
+        value_name = "HZ",
+        default_value_t = 25.0,
+        allow_negative_numbers = true
+    )]
+    fps: f64,
+    /// Image size in pixels, WIDTHxHEIGHT (not --height: that is the body height)
+    #[arg(long, value_name = "WxH", default_value = "900x450")]
+    size: String,
 }
 
 #[derive(Args)]
@@ -437,6 +570,8 @@ fn main() -> ExitCode {
         Command::Sweep(args) => sweep(&args),
         Command::Merge(args) => merge(&args),
         Command::PlotSweep(args) => plot_sweep(&args),
+        Command::Plot(args) => plot_cycle(&args),
+        Command::Animate(args) => animate(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -844,6 +979,54 @@ fn plot_sweep(args: &PlotSweepArgs) -> Result<()> {
         map.ys.len(),
         map.cells.len(),
         args.out.display()
+    );
+    Ok(())
+}
+
+fn font_note() -> &'static str {
+    if plot::text_available() {
+        ""
+    } else {
+        " (no font found: drawn without text; set KLAW_FONT to a .ttf file)"
+    }
+}
+
+fn plot_cycle(args: &PlotArgs) -> Result<()> {
+    plot::figure_format(&args.out)?;
+    check_output_dir(&args.out)?;
+    let (walk, title) = args.walk.simulate()?;
+    let cycle = klaw::plot_cycle::GaitCycle::from_walk(&walk)?;
+    let norms = klaw::plot_cycle::NormTable::builtin();
+    let figure = klaw::plot_cycle::write_cycle_figure(&cycle, &norms, &title, &args.out)?;
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(
+        out,
+        "gait cycle of {title}: mean of {} right / {} left cycles",
+        cycle.cycles.0, cycle.cycles.1
+    );
+    for c in &figure.checks {
+        let _ = writeln!(out, "  {}", c.describe());
+    }
+    let _ = writeln!(out, "plot: {}{}", args.out.display(), font_note());
+    Ok(())
+}
+
+fn animate(args: &AnimateArgs) -> Result<()> {
+    let options = klaw::animate::Options::new(args.fps, klaw::animate::parse_size(&args.size)?)?;
+    klaw::animate::check_path(&args.out)?;
+    check_output_dir(&args.out)?;
+    let (walk, title) = args.walk.simulate()?;
+    let summary = klaw::animate::animate_walk(&walk, &title, &args.out, &options)?;
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(
+        out,
+        "animation of {title}: {} frames at {} frames/s, {} x {} px: {}{}",
+        summary.frames,
+        options.fps,
+        options.size.0,
+        options.size.1,
+        args.out.display(),
+        font_note()
     );
     Ok(())
 }

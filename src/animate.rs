@@ -1,0 +1,513 @@
+//! Stick-figure animation of a walk (`klaw animate`, issue item 10): an animated GIF, one frame
+//! per 1/fps s of walk time, each with two views of the figure of [`crate::figure`]:
+//! - side view: x forward to the right, y up, the viewer on the figure's right side (+z); the
+//!   camera follows the pelvis, ticks on the ground every [`GROUND_TICK_M`] show the progression;
+//! - front view: the walker coming towards the viewer, so its right side (+z) is on the left of
+//!   the picture (horizontal axis −z), y up; the camera stays on the walk's plane z = 0.
+//!
+//! Both views have one scale (px per m) on both axes. The figure: each leg hip–knee–ankle–heel–
+//! metatarsal joint–toe tip (and ankle–metatarsal joint, closing the foot), the pelvis line
+//! between the hip joints, the spine from the pelvis centre to the shoulder line, neck and head,
+//! the arms shoulder–elbow–wrist–hand tip (segment frames from [`crate::skeleton::Skeleton`],
+//! dimensions from [`Body::figure`]). The right side is blue, the left red, the trunk grey; in
+//! the side view the far (left) limbs are drawn first and paler. Every foot point (heel,
+//! metatarsal joint, toe tip) within [`CONTACT_TOLERANCE_M`] of the ground gets a black dot in
+//! both views.
+//!
+//! The GIF is written by plotters' [`BitMapBackend::gif`] frame by frame into a temporary file
+//! next to the target, renamed over it when complete: written whole or not at all. Text (the
+//! walk's parameters, the time) needs the font of [`crate::plot`] and is left out without one.
+use std::io::Read;
+use std::path::Path;
+
+use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
+use plotters::prelude::*;
+
+use crate::body::Body;
+use crate::error::{Error, Result};
+use crate::figure::{Landmarks, LegPoints};
+use crate::plot::{self, FONT, msg};
+use crate::skeleton::Skeleton;
+use crate::walk::Walk;
+
+/// A foot point this close to the ground (m) is drawn as a contact.
+pub const CONTACT_TOLERANCE_M: f64 = 1e-3;
+/// Spacing of the ground ticks of the side view (m).
+pub const GROUND_TICK_M: f64 = 0.25;
+/// Frame rate range (frames/s): GIF delays are whole hundredths of a second.
+pub const FPS_RANGE: (f64, f64) = (1.0, 100.0);
+/// Image width range (px).
+pub const WIDTH_RANGE: (u32, u32) = (200, 4000);
+/// Image height range (px).
+pub const HEIGHT_RANGE: (u32, u32) = (100, 4000);
+/// At most this many frames (a GIF of more would take long to write and be too large to show).
+pub const MAX_FRAMES: usize = 20_000;
+/// Colour of the contact dots.
+pub const CONTACT_COLOR: RGBColor = RGBColor(0, 0, 0);
+/// The right side's segments.
+pub const RIGHT_COLOR: RGBColor = RGBColor(31, 119, 180);
+/// The left side's segments.
+pub const LEFT_COLOR: RGBColor = RGBColor(214, 39, 40);
+/// Pelvis, spine, shoulders, neck and head.
+pub const TRUNK_COLOR: RGBColor = RGBColor(95, 95, 95);
+const GROUND_COLOR: RGBColor = RGBColor(140, 140, 140);
+const CONTACT_RADIUS: i32 = 4;
+const MARGIN: u32 = 8;
+
+/// The animation's frame rate and image size.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Options {
+    /// Frames per second of walk time, also the playback rate.
+    pub fps: f64,
+    /// Width and height in pixels.
+    pub size: (u32, u32),
+}
+
+impl Options {
+    /// Check the frame rate against [`FPS_RANGE`] and the size against [`WIDTH_RANGE`] and
+    /// [`HEIGHT_RANGE`] ([`Error::OutOfRange`] / [`Error::NotFinite`]).
+    pub fn new(fps: f64, size: (u32, u32)) -> Result<Options> {
+        Error::check_range("fps", fps, FPS_RANGE.0, FPS_RANGE.1, "frames/s")?;
+        let (w, h) = size;
+        Error::check_range(
+            "width",
+            f64::from(w),
+            f64::from(WIDTH_RANGE.0),
+            f64::from(WIDTH_RANGE.1),
+            "px",
+        )?;
+        Error::check_range(
+            "height of the image",
+            f64::from(h),
+            f64::from(HEIGHT_RANGE.0),
+            f64::from(HEIGHT_RANGE.1),
+            "px",
+        )?;
+        Ok(Options { fps, size })
+    }
+
+    /// The display time of a frame in milliseconds, as plotters takes it (it rounds to
+    /// hundredths of a second).
+    pub fn frame_delay_ms(&self) -> u32 {
+        (1000.0 / self.fps).round() as u32
+    }
+}
+
+impl Default for Options {
+    /// 25 frames/s, 900 × 450 px.
+    fn default() -> Self {
+        Options {
+            fps: 25.0,
+            size: (900, 450),
+        }
+    }
+}
+
+/// Parse `WIDTHxHEIGHT` (e.g. `900x450`); errors are [`Error::BadSpec`] for `--size`.
+pub fn parse_size(text: &str) -> Result<(u32, u32)> {
+    let bad = || Error::BadSpec {
+        flag: "size".into(),
+        reason: format!("`{text}` is not WIDTHxHEIGHT in pixels, e.g. 900x450"),
+    };
+    let (w, h) = text.trim().split_once(['x', 'X', '×']).ok_or_else(bad)?;
+    let w = w.trim().parse::<u32>().map_err(|_| bad())?;
+    let h = h.trim().parse::<u32>().map_err(|_| bad())?;
+    Ok((w, h))
+}
+
+/// The animation's path must end in `.gif` (any case); else [`Error::Malformed`].
+pub fn check_path(path: &Path) -> Result<()> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    if ext.as_deref() == Some("gif") {
+        Ok(())
+    } else {
+        Err(Error::Malformed {
+            what: "animation path",
+            path: path.to_path_buf(),
+            reason: "the extension must be .gif".to_string(),
+        })
+    }
+}
+
+/// A view's world-to-pixel map: pixel = (px0 + scale · (u − u0), py0 − scale · (v − v0)), u the
+/// view's horizontal coordinate (x in the side view, −z in the front view), v = y.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ViewMap {
+    pub u0: f64,
+    pub v0: f64,
+    pub px0: f64,
+    pub py0: f64,
+    /// Pixels per metre, both axes.
+    pub scale: f64,
+}
+
+impl ViewMap {
+    /// The pixel of view coordinates (u, v).
+    pub fn pixel(&self, u: f64, v: f64) -> (i32, i32) {
+        (
+            (self.px0 + self.scale * (u - self.u0)).round() as i32,
+            (self.py0 - self.scale * (v - self.v0)).round() as i32,
+        )
+    }
+}
+
+/// Where one frame's views were drawn.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrameViews {
+    pub side: ViewMap,
+    pub front: ViewMap,
+}
+
+/// What was written.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Summary {
+    /// GIF frames written.
+    pub frames: usize,
+    /// Each frame's view maps.
+    pub views: Vec<FrameViews>,
+}
+
+/// Animate `walk`: its figure at `options.fps` ([`crate::figure::frames`]), then [`write_gif`].
+/// `title` names the walk (e.g. [`crate::plot_cycle::parameters_title`]).
+pub fn animate_walk(walk: &Walk, title: &str, path: &Path, options: &Options) -> Result<Summary> {
+    check_path(path)?;
+    let expected = walk.duration() * options.fps + 1.0;
+    Error::check_range(
+        "frame count (duration · fps + 1)",
+        expected.floor(),
+        1.0,
+        MAX_FRAMES as f64,
+        "frames",
+    )?;
+    let frames = crate::figure::frames(walk, options.fps).collect::<Result<Vec<Landmarks>>>()?;
+    write_gif(&frames, &walk.body, title, path, options)
+}
+
+/// Write `frames` (the figure at successive instants, 1/fps apart) as an animated GIF to `path`
+/// (see the module doc). Errors: a path not ending in .gif ([`Error::Malformed`]), no frames
+/// or more than [`MAX_FRAMES`] ([`Error::Export`]), a frame the skeleton cannot be built from
+/// ([`Error::NotFinite`], [`Error::Geometry`]), drawing or writing ([`Error::Io`], action
+/// "writing"). On error no file is left and an existing `path` is untouched.
+pub fn write_gif(
+    frames: &[Landmarks],
+    body: &Body,
+    title: &str,
+    path: &Path,
+    options: &Options,
+) -> Result<Summary> {
+    check_path(path)?;
+    let options = Options::new(options.fps, options.size)?;
+    if frames.is_empty() || frames.len() > MAX_FRAMES {
+        return Err(Error::Export {
+            what: format!(
+                "{}: {} frames to animate; between 1 and {MAX_FRAMES} are needed",
+                path.display(),
+                frames.len()
+            ),
+        });
+    }
+    // every skeleton first: a bad frame fails before any drawing
+    let skeletons = frames
+        .iter()
+        .map(|lm| Skeleton::new(lm, body))
+        .collect::<Result<Vec<_>>>()?;
+    let text = plot::text_available();
+    let fail = |reason: String| Error::Io {
+        action: "writing",
+        path: path.to_path_buf(),
+        source: std::io::Error::other(format!("drawing the animation: {reason}")),
+    };
+    let file = crate::io::AtomicFile::create(path)?;
+    let mut views = Vec::with_capacity(frames.len());
+    {
+        let backend = BitMapBackend::gif(file.temp_path(), options.size, options.frame_delay_ms())
+            .map_err(|e| fail(e.to_string()))?;
+        let root = backend.into_drawing_area();
+        for (lm, sk) in frames.iter().zip(&skeletons) {
+            views.push(draw_frame(&root, lm, sk, body, title, text).map_err(fail)?);
+            root.present().map_err(|e| fail(e.to_string()))?;
+        }
+        // dropping the backend writes the GIF trailer (errors there are not reported: checked
+        // below)
+    }
+    let complete = gif_is_complete(file.temp_path()).map_err(|e| file.error(e))?;
+    if !complete {
+        return Err(fail(
+            "the GIF has no trailer: the file was not completed".into(),
+        ));
+    }
+    file.commit()?;
+    Ok(Summary {
+        frames: frames.len(),
+        views,
+    })
+}
+
+/// Whether the file ends with the GIF trailer byte (0x3B).
+fn gif_is_complete(path: &Path) -> std::io::Result<bool> {
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)?.read_to_end(&mut bytes)?;
+    Ok(bytes.starts_with(b"GIF8") && bytes.last() == Some(&0x3B))
+}
+
+type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// A view's chart over `area` with one scale on both axes: vertical range [v_lo, v_hi], the
+/// horizontal range centred on `u_mid`.
+fn view_chart<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    u_mid: f64,
+    (v_lo, v_hi): (f64, f64),
+) -> std::result::Result<(Chart<'a, DB>, ViewMap), String> {
+    let (w, h) = area.dim_in_pixel();
+    let (pw, ph) = (
+        f64::from(w.saturating_sub(2 * MARGIN).max(2)),
+        f64::from(h.saturating_sub(2 * MARGIN).max(2)),
+    );
+    let scale = ph / (v_hi - v_lo);
+    let half = 0.5 * pw / scale;
+    let (u_lo, u_hi) = (u_mid - half, u_mid + half);
+    let chart = ChartBuilder::on(area)
+        .margin(MARGIN)
+        .build_cartesian_2d(u_lo..u_hi, v_lo..v_hi)
+        .map_err(msg)?;
+    // the map from two corners, as plotters places them
+    let (x0, y0) = chart.backend_coord(&(u_lo, v_lo));
+    let (x1, y1) = chart.backend_coord(&(u_hi, v_hi));
+    let sx = f64::from(x1 - x0) / (u_hi - u_lo);
+    let sy = f64::from(y0 - y1) / (v_hi - v_lo);
+    // backend coordinates: already in the whole image's pixels
+    let map = ViewMap {
+        u0: u_lo,
+        v0: v_lo,
+        px0: f64::from(x0),
+        py0: f64::from(y0),
+        scale: 0.5 * (sx + sy),
+    };
+    Ok((chart, map))
+}
+
+/// The figure's segments as polylines of 3-D points, each with its colour and side.
+fn segments(lm: &Landmarks, sk: &Skeleton, body: &Body) -> Vec<(Limb, Vec<[f64; 3]>)> {
+    let leg = |l: &LegPoints| {
+        vec![
+            vec![l.hip, l.knee, l.ankle, l.heel, l.mtp, l.toe],
+            vec![l.ankle, l.mtp],
+        ]
+    };
+    let f = &body.figure;
+    let t = |u: [f64; 3]| sk.thorax.point(glam::DVec3::from_array(u)).to_array();
+    let arm = |a: &crate::skeleton::ArmFrames| {
+        vec![
+            a.upper_arm.origin.to_array(),
+            a.forearm.origin.to_array(),
+            a.hand.origin.to_array(),
+            a.hand.point(glam::DVec3::new(0.0, -f.hand, 0.0)).to_array(),
+        ]
+    };
+    let mut out = Vec::new();
+    for p in leg(&lm.left) {
+        out.push((Limb::Left, p));
+    }
+    out.push((Limb::Left, arm(&sk.left_arm)));
+    out.push((Limb::Trunk, vec![lm.right.hip, lm.left.hip]));
+    out.push((Limb::Trunk, vec![lm.pelvis, t([0.0, f.spine, 0.0])]));
+    out.push((
+        Limb::Trunk,
+        vec![
+            t([0.0, f.spine, f.shoulder_width / 2.0]),
+            t([0.0, f.spine, -f.shoulder_width / 2.0]),
+        ],
+    ));
+    out.push((
+        Limb::Trunk,
+        vec![t([0.0, f.spine, 0.0]), t([0.0, f.spine + f.neck, 0.0])],
+    ));
+    for p in leg(&lm.right) {
+        out.push((Limb::Right, p));
+    }
+    out.push((Limb::Right, arm(&sk.right_arm)));
+    out
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Limb {
+    Right,
+    Left,
+    Trunk,
+}
+
+/// `lines` broken at spaces so that each fits in `width` pixels (a word longer than that stays
+/// whole).
+fn wrap<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    lines: &[String],
+    width: u32,
+    style: &TextStyle,
+) -> std::result::Result<Vec<String>, String> {
+    let mut out = Vec::new();
+    for line in lines {
+        let mut current = String::new();
+        for word in line.split(' ') {
+            let candidate = if current.is_empty() {
+                word.to_string()
+            } else {
+                format!("{current} {word}")
+            };
+            let (tw, _) = area.estimate_text_size(&candidate, style).map_err(msg)?;
+            if tw > width && !current.is_empty() {
+                out.push(std::mem::replace(&mut current, word.to_string()));
+            } else {
+                current = candidate;
+            }
+        }
+        out.push(current);
+    }
+    Ok(out)
+}
+
+/// The foot points on the ground.
+fn contacts(lm: &Landmarks) -> Vec<[f64; 3]> {
+    [&lm.right, &lm.left]
+        .into_iter()
+        .flat_map(|l| [l.heel, l.mtp, l.toe])
+        .filter(|p| p[1].abs() < CONTACT_TOLERANCE_M)
+        .collect()
+}
+
+fn draw_frame<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    lm: &Landmarks,
+    sk: &Skeleton,
+    body: &Body,
+    title: &str,
+    text: bool,
+) -> std::result::Result<FrameViews, String> {
+    root.fill(&WHITE).map_err(msg)?;
+    let (w, h) = root.dim_in_pixel();
+    let side_w = w * 2 / 3;
+    let (side_area, front_area) = root.split_horizontally(side_w);
+    let f = &body.figure;
+    // the text, wrapped to each view's width, in the room above the figure
+    let font_px = (h / 30).clamp(12, 16) as i32;
+    let style = (FONT, font_px).into_font().color(&BLACK);
+    let line_px = font_px + 4;
+    let (side_lines, front_lines) = if text {
+        let stance = if lm.step.is_multiple_of(2) {
+            "right"
+        } else {
+            "left"
+        };
+        let side = [
+            format!("side view: {title}"),
+            format!(
+                "t = {:.2} s, step {} ({stance} stance); dots: feet on the ground",
+                lm.time,
+                lm.step + 1
+            ),
+        ];
+        let front = ["front view: walker's right on the left".to_string()];
+        let width = |px: u32| px.saturating_sub(2 * MARGIN + 12);
+        (
+            wrap(root, &side, width(side_w), &style)?,
+            wrap(root, &front, width(w - side_w), &style)?,
+        )
+    } else {
+        (Vec::new(), Vec::new())
+    };
+    let text_px = match side_lines.len().max(front_lines.len()) {
+        0 => 0.0,
+        n => f64::from(n as i32 * line_px + 8),
+    };
+    // the head's top; the vertical range leaves text_px above it
+    let top = (lm.pelvis[1] + f.spine + f.neck + f.head).max(body.height) + 0.05;
+    let ph = f64::from(h.saturating_sub(2 * MARGIN));
+    let headroom = if ph > text_px + 40.0 {
+        text_px * (top + 0.12) / (ph - text_px)
+    } else {
+        0.0
+    };
+    let v_range = (-0.12, top + headroom);
+    let segs = segments(lm, sk, body);
+    let dots = contacts(lm);
+    let head_centre = sk
+        .thorax
+        .point(glam::DVec3::new(0.0, f.spine + f.neck + f.head / 2.0, 0.0))
+        .to_array();
+
+    let mut maps = Vec::new();
+    for (area, side_view) in [(&side_area, true), (&front_area, false)] {
+        let project = move |p: [f64; 3]| {
+            if side_view {
+                (p[0], p[1])
+            } else {
+                (-p[2], p[1])
+            }
+        };
+        let u_mid = if side_view { lm.pelvis[0] } else { 0.0 };
+        let (mut chart, map) = view_chart(area, u_mid, v_range)?;
+        let (u_lo, u_hi) = (map.u0, map.u0 + 2.0 * (u_mid - map.u0));
+        // ground, and ticks below it that move with the walk
+        chart
+            .draw_series(std::iter::once(PathElement::new(
+                vec![(u_lo, 0.0), (u_hi, 0.0)],
+                GROUND_COLOR.stroke_width(1),
+            )))
+            .map_err(msg)?;
+        if side_view {
+            let first = (u_lo / GROUND_TICK_M).ceil() as i64;
+            let last = (u_hi / GROUND_TICK_M).floor() as i64;
+            chart
+                .draw_series((first..=last).map(|k| {
+                    let u = k as f64 * GROUND_TICK_M;
+                    PathElement::new(vec![(u, 0.0), (u, -0.05)], GROUND_COLOR.stroke_width(1))
+                }))
+                .map_err(msg)?;
+        }
+        for (limb, points) in &segs {
+            let color = match limb {
+                Limb::Right => RIGHT_COLOR.to_rgba(),
+                Limb::Left if side_view => LEFT_COLOR.mix(0.55),
+                Limb::Left => LEFT_COLOR.to_rgba(),
+                Limb::Trunk => TRUNK_COLOR.to_rgba(),
+            };
+            let pts: Vec<(f64, f64)> = points.iter().map(|&p| project(p)).collect();
+            chart
+                .draw_series(std::iter::once(PathElement::new(
+                    pts,
+                    color.stroke_width(3),
+                )))
+                .map_err(msg)?;
+        }
+        let radius = (map.scale * f.head / 2.0).round().max(2.0) as i32;
+        chart
+            .draw_series(std::iter::once(Circle::new(
+                project(head_centre),
+                radius,
+                TRUNK_COLOR.stroke_width(3),
+            )))
+            .map_err(msg)?;
+        chart
+            .draw_series(
+                dots.iter()
+                    .map(|&p| Circle::new(project(p), CONTACT_RADIUS, CONTACT_COLOR.filled())),
+            )
+            .map_err(msg)?;
+        let lines = if side_view { &side_lines } else { &front_lines };
+        chart
+            .draw_series(lines.iter().enumerate().map(|(i, line)| {
+                EmptyElement::at((u_lo, v_range.1))
+                    + Text::new(line.clone(), (6, 4 + line_px * i as i32), style.clone())
+            }))
+            .map_err(msg)?;
+        maps.push(map);
+    }
+    Ok(FrameViews {
+        side: maps[0],
+        front: maps[1],
+    })
+}

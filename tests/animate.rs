@@ -1,0 +1,233 @@
+//! `klaw animate`: the animated GIF of a walk. Decoded frame by frame: the frame count and
+//! delay from the walk's duration and the frame rate, the image size, the ground where the view
+//! map puts it, a contact dot under a flat foot and none under a foot in the air; bad paths,
+//! options and frames are typed errors that leave no file.
+use std::fs;
+use std::path::Path;
+
+use image::{AnimationDecoder, RgbaImage};
+use klaw::animate::{Options, animate_walk, check_path, parse_size, write_gif};
+use klaw::figure::Landmarks;
+use klaw::walk::{Walk, simulate};
+use klaw::{AttributeTable, Body, Error, GaitRequest};
+
+fn default_walk(steps: usize) -> Walk {
+    let body = Body::standard(1.8, 80.0).unwrap();
+    let attrs = AttributeTable::builtin().defaults();
+    let gait = GaitRequest {
+        velocity: Some(1.4),
+        ..GaitRequest::default()
+    }
+    .complete(&body, &attrs)
+    .unwrap();
+    simulate(body, attrs, &vec![gait; steps]).unwrap()
+}
+
+/// The decoded frames (RGBA) and each frame's delay in ms.
+fn decode(path: &Path) -> Vec<(RgbaImage, u32)> {
+    let file = std::io::BufReader::new(fs::File::open(path).unwrap());
+    let decoder = image::codecs::gif::GifDecoder::new(file).unwrap();
+    decoder
+        .into_frames()
+        .collect_frames()
+        .unwrap()
+        .into_iter()
+        .map(|f| {
+            let (n, d) = f.delay().numer_denom_ms();
+            (f.into_buffer(), n / d)
+        })
+        .collect()
+}
+
+fn dark(img: &RgbaImage, x: i32, y: i32) -> bool {
+    let p = img.get_pixel(x as u32, y as u32).0;
+    p[0] < 50 && p[1] < 50 && p[2] < 50
+}
+
+fn grey(img: &RgbaImage, x: i32, y: i32) -> bool {
+    let p = img.get_pixel(x as u32, y as u32).0;
+    (110..=170).contains(&p[0]) && (110..=170).contains(&p[1]) && (110..=170).contains(&p[2])
+}
+
+#[test]
+fn gif_has_a_frame_per_interval_and_dots_under_flat_feet() {
+    let walk = default_walk(3);
+    let fps = 20.0;
+    let options = Options::new(fps, (480, 240)).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("walk.gif");
+    let summary = animate_walk(&walk, "test walk", &path, &options).unwrap();
+    // t = 0, 1/fps, … up to the last heel strike
+    let expected = (walk.duration() * fps + 1e-9).floor() as usize + 1;
+    let frames = decode(&path);
+    assert_eq!(frames.len(), expected);
+    assert_eq!(summary.frames, expected);
+    for (img, delay) in &frames {
+        assert_eq!(img.dimensions(), (480, 240));
+        assert_eq!(*delay, 50);
+    }
+    let landmarks: Vec<Landmarks> = klaw::figure::frames(&walk, fps)
+        .collect::<klaw::Result<_>>()
+        .unwrap();
+    assert_eq!(landmarks.len(), expected);
+
+    // a frame with the right foot flat (heel and metatarsal joint on the ground) and the left
+    // heel in the air, not above the right foot
+    let k = landmarks
+        .iter()
+        .position(|lm| {
+            let apart = [lm.right.heel, lm.right.mtp, lm.right.toe]
+                .iter()
+                .all(|p| (p[0] - lm.left.heel[0]).abs() > 0.08);
+            lm.right.heel[1].abs() < 1e-4
+                && lm.right.mtp[1].abs() < 1e-4
+                && lm.left.heel[1] > 0.04
+                && apart
+        })
+        .expect("a frame of single support on a flat right foot");
+    let (img, _) = &frames[k];
+    let lm = &landmarks[k];
+    let view = summary.views[k];
+    // the side view's map: the camera on the pelvis (the centre of the left two thirds), the
+    // ground line where the map puts y = 0
+    let (px, _) = view.side.pixel(lm.pelvis[0], lm.pelvis[1]);
+    assert!((px - 480 * 2 / 3 / 2).abs() <= 2, "pelvis at column {px}");
+    let (_, ground) = view.side.pixel(lm.pelvis[0], 0.0);
+    assert!(
+        (-1..=1).any(|d| grey(img, 12, ground + d)),
+        "no ground line at row {ground}"
+    );
+    // the dot: filled, radius 4, around the heel: dark 2 px above the ground line
+    let (hx, hy) = view.side.pixel(lm.right.heel[0], 0.0);
+    assert!(
+        dark(img, hx, hy - 2) && dark(img, hx + 2, hy - 1),
+        "no dot at the right heel"
+    );
+    // none under the swinging left heel (nothing dark within 3 px of its ground point)
+    let (lx, ly) = view.side.pixel(lm.left.heel[0], 0.0);
+    for dx in -3..=3 {
+        for dy in -3..=0 {
+            assert!(
+                !dark(img, lx + dx, ly + dy),
+                "dark pixel under the left heel"
+            );
+        }
+    }
+    // front view: the right foot (figure's right = +z) drawn at −z, a dot there too
+    let (fx, fy) = view.front.pixel(-lm.right.heel[2], 0.0);
+    assert!(
+        fx > 480 * 2 / 3,
+        "front view starts at two thirds of the width"
+    );
+    assert!(dark(img, fx, fy - 2), "no dot in the front view");
+
+    // the first frame (heel strike of the right foot, toe of the left on the ground)
+    // has a dot under the right heel too
+    let lm0 = &landmarks[0];
+    assert!(lm0.right.heel[1].abs() < 1e-3);
+    let (hx, hy) = summary.views[0].side.pixel(lm0.right.heel[0], 0.0);
+    assert!(dark(&frames[0].0, hx, hy - 2));
+}
+
+#[test]
+fn bad_paths_options_and_frames_are_typed_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    for bad in ["walk.png", "walk", "walk.gif.txt"] {
+        let e = check_path(Path::new(bad)).unwrap_err();
+        assert!(matches!(e, Error::Malformed { .. }), "{e}");
+        assert_eq!(e.exit_code(), 2);
+    }
+    assert!(check_path(Path::new("a/walk.GIF")).is_ok());
+    for (fps, size) in [
+        (0.0, (900, 450)),
+        (101.0, (900, 450)),
+        (f64::NAN, (900, 450)),
+        (25.0, (100, 450)),
+        (25.0, (900, 50)),
+        (25.0, (5000, 450)),
+    ] {
+        let e = Options::new(fps, size).unwrap_err();
+        assert!(
+            matches!(e, Error::OutOfRange { .. } | Error::NotFinite { .. }),
+            "{e}"
+        );
+    }
+    assert_eq!(parse_size("900x450").unwrap(), (900, 450));
+    assert_eq!(parse_size(" 640X360 ").unwrap(), (640, 360));
+    for bad in ["900", "x450", "900x", "a x b", "-1x3"] {
+        let e = parse_size(bad).unwrap_err();
+        assert!(matches!(e, Error::BadSpec { .. }), "{bad}: {e}");
+    }
+
+    let walk = default_walk(1);
+    let options = Options::new(10.0, (300, 150)).unwrap();
+    let png = dir.path().join("walk.png");
+    let e = animate_walk(&walk, "t", &png, &options).unwrap_err();
+    assert!(matches!(e, Error::Malformed { .. }), "{e}");
+    assert!(!png.exists());
+
+    // a frame that cannot be drawn: an error, no file, an existing file untouched
+    let mut frames: Vec<Landmarks> = klaw::figure::frames(&walk, 10.0)
+        .collect::<klaw::Result<_>>()
+        .unwrap();
+    let path = dir.path().join("walk.gif");
+    fs::write(&path, b"old").unwrap();
+    frames[2].right.knee[1] = f64::NAN;
+    let e = write_gif(&frames, &walk.body, "t", &path, &options).unwrap_err();
+    assert!(matches!(e, Error::NotFinite { .. }), "{e}");
+    assert_eq!(fs::read(&path).unwrap(), b"old");
+    let e = write_gif(&[], &walk.body, "t", &path, &options).unwrap_err();
+    assert!(matches!(e, Error::Export { .. }), "{e}");
+    let names: Vec<String> = fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names, vec!["walk.gif".to_string()], "temporary files left");
+}
+
+/// `klaw animate`: a GIF of the requested size; a bad extension or size exits 2 and writes
+/// nothing.
+#[test]
+fn cli_writes_the_gif() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_klaw"))
+            .args(args)
+            .output()
+            .unwrap()
+    };
+    let out = dir.path().join("w.gif");
+    let o = run(&[
+        "animate",
+        "--steps",
+        "1",
+        "--fps",
+        "10",
+        "--size",
+        "300x150",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let frames = decode(&out);
+    assert!(!frames.is_empty());
+    assert_eq!(frames[0].0.dimensions(), (300, 150));
+    for args in [
+        vec!["animate", "--out", "w.png"],
+        vec!["animate", "--size", "300", "--out", "v.gif"],
+        vec!["animate", "--fps", "0", "--out", "v.gif"],
+    ] {
+        let mut args: Vec<String> = args.iter().map(|s| s.to_string()).collect();
+        let last = args.len() - 1;
+        args[last] = dir.path().join(&args[last]).to_string_lossy().into_owned();
+        let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = run(&refs);
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+    }
+    let mut names: Vec<String> = fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(names, vec!["w.gif".to_string()]);
+}

@@ -1,0 +1,430 @@
+//! `klaw plot`: the gait-cycle figure. The norm table against the published table (values typed
+//! from gait-norms.md), the cycle phases and norm checks on synthetic curves with known answers,
+//! the bands' pixels where their windows say, the file formats and the errors.
+use std::f64::consts::PI;
+use std::fs;
+use std::path::Path;
+
+use klaw::plot_cycle::{
+    BAND_COLOR, CYCLE_FIGURE_SIZE, Curve, EXCURSION_BAND_COLOR, GaitCycle, Measure, NormTable,
+    Panel, check, write_cycle_figure,
+};
+use klaw::skeleton::{Clinical, Side};
+use klaw::walk::simulate;
+use klaw::{AttributeTable, Body, Error, GaitRequest};
+
+/// A cycle whose curves are given functions of the cycle % (101 samples).
+fn synthetic(f: impl Fn(Panel, Option<Side>, f64) -> f64) -> GaitCycle {
+    let mut curves = Vec::new();
+    for panel in Panel::ALL {
+        let sides = if panel.per_leg() {
+            vec![Some(Side::Right), Some(Side::Left)]
+        } else {
+            vec![None]
+        };
+        for side in sides {
+            curves.push(Curve {
+                panel,
+                side,
+                values: (0..=100).map(|p| f(panel, side, p as f64)).collect(),
+            });
+        }
+    }
+    GaitCycle {
+        curves,
+        cycles: (3, 3),
+        toe_off_pct: [None, None],
+    }
+}
+
+/// Flat curves far from every band: 0° (pelvis height 80 cm).
+fn flat() -> GaitCycle {
+    synthetic(|panel, _, _| {
+        if panel == Panel::PelvisHeight {
+            80.0
+        } else {
+            0.0
+        }
+    })
+}
+
+fn norm<'a>(t: &'a NormTable, name: &str) -> &'a klaw::plot_cycle::Norm {
+    t.norms
+        .iter()
+        .find(|n| n.name == name)
+        .unwrap_or_else(|| panic!("no norm {name}"))
+}
+
+/// The bundled table holds the published ranges (typed here from gait-norms.md) with windows
+/// covering the timing the table gives.
+#[test]
+fn bundled_norms_are_the_published_ranges() {
+    let t = NormTable::builtin();
+    let expect = [
+        ("hip flexion at heel strike", 25.0, 35.0, Some(0.0)),
+        ("hip peak extension", -15.0, -5.0, Some(52.5)),
+        ("hip sagittal range", 40.0, 50.0, None),
+        ("knee at heel strike", 0.0, 8.0, Some(0.0)),
+        ("knee stance flexion peak", 10.0, 25.0, Some(15.0)),
+        ("knee peak swing flexion", 55.0, 65.0, Some(72.5)),
+        ("ankle at heel strike", -5.0, 3.0, Some(0.0)),
+        ("ankle peak dorsiflexion in stance", 8.0, 15.0, None),
+        ("ankle peak plantarflexion", -25.0, -15.0, Some(62.5)),
+        ("pelvic list, right side up (right stance)", 4.0, 5.0, None),
+        ("pelvic list, left side up (left stance)", -5.0, -4.0, None),
+        ("pelvic rotation, right side forward", 3.0, 5.0, None),
+        ("pelvic rotation, left side forward", -5.0, -3.0, None),
+        (
+            "vertical excursion of the hip, peak to peak",
+            4.0,
+            5.0,
+            None,
+        ),
+    ];
+    assert_eq!(t.norms.len(), expect.len());
+    for (name, low, high, timing) in expect {
+        let n = norm(&t, name);
+        assert_eq!((n.low, n.high), (low, high), "{name}");
+        if let Some(p) = timing {
+            assert!(
+                n.windows.iter().any(|w| w[0] <= p && p <= w[1]),
+                "{name}: windows {:?} miss {p} %",
+                n.windows
+            );
+        }
+    }
+    // heel strike is 0 % and 100 %: both ends are shaded
+    let hs = norm(&t, "knee at heel strike");
+    assert_eq!(hs.measure, Measure::At);
+    assert!(hs.windows.iter().any(|w| w[1] == 100.0));
+    assert_eq!(
+        norm(&t, "vertical excursion of the hip, peak to peak").unit,
+        "cm"
+    );
+}
+
+/// The checks on curves with known extremes.
+#[test]
+fn checks_measure_the_curves() {
+    let cycle = synthetic(|panel, side, p| match panel {
+        // a swing peak of 70° at 72 %, a stance bump of 15° at 15 %
+        Panel::KneeFlexion => {
+            let bump = |c: f64, w: f64, a: f64| a * (-((p - c) / w).powi(2)).exp();
+            bump(72.0, 6.0, 70.0) + bump(15.0, 4.0, 15.0) + 2.0
+        }
+        Panel::HipFlexion => {
+            // the left leg 2° more flexed at heel strike
+            let extra = if side == Some(Side::Left) { 2.0 } else { 0.0 };
+            10.0 + 20.0 * (2.0 * PI * p / 100.0).cos() + extra
+        }
+        Panel::PelvisList => 4.5 * (2.0 * PI * p / 100.0).sin(),
+        Panel::PelvisHeight => 90.0 + 3.0 * (4.0 * PI * p / 100.0).cos(),
+        _ => 0.0,
+    });
+    let checks = check(&cycle, &NormTable::builtin());
+    let get = |name: &str, side: Option<Side>| {
+        checks
+            .iter()
+            .find(|c| c.name == name && c.side == side)
+            .unwrap_or_else(|| panic!("no check {name} {side:?}"))
+    };
+    let swing = get("knee peak swing flexion", Some(Side::Right));
+    assert!((swing.value - 72.0).abs() < 0.01 && swing.at_pct == Some(72.0));
+    assert!(!swing.inside());
+    let stance = get("knee stance flexion peak", Some(Side::Left));
+    assert!((stance.value - 17.0).abs() < 0.01 && stance.at_pct == Some(15.0));
+    assert!(stance.inside());
+    let hs = get("knee at heel strike", Some(Side::Right));
+    assert!((hs.value - 2.0).abs() < 0.01 && hs.inside());
+    let hip = get("hip flexion at heel strike", Some(Side::Right));
+    assert!((hip.value - 30.0).abs() < 1e-9 && hip.inside());
+    let hip_l = get("hip flexion at heel strike", Some(Side::Left));
+    assert!((hip_l.value - 32.0).abs() < 1e-9);
+    // peak extension: the minimum inside 45–60 %, at 50 %: −10°
+    let ext = get("hip peak extension", Some(Side::Right));
+    assert!((ext.value + 10.0).abs() < 1e-9 && ext.at_pct == Some(50.0));
+    let range = get("hip sagittal range", Some(Side::Right));
+    assert!((range.value - 40.0).abs() < 1e-9 && range.inside());
+    let up = get("pelvic list, right side up (right stance)", None);
+    assert!((up.value - 4.5).abs() < 1e-9 && up.at_pct == Some(25.0) && up.inside());
+    let down = get("pelvic list, left side up (left stance)", None);
+    assert!((down.value + 4.5).abs() < 1e-9 && down.at_pct == Some(75.0));
+    let excursion = get("vertical excursion of the hip, peak to peak", None);
+    assert!((excursion.value - 6.0).abs() < 1e-9 && !excursion.inside());
+    // rotation is flat 0: outside ±3–5
+    assert!(!get("pelvic rotation, right side forward", None).inside());
+}
+
+/// Frames whose right-leg angles are a function of the right cycle's phase and whose left-leg
+/// angles the same function of the left cycle's phase (half a cycle later): averaged, the two
+/// legs' curves coincide, each from its own heel strike; the pelvis height has two peaks.
+#[test]
+fn each_leg_is_averaged_from_its_own_heel_strike() {
+    let period = 1.1;
+    let right: Vec<f64> = (0..5).map(|k| 0.05 + k as f64 * period).collect();
+    let left: Vec<f64> = right.iter().map(|t| t + period / 2.0).collect();
+    let shape = |phase: f64| 30.0 * (2.0 * PI * phase).cos() + 5.0 * (4.0 * PI * phase).sin();
+    let frames: Vec<Clinical> = (0..=1100)
+        .map(|k| {
+            let t = k as f64 * 0.005;
+            let mut c = Clinical {
+                time: t,
+                ..Clinical::default()
+            };
+            let phase_r = (t - right[0]) / period;
+            let phase_l = (t - left[0]) / period;
+            c.right.hip.flexion = shape(phase_r).to_radians();
+            c.left.hip.flexion = shape(phase_l).to_radians();
+            c.right.knee.flexion = 1.0;
+            c.left.knee.flexion = 0.5;
+            c.pelvis_list = (4.0 * (2.0 * PI * phase_r).sin()).to_radians();
+            c.pelvis = [t, 0.9 + 0.02 * (4.0 * PI * phase_r).cos(), 0.0];
+            c
+        })
+        .collect();
+    let cycle = GaitCycle::from_clinical(&frames, &right, &left, 1).unwrap();
+    assert_eq!(cycle.cycles, (3, 3));
+    let curve = |panel: Panel, side: Option<Side>| {
+        &cycle
+            .curves
+            .iter()
+            .find(|c| c.panel == panel && c.side == side)
+            .unwrap()
+            .values
+    };
+    for p in 0..=100 {
+        let want = shape(p as f64 / 100.0);
+        for side in [Side::Right, Side::Left] {
+            let got = curve(Panel::HipFlexion, Some(side))[p];
+            // linear interpolation between frames 5 ms apart: error ≲ 0.02°
+            assert!((got - want).abs() < 0.05, "{side:?} {p} %: {got} vs {want}");
+        }
+        let h = curve(Panel::PelvisHeight, None)[p];
+        let want_h = 90.0 + 2.0 * (4.0 * PI * p as f64 / 100.0).cos();
+        assert!((h - want_h).abs() < 0.01, "height {p} %: {h} vs {want_h}");
+        let list = curve(Panel::PelvisList, None)[p];
+        let want_list = 4.0 * (2.0 * PI * p as f64 / 100.0).sin();
+        assert!((list - want_list).abs() < 0.01, "list {p} %: {list}");
+    }
+    // each leg's own column, in degrees
+    assert!((curve(Panel::KneeFlexion, Some(Side::Right))[40] - 1f64.to_degrees()).abs() < 1e-9);
+    assert!((curve(Panel::KneeFlexion, Some(Side::Left))[40] - 0.5f64.to_degrees()).abs() < 1e-9);
+    // too few heel strikes: a typed error
+    let e = GaitCycle::from_clinical(&frames, &right[..2], &left, 1).unwrap_err();
+    assert!(matches!(e, Error::Export { .. }), "{e}");
+}
+
+fn rgb(c: plotters::style::RGBColor) -> [u8; 3] {
+    [c.0, c.1, c.2]
+}
+
+/// The run of `color` along row `y` of `img` that contains column `x`: (first, last) column.
+fn run(img: &image::RgbImage, x: i32, y: i32, color: [u8; 3]) -> (i32, i32) {
+    let at = |x: i32| img.get_pixel(x as u32, y as u32).0;
+    assert_eq!(at(x), color, "no band at ({x}, {y})");
+    let (mut a, mut b) = (x, x);
+    while a > 0 && at(a - 1) == color {
+        a -= 1;
+    }
+    while (b + 1) < img.width() as i32 && at(b + 1) == color {
+        b += 1;
+    }
+    (a, b)
+}
+
+/// The knee's swing band (55–65° over 65–80 %, from the table's 70–75 %) is drawn exactly over
+/// its window: found by pixel colour where the panel's axes put it, and nowhere else along its
+/// row; a band of a hand-written table likewise; the excursion band sits 4–5 cm above the
+/// curve's minimum.
+#[test]
+fn norm_bands_are_drawn_over_their_windows_only() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("cycle.png");
+    let fig = write_cycle_figure(&flat(), &NormTable::builtin(), "synthetic", &path).unwrap();
+    let img = image::open(&path).unwrap().to_rgb8();
+    assert_eq!(img.dimensions(), CYCLE_FIGURE_SIZE);
+    let panel = |p: Panel| *fig.panels.iter().find(|x| x.panel == p).unwrap();
+    // the pixel of (cycle %, value) from the panel's corners, linear on both axes
+    let px = |p: Panel, pct: f64, v: f64| {
+        let m = panel(p);
+        let (l, t) = m.left_top;
+        let (r, b) = m.right_bottom;
+        let (lo, hi) = m.y_range;
+        (
+            (l as f64 + (r - l) as f64 * pct / 100.0).round() as i32,
+            (b as f64 - (b - t) as f64 * (v - lo) / (hi - lo)).round() as i32,
+        )
+    };
+    let band = rgb(BAND_COLOR);
+    let (x, y) = px(Panel::KneeFlexion, 72.5, 60.0);
+    let (a, b) = run(&img, x, y, band);
+    let (x65, _) = px(Panel::KneeFlexion, 65.0, 60.0);
+    let (x80, _) = px(Panel::KneeFlexion, 80.0, 60.0);
+    assert!(
+        (a - x65).abs() <= 2 && (b - x80).abs() <= 2,
+        "run {a}..{b}, window {x65}..{x80}"
+    );
+    // the rest of the row inside the panel has no band colour (the band is 55–65° only at
+    // 65–80 %; the heel-strike band 0–8° is far below)
+    let (l, _) = panel(Panel::KneeFlexion).left_top;
+    let (r, _) = panel(Panel::KneeFlexion).right_bottom;
+    for col in (l + 3..a - 1).chain(b + 2..r - 2) {
+        assert_ne!(
+            img.get_pixel(col as u32, y as u32).0,
+            band,
+            "band at column {col}"
+        );
+    }
+    // above and below the value band, inside the window: no band
+    for v in [50.0, 70.0] {
+        let (x, y) = px(Panel::KneeFlexion, 72.5, v);
+        assert_ne!(img.get_pixel(x as u32, y as u32).0, band, "{v}°");
+    }
+    // heel strike: both ends of the cycle, 0–8°
+    let (x, y) = px(Panel::KneeFlexion, 2.0, 4.0);
+    assert_eq!(img.get_pixel(x as u32, y as u32).0, band);
+    let (x, y) = px(Panel::KneeFlexion, 98.0, 4.0);
+    assert_eq!(img.get_pixel(x as u32, y as u32).0, band);
+    let (x, y) = px(Panel::KneeFlexion, 50.0, 4.0);
+    assert_ne!(img.get_pixel(x as u32, y as u32).0, band);
+
+    // a hand-written table: one band of 40–50° over 20–30 % on the hip panel
+    let table = NormTable::parse(
+        "[[norm]]\npanel = \"hip_flexion\"\nname = \"test\"\nlabel = \"test\"\n\
+         measure = \"max\"\nlow = 40.0\nhigh = 50.0\nunit = \"deg\"\nwindows = [[20.0, 30.0]]\n\
+         window_source = \"test\"\nsource = \"test\"\n\
+         [[norm]]\npanel = \"pelvis_height\"\nname = \"exc\"\nlabel = \"exc\"\n\
+         measure = \"peak_to_peak\"\nlow = 4.0\nhigh = 5.0\nunit = \"cm\"\n\
+         windows = [[0.0, 100.0]]\nwindow_source = \"test\"\nsource = \"test\"\n",
+        Path::new("test.toml"),
+    )
+    .unwrap();
+    let path = dir.path().join("custom.svg");
+    let cycle = synthetic(|panel, _, p| match panel {
+        Panel::PelvisHeight => 90.0 + 3.0 * (4.0 * PI * p / 100.0).cos(),
+        _ => 0.0,
+    });
+    write_cycle_figure(&cycle, &table, "synthetic", &path).unwrap();
+    let svg = fs::read_to_string(&path).unwrap();
+    assert!(svg.starts_with("<svg") && svg.contains("width=\"1500\""));
+    let path = dir.path().join("custom.png");
+    let fig = write_cycle_figure(&cycle, &table, "synthetic", &path).unwrap();
+    let img = image::open(&path).unwrap().to_rgb8();
+    let panel = |p: Panel| *fig.panels.iter().find(|x| x.panel == p).unwrap();
+    let px = |p: Panel, pct: f64, v: f64| {
+        let m = panel(p);
+        let (l, t) = m.left_top;
+        let (r, b) = m.right_bottom;
+        let (lo, hi) = m.y_range;
+        (
+            (l as f64 + (r - l) as f64 * pct / 100.0).round() as i32,
+            (b as f64 - (b - t) as f64 * (v - lo) / (hi - lo)).round() as i32,
+        )
+    };
+    let (x, y) = px(Panel::HipFlexion, 25.0, 45.0);
+    let (a, b) = run(&img, x, y, band);
+    let (x20, _) = px(Panel::HipFlexion, 20.0, 45.0);
+    let (x30, _) = px(Panel::HipFlexion, 30.0, 45.0);
+    assert!(
+        (a - x20).abs() <= 2 && (b - x30).abs() <= 2,
+        "run {a}..{b}, window {x20}..{x30}"
+    );
+    // none of the bundled bands: nothing at the knee's swing window
+    let (x, y) = px(
+        Panel::KneeFlexion,
+        72.5,
+        0.5 * (panel(Panel::KneeFlexion).y_range.1),
+    );
+    assert_ne!(img.get_pixel(x as u32, y as u32).0, band);
+    // the excursion band: min 87 cm → 91–92 cm, where the curve is low (25 %, 87 cm)
+    let exc = rgb(EXCURSION_BAND_COLOR);
+    let (x, y) = px(Panel::PelvisHeight, 25.0, 91.5);
+    assert_eq!(img.get_pixel(x as u32, y as u32).0, exc);
+    let (x, y) = px(Panel::PelvisHeight, 25.0, 90.5);
+    assert_ne!(img.get_pixel(x as u32, y as u32).0, exc);
+    let (x, y) = px(Panel::PelvisHeight, 25.0, 92.5);
+    assert_ne!(img.get_pixel(x as u32, y as u32).0, exc);
+}
+
+fn default_walk(steps: usize) -> klaw::walk::Walk {
+    let body = Body::standard(1.8, 80.0).unwrap();
+    let attrs = AttributeTable::builtin().defaults();
+    let gait = GaitRequest {
+        velocity: Some(1.4),
+        ..GaitRequest::default()
+    }
+    .complete(&body, &attrs)
+    .unwrap();
+    simulate(body, attrs, &vec![gait; steps]).unwrap()
+}
+
+/// The default walk's figure as PNG (1500 × 1000) and SVG; a bad extension is a typed error and
+/// writes nothing; a walk too short for a steady cycle of each leg is a typed error.
+#[test]
+fn default_walk_figure_and_errors() {
+    let walk = default_walk(6);
+    let cycle = GaitCycle::from_walk(&walk).unwrap();
+    assert_eq!(cycle.cycles, (1, 1));
+    assert!(cycle.curves.iter().all(|c| c.values.len() == 101));
+    // toe-off between 50 and 75 % of the cycle (stance is longer than a step, shorter than 3/4)
+    for p in cycle.toe_off_pct {
+        let p = p.unwrap();
+        assert!(p > 50.0 && p < 75.0, "{p}");
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let norms = NormTable::builtin();
+    let png = dir.path().join("gait-cycle.png");
+    let fig = write_cycle_figure(&cycle, &norms, "default walk", &png).unwrap();
+    assert_eq!(
+        image::open(&png).unwrap().to_rgb8().dimensions(),
+        CYCLE_FIGURE_SIZE
+    );
+    assert_eq!(fig.panels.len(), 6);
+    let svg = dir.path().join("gait-cycle.svg");
+    write_cycle_figure(&cycle, &norms, "default walk", &svg).unwrap();
+    let svg = fs::read_to_string(&svg).unwrap();
+    assert!(svg.starts_with("<svg"));
+    if klaw::plot::text_available() {
+        assert!(svg.contains("Knee flexion"));
+    }
+
+    for bad in ["cycle.jpg", "cycle", "cycle.gif"] {
+        let p = dir.path().join(bad);
+        let e = write_cycle_figure(&cycle, &norms, "x", &p).unwrap_err();
+        assert!(matches!(e, Error::Malformed { .. }), "{e}");
+        assert_eq!(e.exit_code(), 2);
+        assert!(!p.exists());
+    }
+    let e = GaitCycle::from_walk(&default_walk(5)).unwrap_err();
+    assert!(matches!(e, Error::Export { .. }), "{e}");
+}
+
+/// `klaw plot`: writes the figure and prints one line per check (23 for the bundled table: 9
+/// norms on both legs, 5 on the pelvis); a bad extension exits 2 before simulating.
+#[test]
+fn cli_writes_the_figure_and_prints_the_checks() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("cycle.png");
+    let run = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_klaw"))
+            .args(args)
+            .output()
+            .unwrap()
+    };
+    let o = run(&["plot", "--steps", "6", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let checks = stdout
+        .lines()
+        .filter(|l| l.ends_with(": inside") || l.ends_with(": OUTSIDE"))
+        .count();
+    assert_eq!(checks, 23, "{stdout}");
+    assert_eq!(
+        image::open(&out).unwrap().to_rgb8().dimensions(),
+        CYCLE_FIGURE_SIZE
+    );
+    let bad = dir.path().join("cycle.jpg");
+    let o = run(&["plot", "--out", bad.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(!bad.exists());
+}
