@@ -215,6 +215,11 @@ impl FigureWalkArgs {
             plot: PathBuf::from("walk.png"),
             no_plot: true,
             report: None,
+            in_place: false,
+            opensim_model: "gait2392".into(),
+            state_out: None,
+            events: None,
+            cycle_out: None,
         }
     }
 
