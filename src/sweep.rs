@@ -10,7 +10,7 @@ use std::path::Path;
 
 use rayon::prelude::*;
 
-use crate::attributes::AttributeTable;
+use crate::attributes::{AttributeTable, STYLES};
 use crate::body::Body;
 use crate::error::{Error, Result};
 use crate::params::GaitRequest;
@@ -147,11 +147,13 @@ pub enum Axis {
     /// M = K · H².
     MassPerHeight2,
     Steps,
+    /// A style preset of `models/styles/`, by its index in `attributes::STYLES`.
+    Style,
     Attribute(String),
 }
 
 /// The quantities a sweep names besides the attributes, in product order.
-pub const QUANTITIES: [&str; 7] = [
+pub const QUANTITIES: [&str; 8] = [
     "velocity",
     "step_length",
     "step_frequency",
@@ -159,7 +161,34 @@ pub const QUANTITIES: [&str; 7] = [
     "mass",
     "mass_per_height2",
     "steps",
+    "style",
 ];
+
+/// Parse a list of style names `A,B,C` into their indices in `attributes::STYLES`.
+pub fn parse_styles(spec: &str) -> Result<Vec<f64>> {
+    spec.split(',')
+        .map(|name| {
+            let name = name.trim();
+            STYLES
+                .iter()
+                .position(|(n, _)| *n == name)
+                .map(|i| i as f64)
+                .ok_or_else(|| {
+                    bad(
+                        "style",
+                        format!(
+                            "unknown style `{name}`; the styles are {}",
+                            STYLES
+                                .iter()
+                                .map(|(n, _)| *n)
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        ),
+                    )
+                })
+        })
+        .collect()
+}
 
 impl Axis {
     /// The column name.
@@ -172,6 +201,7 @@ impl Axis {
             Axis::Mass => "mass",
             Axis::MassPerHeight2 => "mass_per_height2",
             Axis::Steps => "steps",
+            Axis::Style => "style",
             Axis::Attribute(n) => n,
         }
     }
@@ -188,6 +218,7 @@ impl Axis {
             "mass" => Axis::Mass,
             "mass_per_height2" => Axis::MassPerHeight2,
             "steps" => Axis::Steps,
+            "style" => Axis::Style,
             _ if table.0.contains_key(&key) => Axis::Attribute(key),
             _ => return None,
         })
@@ -259,6 +290,14 @@ pub fn parse_sweep_toml(
             _ => None,
         };
         let values = match value {
+            toml::Value::String(spec) if axis == Axis::Style => {
+                parse_styles(spec).map_err(|e| format!("`{key}`: {e}"))?
+            }
+            toml::Value::Array(items) if axis == Axis::Style => {
+                let names: Option<Vec<&str>> = items.iter().map(|v| v.as_str()).collect();
+                let names = names.ok_or_else(|| format!("`{key}` must be style names"))?;
+                parse_styles(&names.join(",")).map_err(|e| format!("`{key}`: {e}"))?
+            }
             toml::Value::String(spec) => {
                 parse_spec(axis.name(), spec).map_err(|e| format!("`{key}`: {e}"))?
             }
@@ -454,6 +493,8 @@ pub struct Inputs {
     pub mass_per_height2: Option<f64>,
     pub mass: f64,
     pub steps: f64,
+    /// The style preset (index in `attributes::STYLES`), when swept.
+    pub style: Option<usize>,
     pub attributes: Vec<(String, f64)>,
 }
 
@@ -507,6 +548,7 @@ impl Sweep {
             mass_per_height2: None,
             mass: 80.0,
             steps: 10.0,
+            style: None,
             attributes: Vec::new(),
         };
         let mut mass = None;
@@ -519,6 +561,7 @@ impl Sweep {
                 Axis::Mass => mass = Some(x),
                 Axis::MassPerHeight2 => inputs.mass_per_height2 = Some(x),
                 Axis::Steps => inputs.steps = x,
+                Axis::Style => inputs.style = Some(x as usize),
                 Axis::Attribute(n) => inputs.attributes.push((n.clone(), x)),
             }
         }
@@ -550,6 +593,9 @@ impl Sweep {
         }
         h.push("mass".into());
         h.push("steps".into());
+        if self.axes.iter().any(|(a, _)| *a == Axis::Style) {
+            h.push("style".into());
+        }
         for (axis, _) in &self.axes {
             if let Axis::Attribute(n) = axis {
                 h.push(n.clone());
@@ -615,7 +661,11 @@ pub fn run_walk(inputs: &Inputs, table: &AttributeTable) -> Result<Summary> {
         });
     }
     let body = Body::standard(inputs.height, inputs.mass)?;
-    let overrides: BTreeMap<String, f64> = inputs.attributes.iter().cloned().collect();
+    let mut overrides: BTreeMap<String, f64> = match inputs.style {
+        Some(i) => crate::attributes::style(STYLES[i].0)?,
+        None => BTreeMap::new(),
+    };
+    overrides.extend(inputs.attributes.iter().cloned());
     let attrs = table.resolve(&overrides, "--attr")?;
     let gait = inputs.request.complete(&body, &attrs)?;
     let timing = Timing::new(gait.step_frequency)?;
@@ -686,6 +736,9 @@ impl Inputs {
         }
         c.push(Cell::Num(self.mass));
         c.push(Cell::Num(self.steps));
+        if let Some(i) = self.style {
+            c.push(Cell::Text(STYLES[i].0.to_string()));
+        }
         c.extend(self.attributes.iter().map(|(_, v)| Cell::Num(*v)));
         c
     }

@@ -578,3 +578,71 @@ fn bad_shards_and_sweep_files_are_input_errors() {
         "no output is written on an input error"
     );
 }
+
+/// `--style` sweeps the presets by name: the rows name their style, a style's own speed limits
+/// apply (the elderly preset stops at 1.1 m/s: recorded, not fatal), the same style from a
+/// sweep file gives the same rows, and an unknown style is an input error listing the known.
+#[test]
+fn styles_are_a_sweep_axis() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let args = [
+        "sweep",
+        "--style",
+        "normal,elderly",
+        "--velocity",
+        "0.9,1.4",
+        "--steps",
+        "3",
+        "--out",
+        "s.csv",
+    ];
+    let out = klaw(d, &args, None);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let (header, rows) = rows(&d.join("s.csv"));
+    let (style, conv, v) = (
+        col(&header, "style"),
+        col(&header, "converged"),
+        col(&header, "velocity"),
+    );
+    let got: Vec<(&str, &str, &str)> = rows
+        .iter()
+        .map(|r| (r[v].as_str(), r[style].as_str(), r[conv].as_str()))
+        .collect();
+    assert_eq!(
+        got,
+        [
+            ("0.9", "normal", "true"),
+            ("0.9", "elderly", "true"),
+            ("1.4", "normal", "true"),
+            ("1.4", "elderly", "false"),
+        ]
+    );
+    fs::write(
+        d.join("f.toml"),
+        "style = [\"normal\", \"elderly\"]\nvelocity = [0.9, 1.4]\n",
+    )
+    .unwrap();
+    let out = klaw(
+        d,
+        &[
+            "sweep", "--file", "f.toml", "--steps", "3", "--out", "f.csv",
+        ],
+        None,
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(
+        fs::read_to_string(d.join("s.csv")).unwrap(),
+        fs::read_to_string(d.join("f.csv")).unwrap()
+    );
+    let e = klaw_fails(d, &["sweep", "--style", "normal,sprint", "--out", "x.csv"]);
+    assert!(e.contains("sprint") && e.contains("long-stride"), "{e}");
+}

@@ -314,6 +314,9 @@ struct SweepArgs {
     /// Steps per walk, whole numbers [default: 10]
     #[arg(long, value_name = "SPEC", allow_hyphen_values = true)]
     steps: Option<String>,
+    /// Style presets A,B,C (normal, brisk, elderly, march, long-stride); --attr overrides them
+    #[arg(long, value_name = "NAMES")]
+    style: Option<String>,
     /// A locomotion attribute to sweep, NAME=SPEC in the units of models/attributes.toml (repeatable)
     #[arg(long, value_name = "NAME=SPEC", allow_hyphen_values = true)]
     attr: Vec<String>,
@@ -871,6 +874,9 @@ fn sweep(args: &SweepArgs) -> Result<()> {
         if let Some(spec) = spec {
             flags.push((axis, sw::parse_spec(flag, spec)?));
         }
+    }
+    if let Some(spec) = &args.style {
+        flags.push((Axis::Style, sw::parse_styles(spec)?));
     }
     for arg in &args.attr {
         let (name, values) = sw::parse_attr(arg, &table)?;
