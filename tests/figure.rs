@@ -201,3 +201,27 @@ fn events_match_the_figure() {
         assert!(pitch(&foot(mom - e, side)) < limit && pitch(&foot(mom + e, side)) > limit - 1e-9);
     }
 }
+
+/// Far into a long walk (world times ≈ 1e5 s, where doubles are ≈ 1.5e-11 s apart) the
+/// figure's time bisections still end: a walk that starts at t = 1e5 s (a stance leg and its
+/// events built there) is found like one at t = 0.
+#[test]
+fn bisections_end_far_into_a_long_walk() {
+    use klaw::kinematics::stance_leg::StanceLeg;
+    let b = Body::standard(1.8, 80.0).unwrap();
+    let t0 = 1e5;
+    let mut leg = StanceLeg::new(
+        &b,
+        0.0,
+        t0,
+        20f64.to_radians(),
+        0.078,
+        12f64.to_radians(),
+        35f64.to_radians(),
+    );
+    let hip = |t: f64| ([-0.3 + 1.4 * (t - t0), 0.885], 0.02);
+    leg.find_heel_off(hip, t0, t0 + 0.55, t0 + 0.68, 0.7)
+        .unwrap();
+    let k = leg.heel_off.expect("the heel rises");
+    assert!(k.t0 > t0 + 0.078 && k.t0 < t0 + 0.55);
+}

@@ -25,6 +25,9 @@ const TIME_TOLERANCE: f64 = 1e-9;
 fn first(holds: impl Fn(f64) -> bool, mut a: f64, mut b: f64) -> f64 {
     while b - a > TIME_TOLERANCE {
         let m = 0.5 * (a + b);
+        if m <= a || m >= b {
+            break; // the doubles around a and b are adjacent (very long walks)
+        }
         if holds(m) { b = m } else { a = m }
     }
     b

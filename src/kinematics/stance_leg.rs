@@ -390,8 +390,13 @@ impl StanceLeg {
         let Some(mut hi) = found else {
             return Ok(());
         };
+        // world times: far into a long walk 1e-12 s is below the spacing of doubles, so the
+        // bisection also stops when the midpoint is an end
         while hi - lo > 1e-12 {
             let m = 0.5 * (lo + hi);
+            if m <= lo || m >= hi {
+                break;
+            }
             if trigger(m)? { hi = m } else { lo = m }
         }
         let t0 = lo;
