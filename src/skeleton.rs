@@ -86,30 +86,7 @@ impl Frame {
     }
 }
 
-/// Which side of the figure.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Side {
-    Right,
-    Left,
-}
-
-impl Side {
-    /// +1 on the right, −1 on the left: the sign of the figure's lateral axis (world +z).
-    pub fn sign(self) -> f64 {
-        match self {
-            Side::Right => 1.0,
-            Side::Left => -1.0,
-        }
-    }
-
-    /// The suffix of column and coordinate names: `r` or `l`.
-    pub fn suffix(self) -> &'static str {
-        match self {
-            Side::Right => "r",
-            Side::Left => "l",
-        }
-    }
-}
+pub use crate::kinematics::pelvis::Side;
 
 /// The frames of one leg: thigh (origin at the hip), shank (knee), foot (ankle), toe (mtp).
 #[derive(Clone, Copy, Debug, PartialEq)]

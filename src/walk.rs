@@ -563,27 +563,39 @@ impl Walker {
             },
         };
         let (_, report, mem) = shooting::solve2(
-            |x| {
-                let trial = SwingTrial::simulate_on(
-                    sw,
-                    sub(x),
-                    t0,
-                    y0,
-                    crate::ode::TOLERANCE,
-                    mesh.borrow().as_ref(),
-                )?;
-                if trial.adapted {
-                    *mesh.borrow_mut() = Some(trial.segment.clone());
-                }
-                let r = trial.residual;
-                self.count(trial.evaluations);
-                keep_best(&best, trial);
-                Ok(r)
-            },
+            |x| self.swing_trial(sw, sub(x), t0, y0, &mesh, &best),
             start,
             &self.options,
         )?;
         Ok((best.into_inner().ok_or("no trial ran")?, report, mem))
+    }
+
+    /// One swing trial of a solve: it follows the solve's mesh (or, when it had to choose its
+    /// own steps, becomes it), counts its evaluations and is kept if it is the best so far.
+    fn swing_trial(
+        &self,
+        sw: &SwingSetup,
+        sub: Subphase,
+        t0: f64,
+        y0: SwingState,
+        mesh: &std::cell::RefCell<Option<Segment<4>>>,
+        best: &std::cell::RefCell<Option<SwingTrial>>,
+    ) -> std::result::Result<Vector2<f64>, String> {
+        let trial = SwingTrial::simulate_on(
+            sw,
+            sub,
+            t0,
+            y0,
+            crate::ode::TOLERANCE,
+            mesh.borrow().as_ref(),
+        )?;
+        if trial.adapted {
+            *mesh.borrow_mut() = Some(trial.segment.clone());
+        }
+        let r = trial.residual;
+        self.count(trial.evaluations);
+        keep_best(best, trial);
+        Ok(r)
     }
 
     /// A 1-D swing solve (bisection then secant), warm-started from `memory`.
@@ -607,23 +619,7 @@ impl Walker {
             },
         };
         let (_, report, mem) = shooting::solve1(
-            |x| {
-                let trial = SwingTrial::simulate_on(
-                    sw,
-                    sub(x),
-                    t0,
-                    y0,
-                    crate::ode::TOLERANCE,
-                    mesh.borrow().as_ref(),
-                )?;
-                if trial.adapted {
-                    *mesh.borrow_mut() = Some(trial.segment.clone());
-                }
-                let r = trial.residual[0];
-                self.count(trial.evaluations);
-                keep_best(&best, trial);
-                Ok(r)
-            },
+            |x| Ok(self.swing_trial(sw, sub(x), t0, y0, &mesh, &best)?[0]),
             start,
             &self.options,
         )?;

@@ -50,6 +50,14 @@ impl Side {
             Side::Left => "left",
         }
     }
+
+    /// The suffix of column and coordinate names: `r` or `l`.
+    pub fn suffix(self) -> &'static str {
+        match self {
+            Side::Right => "r",
+            Side::Left => "l",
+        }
+    }
 }
 
 /// The pelvis at one instant: angles (rad, clinical signs) and the lateral position of its
