@@ -164,70 +164,12 @@ enum Command {
     Animate(AnimateArgs),
 }
 
-/// The walk of `klaw plot` and `klaw animate`: the gait, body and attribute flags of
-/// `klaw walk`.
-#[derive(Args)]
-struct FigureWalkArgs {
-    /// Walking speed v in m/s, range [0.4, 2.5] [default: 1.4 if no gait flag is given]
-    #[arg(long, value_name = "M/S", allow_negative_numbers = true)]
-    velocity: Option<f64>,
-    /// Step length sl in m [default: from the normalizing formula]
-    #[arg(long, value_name = "M", allow_negative_numbers = true)]
-    step_length: Option<f64>,
-    /// Step frequency sf in steps/min, range [50, 182] [default: from the normalizing formula]
-    #[arg(long, value_name = "STEPS/MIN", allow_negative_numbers = true)]
-    step_frequency: Option<f64>,
-    /// Body height H in m, range [1.2, 2.2]
-    #[arg(long, value_name = "M", default_value_t = DEFAULT_HEIGHT, allow_negative_numbers = true)]
-    height: f64,
-    /// Body mass M in kg, range [25, 200]
-    #[arg(long, value_name = "KG", default_value_t = DEFAULT_MASS, allow_negative_numbers = true)]
-    mass: f64,
-    /// Number of steps, range [1, 1000000] [default: 10, or the schedule's length]
-    #[arg(long, value_name = "N")]
-    steps: Option<usize>,
-    /// Per-step gait requests from a .toml or .csv file (see klaw walk --help)
-    #[arg(long, value_name = "FILE", conflicts_with_all = ["velocity", "step_length", "step_frequency"])]
-    schedule: Option<PathBuf>,
-    /// Locomotion attribute overrides: a TOML file `name = value`
-    #[arg(long, value_name = "FILE")]
-    attributes: Option<PathBuf>,
-    /// Style preset: normal, brisk, elderly, march or long-stride
-    #[arg(long, value_name = "NAME")]
-    style: Option<String>,
-}
-
-impl FigureWalkArgs {
-    /// These flags as `klaw walk`'s, its outputs switched off, to share `gaits`.
-    fn walk_args(&self) -> WalkArgs {
-        WalkArgs {
-            velocity: self.velocity,
-            step_length: self.step_length,
-            step_frequency: self.step_frequency,
-            height: self.height,
-            mass: self.mass,
-            steps: self.steps,
-            schedule: self.schedule.clone(),
-            attributes: self.attributes.clone(),
-            style: self.style.clone(),
-            fps: DEFAULT_FPS,
-            out: PathBuf::from("walk.csv"),
-            plot: PathBuf::from("walk.png"),
-            no_plot: true,
-            report: None,
-            in_place: false,
-            opensim_model: "gait2392".into(),
-            state_out: None,
-            events: None,
-            cycle_out: None,
-        }
-    }
-
+impl GaitArgs {
     /// Simulate the walk; also the title line of its parameters.
     fn simulate(&self) -> Result<(klaw::walk::Walk, String)> {
         let body = Body::standard(self.height, self.mass)?;
         let attrs = load_attributes(self.style.as_deref(), self.attributes.as_deref())?;
-        let gaits = gaits(&self.walk_args(), &body, &attrs)?;
+        let gaits = gaits(self, &body, &attrs)?;
         let style = match (&self.style, &self.attributes) {
             (Some(s), Some(a)) => format!("{s} + {}", a.display()),
             (Some(s), None) => s.clone(),
@@ -242,7 +184,7 @@ impl FigureWalkArgs {
 #[derive(Args)]
 struct PlotArgs {
     #[command(flatten)]
-    walk: FigureWalkArgs,
+    walk: GaitArgs,
     /// Figure to write: PNG or SVG by the extension
     #[arg(
         long,
@@ -255,7 +197,7 @@ struct PlotArgs {
 #[derive(Args)]
 struct AnimateArgs {
     #[command(flatten)]
-    walk: FigureWalkArgs,
+    walk: GaitArgs,
     /// Animation to write (.gif)
     #[arg(long, value_name = "FILE.gif", default_value = "walk.gif")]
     out: PathBuf,
@@ -377,8 +319,9 @@ struct MergeArgs {
     allow_missing: bool,
 }
 
+/// The gait, body and attribute flags of `klaw walk`, `klaw plot` and `klaw animate`.
 #[derive(Args)]
-struct WalkArgs {
+struct GaitArgs {
     /// Walking speed v in m/s, range [0.4, 2.5] [default: 1.4 if no gait flag is given]
     #[arg(
         long,
@@ -479,6 +422,12 @@ struct WalkArgs {
             march, long-stride). --attributes overrides the style's values name by name."
     )]
     style: Option<String>,
+}
+
+#[derive(Args)]
+struct WalkArgs {
+    #[command(flatten)]
+    gait: GaitArgs,
 
     /// Output frame rate in frames/s, range [0.001, 10000]
     #[arg(
@@ -616,7 +565,7 @@ fn check_output_dir(path: &Path) -> Result<()> {
 }
 
 /// The gait of every step: the schedule's rows (the last one held) or the flags' one gait.
-fn gaits(args: &WalkArgs, body: &Body, attrs: &Attributes) -> Result<Vec<Gait>> {
+fn gaits(args: &GaitArgs, body: &Body, attrs: &Attributes) -> Result<Vec<Gait>> {
     if let Some(steps) = args.steps {
         check_count("steps", steps, 1, MAX_STEPS, "steps")?;
     }
@@ -674,9 +623,9 @@ fn load_attributes(style: Option<&str>, path: Option<&Path>) -> Result<Attribute
 
 fn walk(args: &WalkArgs) -> Result<()> {
     let fps = Error::check_range("fps", args.fps, MIN_FPS, MAX_FPS, "frames/s")?;
-    let body = Body::standard(args.height, args.mass)?;
-    let attrs = load_attributes(args.style.as_deref(), args.attributes.as_deref())?;
-    let gaits = gaits(args, &body, &attrs)?;
+    let body = Body::standard(args.gait.height, args.gait.mass)?;
+    let attrs = load_attributes(args.gait.style.as_deref(), args.gait.attributes.as_deref())?;
+    let gaits = gaits(&args.gait, &body, &attrs)?;
     // the walk lasts Σ 60 / sf
     let expected_duration: f64 = gaits.iter().map(|g| 60.0 / g.step_frequency).sum();
     let expected_frames = (expected_duration * fps).round() + 1.0;
