@@ -44,7 +44,7 @@ pub struct WalkStream<'a> {
     pub events: Vec<Event>,
     pub state_frames: Vec<Frame>,
     pub clinical: Vec<Clinical>,
-    /// Heel strikes of the right foot (the start of every even step).
+    /// Heel strikes of the right foot (the start of every even step), gathered with `clinical`.
     pub right_heel_strikes: Vec<f64>,
 }
 
@@ -91,7 +91,7 @@ impl<'a> WalkStream<'a> {
             Ok(s) => s,
             Err(e) => return Some(Err(e)),
         };
-        if step.index.is_multiple_of(2) {
+        if self.gather.clinical && step.index.is_multiple_of(2) {
             self.right_heel_strikes.push(step.t_start);
         }
         self.steps += 1;
