@@ -198,11 +198,27 @@ fn finite(name: &str, value: f64) -> Result<f64> {
     }
 }
 
-fn point(name: &str, p: [f64; 3]) -> Result<DVec3> {
+/// `p` as a vector, or [`Error::NotFinite`] naming `name.axis` (the name is only formatted on
+/// error: this runs several times per frame).
+fn point(name: std::fmt::Arguments, p: [f64; 3]) -> Result<DVec3> {
     for (axis, v) in ["x", "y", "z"].iter().zip(p) {
-        finite(&format!("{name}.{axis}"), v)?;
+        if !v.is_finite() {
+            return Err(Error::NotFinite {
+                name: format!("{name}.{axis}"),
+                value: v,
+            });
+        }
     }
     Ok(DVec3::from_array(p))
+}
+
+/// [`finite`] with the name formatted only on error.
+fn finite_named(name: std::fmt::Arguments, value: f64) -> Result<f64> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        finite(&name.to_string(), value)
+    }
 }
 
 fn geometry(time: f64, what: String) -> Error {
@@ -212,7 +228,7 @@ fn geometry(time: f64, what: String) -> Error {
 }
 
 /// `v / |v|`, or an error naming `what` when v is (nearly) zero.
-fn unit(v: DVec3, time: f64, what: &str) -> Result<DVec3> {
+fn unit(v: DVec3, time: f64, what: std::fmt::Arguments) -> Result<DVec3> {
     let n = v.length();
     if n > 1e-9 {
         Ok(v / n)
@@ -222,7 +238,7 @@ fn unit(v: DVec3, time: f64, what: &str) -> Result<DVec3> {
 }
 
 /// The component of `hint` perpendicular to the unit vector `axis`, normalized.
-fn perpendicular(hint: DVec3, axis: DVec3, time: f64, what: &str) -> Result<DVec3> {
+fn perpendicular(hint: DVec3, axis: DVec3, time: f64, what: std::fmt::Arguments) -> Result<DVec3> {
     let hint = unit(hint, time, what)?;
     let p = hint - hint.dot(axis) * axis;
     if p.length() < 1e-6 {
@@ -233,18 +249,18 @@ fn perpendicular(hint: DVec3, axis: DVec3, time: f64, what: &str) -> Result<DVec
 
 fn leg_frames(leg: &LegPoints, side: Side, time: f64) -> Result<LegFrames> {
     let s = side.suffix();
-    let hip = point(&format!("{s}.hip"), leg.hip)?;
-    let knee = point(&format!("{s}.knee"), leg.knee)?;
-    let ankle = point(&format!("{s}.ankle"), leg.ankle)?;
-    let heel = point(&format!("{s}.heel"), leg.heel)?;
-    let mtp = point(&format!("{s}.mtp"), leg.mtp)?;
-    let toe = point(&format!("{s}.toe"), leg.toe)?;
-    let knee_axis = point(&format!("{s}.knee_axis"), leg.knee_axis)?;
+    let hip = point(format_args!("{s}.hip"), leg.hip)?;
+    let knee = point(format_args!("{s}.knee"), leg.knee)?;
+    let ankle = point(format_args!("{s}.ankle"), leg.ankle)?;
+    let heel = point(format_args!("{s}.heel"), leg.heel)?;
+    let mtp = point(format_args!("{s}.mtp"), leg.mtp)?;
+    let toe = point(format_args!("{s}.toe"), leg.toe)?;
+    let knee_axis = point(format_args!("{s}.knee_axis"), leg.knee_axis)?;
 
     // y along the segment, z the knee axis, x = y × z (forward)
     let y_z = |origin: DVec3, y: DVec3, z: DVec3, what: &str| -> Result<Frame> {
-        let y = unit(y, time, &format!("the {what} of the {s} leg"))?;
-        let z = perpendicular(z, y, time, &format!("the {s} knee axis"))?;
+        let y = unit(y, time, format_args!("the {what} of the {s} leg"))?;
+        let z = perpendicular(z, y, time, format_args!("the {s} knee axis"))?;
         Ok(Frame {
             origin,
             axes: DMat3::from_cols(y.cross(z), y, z),
@@ -253,19 +269,28 @@ fn leg_frames(leg: &LegPoints, side: Side, time: f64) -> Result<LegFrames> {
     let thigh = y_z(hip, hip - knee, knee_axis, "thigh")?;
     let shank = y_z(knee, knee - ankle, knee_axis, "shank")?;
     // foot: x heel → mtp, y towards the ankle, z = x × y
-    let x = unit(mtp - heel, time, &format!("the {s} foot's heel–mtp line"))?;
-    let y = perpendicular(ankle - heel, x, time, &format!("the {s} heel–ankle line"))?;
+    let x = unit(
+        mtp - heel,
+        time,
+        format_args!("the {s} foot's heel–mtp line"),
+    )?;
+    let y = perpendicular(
+        ankle - heel,
+        x,
+        time,
+        format_args!("the {s} heel–ankle line"),
+    )?;
     let foot = Frame {
         origin: ankle,
         axes: DMat3::from_cols(x, y, x.cross(y)),
     };
     // toe: x mtp → toe tip, z the foot's lateral axis, y = z × x
-    let x = unit(toe - mtp, time, &format!("the {s} toe"))?;
+    let x = unit(toe - mtp, time, format_args!("the {s} toe"))?;
     let z = perpendicular(
         foot.axes.z_axis,
         x,
         time,
-        &format!("the {s} foot's lateral axis"),
+        format_args!("the {s} foot's lateral axis"),
     )?;
     let toe = Frame {
         origin: mtp,
@@ -281,9 +306,12 @@ fn leg_frames(leg: &LegPoints, side: Side, time: f64) -> Result<LegFrames> {
 
 fn arm_frames(thorax: &Frame, arm: &ArmAngles, side: Side, body: &Body) -> Result<ArmFrames> {
     let s = side.suffix();
-    let flexion = finite(&format!("{s}.shoulder_flexion"), arm.shoulder_flexion)?;
-    let abduction = finite(&format!("{s}.shoulder_abduction"), arm.shoulder_abduction)?;
-    let elbow = finite(&format!("{s}.elbow_flexion"), arm.elbow_flexion)?;
+    let flexion = finite_named(format_args!("{s}.shoulder_flexion"), arm.shoulder_flexion)?;
+    let abduction = finite_named(
+        format_args!("{s}.shoulder_abduction"),
+        arm.shoulder_abduction,
+    )?;
+    let elbow = finite_named(format_args!("{s}.elbow_flexion"), arm.elbow_flexion)?;
     let f = &body.figure;
     let shoulder = thorax.point(DVec3::new(
         0.0,
@@ -316,7 +344,7 @@ impl Skeleton {
     /// field), a degenerate segment or a knee axis along a segment ([`Error::Geometry`]).
     pub fn new(lm: &Landmarks, body: &Body) -> Result<Self> {
         let t = finite("time", lm.time)?;
-        let pelvis_origin = point("pelvis", lm.pelvis)?;
+        let pelvis_origin = point(format_args!("pelvis"), lm.pelvis)?;
         let tilt = finite("pelvis_tilt", lm.pelvis_tilt)?;
         let list = finite("pelvis_list", lm.pelvis_list)?;
         let rotation = finite("pelvis_rotation", lm.pelvis_rotation)?;

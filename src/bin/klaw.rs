@@ -517,6 +517,15 @@ struct BenchArgs {
     /// Number of walks timed, range [1, 100000]
     #[arg(long, value_name = "R", default_value_t = 20)]
     repeat: usize,
+    /// Also time the kinematics: the figure (landmarks) and the clinical angles of every frame
+    #[arg(long)]
+    frames: bool,
+    /// Frames per second for --frames and --csv, range [0.001, 10000]
+    #[arg(long, value_name = "FPS", default_value_t = DEFAULT_FPS)]
+    fps: f64,
+    /// Also time writing the frames' CSV (to a temporary file, removed afterwards)
+    #[arg(long)]
+    csv: bool,
 }
 
 fn main() -> ExitCode {
@@ -755,7 +764,13 @@ fn bench(args: &BenchArgs) -> Result<()> {
     .complete(&body, &attrs)?;
     let gaits = vec![gait; steps];
 
+    let fps = Error::check_range("fps", args.fps, MIN_FPS, MAX_FPS, "frames/s")?;
+    let csv_path = std::env::temp_dir().join(format!("klaw-bench-{}.csv", std::process::id()));
+
     let mut wall = 0.0;
+    let mut frames_wall = 0.0;
+    let mut csv_wall = 0.0;
+    let mut frame_count = 0usize;
     let mut simulated = 0.0;
     let mut solves = 0usize;
     let mut iterations = 0usize;
@@ -764,6 +779,29 @@ fn bench(args: &BenchArgs) -> Result<()> {
         let walk = simulate(body, attrs.clone(), &gaits)?;
         wall += start.elapsed().as_secs_f64();
         simulated += walk.duration();
+        if args.frames {
+            let start = Instant::now();
+            for lm in klaw::figure::frames(&walk, fps) {
+                let lm = lm?;
+                std::hint::black_box(klaw::skeleton::clinical(&lm, &body)?);
+                frame_count += 1;
+            }
+            frames_wall += start.elapsed().as_secs_f64();
+        }
+        if args.csv {
+            let start = Instant::now();
+            let written = export::try_write(
+                &csv_path,
+                export::Format::Csv,
+                &body,
+                fps,
+                klaw::figure::frames(&walk, fps),
+                &export::Options::default(),
+            );
+            csv_wall += start.elapsed().as_secs_f64();
+            let _ = std::fs::remove_file(&csv_path);
+            written?;
+        }
         for s in &walk.report().steps {
             solves += s.solves.len();
             iterations += s.solves.iter().map(|r| r.report.iterations).sum::<usize>();
@@ -782,6 +820,27 @@ fn bench(args: &BenchArgs) -> Result<()> {
         simulated / wall
     );
     let _ = writeln!(out, "steps per second: {:.1}", total_steps / wall);
+    if args.frames {
+        let _ = writeln!(
+            out,
+            "with frames: {frame_count} frames at {fps} frames/s ({:.3} s wall, {:.1} us per frame)",
+            frames_wall,
+            1e6 * frames_wall / frame_count.max(1) as f64
+        );
+        let _ = writeln!(
+            out,
+            "real-time factor with frames: {:.2} simulated s per wall s",
+            simulated / (wall + frames_wall)
+        );
+    }
+    if args.csv {
+        let _ = writeln!(
+            out,
+            "real-time factor with CSV: {:.2} simulated s per wall s ({:.3} s wall writing)",
+            simulated / (wall + csv_wall),
+            csv_wall
+        );
+    }
     if solves > 0 {
         let _ = writeln!(
             out,

@@ -219,6 +219,10 @@ struct Piece {
 /// Grid step of [`HipPath`] (s).
 pub const HIP_PATH_STEP: f64 = 5e-4;
 
+/// The step of [`HipPath::new`]'s central difference of the swing hip's offset (s).
+pub const OFFSET_DIFFERENCE_STEP: f64 = 1e-4;
+const H: f64 = OFFSET_DIFFERENCE_STEP;
+
 impl HipPath {
     /// Tabulate the hip acceleration of `run` plus that of `offset(t)` on [t0, t1].
     pub fn new(
@@ -228,9 +232,24 @@ impl HipPath {
         t1: f64,
         offset: &dyn Fn(f64) -> [f64; 2],
     ) -> Self {
-        const H: f64 = 1e-4;
+        Self::with_offset_acceleration(run, setup, t0, t1, offset, &|_| None)
+    }
+
+    /// [`Self::new`] with the offset's acceleration where `offset_acceleration(t)` gives it (in
+    /// closed form); elsewhere the offset is differenced as in [`Self::new`].
+    pub fn with_offset_acceleration(
+        run: &StanceRun,
+        setup: &StanceSetup,
+        t0: f64,
+        t1: f64,
+        offset: &dyn Fn(f64) -> [f64; 2],
+        offset_acceleration: &dyn Fn(f64) -> Option<[f64; 2]>,
+    ) -> Self {
         let acceleration = |t: f64| {
             let a = run.hip(setup, t)[2];
+            if let Some(o) = offset_acceleration(t) {
+                return [a[0] + o[0], a[1] + o[1]];
+            }
             let (m, o, p) = (offset(t - H), offset(t), offset(t + H));
             [
                 a[0] + (m[0] - 2.0 * o[0] + p[0]) / (H * H),

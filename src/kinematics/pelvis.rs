@@ -135,6 +135,62 @@ impl Determinants {
     }
 }
 
+impl Determinants {
+    /// The second time derivative of the swing-side hip offset `[hip_offset(leg)[0],
+    /// hip_offset(leg)[1] + fold_height(d_v, lateral_offset(leg))]` (`leg` = `stance.other()`) at
+    /// step time τ, in closed form (the determinants are sinusoids in τ); `None` within `margin`
+    /// of the ends of [0, t_step] (where [`Self::at`] clamps) or when the fold is degenerate,
+    /// where the caller differences numerically.
+    pub fn swing_offset_acceleration(
+        &self,
+        stance: Side,
+        tau: f64,
+        t_step: f64,
+        d_v: f64,
+        margin: f64,
+    ) -> Option<[f64; 2]> {
+        if tau - margin < 0.0 || tau + margin > t_step {
+            return None;
+        }
+        let leg = stance.other();
+        let sign = stance.sign();
+        let h = leg.sign() * self.half_width;
+        let w = PI / t_step;
+        let (sn, cs) = (PI * tau / t_step).sin_cos();
+        let w2 = w * w;
+        // list L, rotation R, lateral displacement D and their rates
+        let l = sign * self.list * sn;
+        let l1 = sign * self.list * w * cs;
+        let l2 = -w2 * l;
+        let r = sign * self.rotation * cs;
+        let r1 = -sign * self.rotation * w * sn;
+        let r2 = -w2 * r;
+        let d1 = sign * self.lateral * w * cs;
+        let d2 = -w2 * sign * self.lateral * sn;
+        let (sl, cl) = l.sin_cos();
+        let (sr, cr) = r.sin_cos();
+        // x: h cos L sin R
+        let ax = h
+            * (-cl * sr * (l1 * l1 + r1 * r1) - sl * l2 * sr - 2.0 * sl * l1 * cr * r1
+                + cl * cr * r2);
+        // y: h sin L
+        let ay = h * (-sl * l1 * l1 + cl * l2);
+        // the fold of dz = D + h cos L cos R − ankle z
+        let dz = sign * self.lateral * sn + h * cl * cr - self.ankle_z(leg);
+        let dz1 = d1 + h * (-sl * l1 * cr - cl * sr * r1);
+        let dz2 = d2
+            + h * (-cl * cr * (l1 * l1 + r1 * r1) - sl * l2 * cr + 2.0 * sl * l1 * sr * r1
+                - cl * sr * r2);
+        let q = d_v * d_v - dz * dz;
+        if q <= 0.0 {
+            return None;
+        }
+        let root = q.sqrt();
+        let fold2 = (dz1 * dz1 + dz * dz2) / root + dz * dz * dz1 * dz1 / (root * q);
+        Some([ax, ay + fold2])
+    }
+}
+
 /// Height gained by folding a lateral offset out of a leg (spec §7: "the sagittal leg length is
 /// √(a1² − d²)"): a leg whose hip–ankle line has in-plane length `d_v` and lateral offset `dz`
 /// spans only √(d_v² − dz²) vertically, so in the leg's own plane the hip sits
@@ -218,6 +274,38 @@ mod tests {
 
     /// Folding: a leg of in-plane length d_v tilted by φ drops d_v cos φ, so the fold is
     /// d_v (1 − cos φ) with sin φ = dz / d_v.
+    #[test]
+    fn swing_offset_acceleration_is_the_second_derivative() {
+        let d = det();
+        let (t_step, d_v) = (0.55, 0.84);
+        for stance in [Side::Right, Side::Left] {
+            let offset = |tau: f64| {
+                let p = d.at(stance, tau, t_step);
+                let leg = stance.other();
+                let o = d.hip_offset(leg, &p);
+                [o[0], o[1] + fold_height(d_v, d.lateral_offset(leg, &p))]
+            };
+            for k in 1..20 {
+                let tau = t_step * k as f64 / 20.0;
+                let a = d
+                    .swing_offset_acceleration(stance, tau, t_step, d_v, 1e-3)
+                    .unwrap();
+                let h = 1e-3;
+                for (i, ai) in a.into_iter().enumerate() {
+                    let f = |dt: f64| offset(tau + dt)[i];
+                    let fd = (-f(-2.0 * h) + 16.0 * f(-h) - 30.0 * f(0.0) + 16.0 * f(h)
+                        - f(2.0 * h))
+                        / (12.0 * h * h);
+                    assert!((ai - fd).abs() < 1e-6, "{stance:?} {tau} {i}: {ai} {fd}");
+                }
+            }
+            assert!(
+                d.swing_offset_acceleration(stance, 0.5e-3, t_step, d_v, 1e-3)
+                    .is_none()
+            );
+        }
+    }
+
     #[test]
     fn fold_height_is_the_tilted_leg_drop() {
         let (d_v, phi) = (0.85_f64, 0.07_f64);
