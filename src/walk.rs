@@ -8,9 +8,7 @@ use std::f64::consts::PI;
 use crate::attributes::Attributes;
 use crate::body::Body;
 use crate::control::shooting::{self, Memory1, Memory2, Options, SolveReport, Start1, Start2};
-use crate::control::stance::{
-    HipPath, OFFSET_DIFFERENCE_STEP, StanceRun, StanceSetup, StanceState,
-};
+use crate::control::stance::{HipPath, StanceRun, StanceSetup, StanceState};
 use crate::control::swing::{self, Subphase, SwingSetup, SwingState, SwingTrial};
 use crate::dynamics::impact::{self, ImpactReport};
 use crate::dynamics::{StanceModel, SwingModel};
@@ -359,15 +357,8 @@ impl Walker {
         // swing: three subphases, each solved by shooting; the dynamics hang from the swing
         // side's hip joint, in the leg's own plane
         let swing_offset = |tau: f64| swing_hip_offset(&det, side, &c, &pelvis(tau));
-        let swing_offset_acc = |tau: f64| {
-            det.swing_offset_acceleration(
-                side,
-                tau,
-                t.t_step,
-                c.fold_length,
-                OFFSET_DIFFERENCE_STEP,
-            )
-        };
+        let swing_offset_acc =
+            |tau: f64| det.swing_offset_acceleration(side, tau, t.t_step, c.fold_length);
         let hip_path = HipPath::with_offset_acceleration(
             &stance,
             &setup,

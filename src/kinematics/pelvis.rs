@@ -101,7 +101,9 @@ impl Determinants {
     /// The pelvis at time τ of a step of duration `t_step` standing on `stance`.
     pub fn at(&self, stance: Side, tau: f64, t_step: f64) -> PelvisMotion {
         let sign = stance.sign();
-        let s = (tau / t_step).clamp(0.0, 1.0);
+        // not clamped: the sinusoids continue smoothly past the step's ends, so that finite
+        // differences there see the true derivatives
+        let s = tau / t_step;
         let w = PI / t_step;
         let (sn, cs) = (PI * s).sin_cos();
         PelvisMotion {
@@ -138,20 +140,16 @@ impl Determinants {
 impl Determinants {
     /// The second time derivative of the swing-side hip offset `[hip_offset(leg)[0],
     /// hip_offset(leg)[1] + fold_height(d_v, lateral_offset(leg))]` (`leg` = `stance.other()`) at
-    /// step time τ, in closed form (the determinants are sinusoids in τ); `None` within `margin`
-    /// of the ends of [0, t_step] (where [`Self::at`] clamps) or when the fold is degenerate,
-    /// where the caller differences numerically.
+    /// step time τ, in closed form (the determinants are sinusoids in τ); `None` when the fold
+    /// is degenerate (a lateral offset as long as the leg), where the caller differences
+    /// numerically.
     pub fn swing_offset_acceleration(
         &self,
         stance: Side,
         tau: f64,
         t_step: f64,
         d_v: f64,
-        margin: f64,
     ) -> Option<[f64; 2]> {
-        if tau - margin < 0.0 || tau + margin > t_step {
-            return None;
-        }
         let leg = stance.other();
         let sign = stance.sign();
         let h = leg.sign() * self.half_width;
@@ -285,10 +283,11 @@ mod tests {
                 let o = d.hip_offset(leg, &p);
                 [o[0], o[1] + fold_height(d_v, d.lateral_offset(leg, &p))]
             };
-            for k in 1..20 {
+            // the ends included: the determinants continue smoothly past them
+            for k in 0..=20 {
                 let tau = t_step * k as f64 / 20.0;
                 let a = d
-                    .swing_offset_acceleration(stance, tau, t_step, d_v, 1e-3)
+                    .swing_offset_acceleration(stance, tau, t_step, d_v)
                     .unwrap();
                 let h = 1e-3;
                 for (i, ai) in a.into_iter().enumerate() {
@@ -299,8 +298,9 @@ mod tests {
                     assert!((ai - fd).abs() < 1e-6, "{stance:?} {tau} {i}: {ai} {fd}");
                 }
             }
+            // a lateral offset as long as the leg: no fold to differentiate
             assert!(
-                d.swing_offset_acceleration(stance, 0.5e-3, t_step, d_v, 1e-3)
+                d.swing_offset_acceleration(stance, 0.1, t_step, 0.01)
                     .is_none()
             );
         }
