@@ -301,13 +301,13 @@ impl Walker {
                     self.attrs.heel_off_dorsiflexion,
                     self.attrs.metatarsal_limit,
                 );
-                leg.heel_off = Some(KneeCurve {
+                leg.heel_off = Some(KneeCurve::new(
                     t0,
-                    kappa0: self.attrs.heel_strike_knee,
-                    rate0: 0.0,
-                    t_to: t0 + t.t_ds,
+                    self.attrs.heel_strike_knee,
+                    0.0,
+                    t0 + t.t_ds,
                     kappa_to,
-                });
+                ));
                 leg
             }
         };
@@ -954,7 +954,7 @@ impl Step {
     }
 
     /// Invariants of a converged step (spec §4, §5): the hip never below its heel-strike height,
-    /// no point of the swing foot under the ground.
+    /// no point of the swing foot under the ground, the toe clear of it in mid swing.
     fn check_invariants(&self) -> Result<()> {
         let r = &self.report;
         let fail = |phase: &'static str, what: String| {
@@ -970,6 +970,15 @@ impl Step {
                 format!(
                     "the hip drops {:.3e} m below its heel-strike height",
                     -r.hip_min_margin
+                ),
+            );
+        }
+        if r.min_toe_clearance <= 0.0 {
+            return fail(
+                "swing",
+                format!(
+                    "the toe touches the ground in mid swing (clearance {:.3e} m)",
+                    r.min_toe_clearance
                 ),
             );
         }

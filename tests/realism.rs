@@ -6,8 +6,9 @@
 //! - knee peak swing flexion ≈ 84° (norm 55–65°): swing1 must bring the thigh to its heel-strike
 //!   angle θ3* with the tibia vertical by mid swing (the paper's end conditions), which needs the
 //!   knee folded by ≈ θ3* + the shank's back swing; the swing dynamics then overshoot;
-//! - hip peak extension ≈ −2° at 1.35–1.5 m/s (norm −5…−15°), ankle peak stance dorsiflexion
-//!   ≈ 21–26° (norm 8–15°) and a weak push-off plantarflexion: the stance hip follows the ε·E bounce reference, not the virtual leg's reference
+//! - hip peak extension −4.3° and −4.6° at two of the six points (norm −5…−15°), ankle peak
+//!   stance dorsiflexion ≈ 21–26° (norm 8–15°) and a weak push-off plantarflexion: the stance
+//!   hip follows the ε·E bounce reference, not the virtual leg's reference
 //!   knee curve (spec §7 "known geometric tension"); late in stance the hip is too low and too
 //!   far back for the trailing leg to extend, so the knee and ankle fold instead.
 use klaw::export::{angle_columns, cycle_average};

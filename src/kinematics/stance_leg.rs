@@ -49,7 +49,8 @@ pub enum FootPhase {
     Rolling,
 }
 
-/// Knee flexion after heel-off: κ(t) = κ0 + κ̇0 (t − t0) + c (t − t0)², reaching κ_TO at t_to.
+/// Knee flexion after heel-off (spec §7: "a C¹ cubic from its value and rate at heel-off to
+/// κ_TO at toe-off"): the cubic Hermite from (κ0, κ̇0) at t0 to (κ_TO, κ̇_TO) at t_to.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct KneeCurve {
     pub t0: f64,
@@ -57,18 +58,45 @@ pub struct KneeCurve {
     pub rate0: f64,
     pub t_to: f64,
     pub kappa_to: f64,
+    pub rate_to: f64,
 }
 
+/// The knee's rate at toe-off as a multiple of its mean rate from heel-off [ours]: the knee
+/// stays nearly straight after heel-off and folds in pre-swing, as in human gait (Perry: ≈ 5° at
+/// 40 % of the cycle, 35–40° at toe-off, still flexing), while the foot rolls up and the ankle
+/// plantarflexes.
+pub const TOE_OFF_KNEE_RATE: f64 = 2.0;
+
 impl KneeCurve {
+    /// The curve from (κ0, κ̇0) at t0 to κ_TO at t_to, reaching it at TOE_OFF_KNEE_RATE × the
+    /// mean rate.
+    pub fn new(t0: f64, kappa0: f64, rate0: f64, t_to: f64, kappa_to: f64) -> Self {
+        KneeCurve {
+            t0,
+            kappa0,
+            rate0,
+            t_to,
+            kappa_to,
+            rate_to: TOE_OFF_KNEE_RATE * (kappa_to - kappa0) / (t_to - t0),
+        }
+    }
+
     /// Value and rate at t.
     pub fn at(&self, t: f64) -> (f64, f64) {
         let d = self.t_to - self.t0;
-        let c = (self.kappa_to - self.kappa0 - self.rate0 * d) / (d * d);
-        let s = t - self.t0;
-        (
-            self.kappa0 + self.rate0 * s + c * s * s,
-            self.rate0 + 2.0 * c * s,
-        )
+        let s = (t - self.t0) / d;
+        let (p0, m0, p1, m1) = (self.kappa0, self.rate0 * d, self.kappa_to, self.rate_to * d);
+        let (s2, s3) = (s * s, s * s * s);
+        let value = (2.0 * s3 - 3.0 * s2 + 1.0) * p0
+            + (s3 - 2.0 * s2 + s) * m0
+            + (-2.0 * s3 + 3.0 * s2) * p1
+            + (s3 - s2) * m1;
+        let rate = ((6.0 * s2 - 6.0 * s) * p0
+            + (3.0 * s2 - 4.0 * s + 1.0) * m0
+            + (-6.0 * s2 + 6.0 * s) * p1
+            + (3.0 * s2 - 2.0 * s) * m1)
+            / d;
+        (value, rate)
     }
 }
 
@@ -403,13 +431,7 @@ impl StanceLeg {
         let h = 1e-6;
         let k0 = flat(t0)?.theta4;
         let rate = (k0 - flat(t0 - h)?.theta4) / h;
-        self.heel_off = Some(KneeCurve {
-            t0,
-            kappa0: k0,
-            rate0: rate,
-            t_to: t_toe_off,
-            kappa_to,
-        });
+        self.heel_off = Some(KneeCurve::new(t0, k0, rate, t_toe_off, kappa_to));
         Ok(())
     }
 
@@ -424,6 +446,9 @@ impl StanceLeg {
         t_toe_off: f64,
         kappa_to: f64,
     ) -> Result<(), String> {
+        // the same toe-off rate as planned at heel-off: in a steady gait the re-anchored cubic is
+        // the one planned
+        let planned = self.heel_off.map(|k| k.rate_to);
         let (kappa0, rate0) = match self.knee_curve(t_hs_next) {
             Some(k) => k,
             None => {
@@ -436,13 +461,11 @@ impl StanceLeg {
                 (k0, (knee(t_hs_next + h)? - k0) / h)
             }
         };
-        self.to_toe_off = Some(KneeCurve {
-            t0: t_hs_next,
-            kappa0,
-            rate0,
-            t_to: t_toe_off,
-            kappa_to,
-        });
+        let mut curve = KneeCurve::new(t_hs_next, kappa0, rate0, t_toe_off, kappa_to);
+        if let Some(rate_to) = planned {
+            curve.rate_to = rate_to;
+        }
+        self.to_toe_off = Some(curve);
         Ok(())
     }
 }
