@@ -450,3 +450,43 @@ fn bench_reports_rates() {
     }
     assert!(files(dir.path()).is_empty());
 }
+
+/// `--cycle-out` needs a steady cycle after the start-up one: with 4 steps it is refused before
+/// anything is simulated or written; with 5 it writes 101 rows (0…100 %) and the events file
+/// lists every event of the walk's feet.
+#[test]
+fn cycle_and_events_outputs() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let args = |n: &'static str| {
+        vec![
+            "walk",
+            "--steps",
+            n,
+            "--no-plot",
+            "--out",
+            "m.csv",
+            "--cycle-out",
+            "c.csv",
+            "--events",
+            "e.csv",
+        ]
+    };
+    bad_input(d, &args("4"), &["--cycle-out", "5 steps", "4"]);
+    assert!(files(d).is_empty(), "{:?}", files(d));
+    ok(d, &args("5"));
+    let mut r = csv::Reader::from_path(d.join("c.csv")).unwrap();
+    assert_eq!(&r.headers().unwrap()[0], "cycle_pct");
+    let pct: Vec<String> = r.records().map(|x| x.unwrap()[0].to_string()).collect();
+    assert_eq!(pct.len(), 101);
+    assert_eq!((pct[0].as_str(), pct[100].as_str()), ("0", "100"));
+    let mut e = csv::Reader::from_path(d.join("e.csv")).unwrap();
+    assert_eq!(
+        e.headers().unwrap(),
+        vec!["time_s", "side", "event", "step"]
+    );
+    let rows: Vec<csv::StringRecord> = e.records().map(|x| x.unwrap()).collect();
+    // 5 heel strikes; every stance but the last reaches toe-off
+    let count = |name: &str| rows.iter().filter(|r| &r[2] == name).count();
+    assert_eq!((count("HS"), count("TO")), (5, 4));
+}

@@ -639,6 +639,16 @@ fn walk(args: &WalkArgs) -> Result<()> {
     let expected_duration: f64 = gaits.iter().map(|g| 60.0 / g.step_frequency).sum();
     let expected_frames = (expected_duration * fps).round() + 1.0;
     let format = export::Format::from_path(&args.out)?;
+    if args.cycle_out.is_some() && gaits.len() < 5 {
+        return Err(Error::BadSpec {
+            flag: "cycle-out".into(),
+            reason: format!(
+                "the gait cycle is averaged over the right heel strike to right heel strike \
+                 cycles after the first: at least 5 steps are needed, not {}",
+                gaits.len()
+            ),
+        });
+    }
     let plot = (!args.no_plot).then_some(args.plot.as_path());
     let outputs = [
         Some((args.out.as_path(), "--out")),
