@@ -231,9 +231,9 @@ fn swing_setup<'a>(
     let wh = 2.0 * std::f64::consts::PI * attrs.swing_hip_frequency;
     let z = attrs.servo_damping_ratio;
     // the swing-side hip's vertical velocity at heel strike, as the walk computes it
-    let e = 1e-6 * t.t_step;
-    let hip_vy_end = step.stance.hip(&step.stance_setup, t.t_step)[1][1]
-        + (step.swing_offset(t.t_step)[1] - step.swing_offset(t.t_step - e)[1]) / e;
+    let hip_vy_end = walk::swing_hip_vy_end(&step.stance, &step.stance_setup, &|tau| {
+        step.swing_offset(tau)
+    });
     swing::SwingSetup {
         model,
         hip_path: path,

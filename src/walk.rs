@@ -367,9 +367,7 @@ impl Walker {
             &swing_offset,
             &swing_offset_acc,
         );
-        let e = 1e-6 * t.t_step;
-        let hip_vy_end = stance.hip(&setup, t.t_step)[1][1]
-            + (swing_offset(t.t_step)[1] - swing_offset(t.t_step - e)[1]) / e;
+        let hip_vy_end = swing_hip_vy_end(&stance, &setup, &swing_offset);
         let m_hs = self.swing_model.mass_matrix(&Vector2::new(0.0, c.theta4));
         let (a11, a22) = (m_hs[(0, 0)], m_hs[(1, 1)]);
         let wh = 2.0 * PI * self.attrs.swing_hip_frequency;
@@ -634,6 +632,18 @@ impl Walker {
         )?;
         Ok((best.into_inner().ok_or("no trial ran")?, report, mem))
     }
+}
+
+/// The swing-side hip's vertical velocity at heel strike: the stance hip's plus the rate of the
+/// determinants' `offset` (a backward difference over 1e-6 t_step).
+pub fn swing_hip_vy_end(
+    stance: &StanceRun,
+    setup: &StanceSetup,
+    offset: &dyn Fn(f64) -> [f64; 2],
+) -> f64 {
+    let t = setup.t_step;
+    let e = 1e-6 * t;
+    stance.hip(setup, t)[1][1] + (offset(t)[1] - offset(t - e)[1]) / e
 }
 
 /// Move a pose's x coordinates by `dx`.
