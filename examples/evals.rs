@@ -123,6 +123,10 @@ fn main() {
         kappa_hs: s.constraints.theta4,
         heel_ahead: 0.0,
         landing_velocity: 0.0,
+        d_swing1: swing::knee_damper(
+            &klaw::dynamics::SwingModel::new(&body),
+            attrs.servo_damping_ratio,
+        ),
         k_k: 0.0,
         d_k: 0.0,
         k_h: 0.0,
@@ -246,6 +250,7 @@ fn swing_setup<'a>(
         kappa_hs: c.theta4,
         heel_ahead: c.heel_x - c.hip[0] - c.hip_shift,
         landing_velocity: attrs.heel_strike_velocity,
+        d_swing1: swing::knee_damper(&model, z),
         k_k: a22 * wh * wh,
         d_k: 2.0 * z * a22 * wh,
         k_h: a11 * wh * wh,

@@ -383,6 +383,7 @@ impl Walker {
             kappa_hs: c.theta4,
             heel_ahead: c.heel_x - c.hip[0] - c.hip_shift,
             landing_velocity: self.attrs.heel_strike_velocity,
+            d_swing1: swing::knee_damper(&self.swing_model, self.attrs.servo_damping_ratio),
             k_k: a22 * wh * wh,
             d_k: 2.0 * self.attrs.servo_damping_ratio * a22 * wh,
             k_h: a11 * wh * wh,

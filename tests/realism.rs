@@ -3,9 +3,9 @@
 //!
 //! Ranges the model meets are asserted as published. Where it cannot, the test asserts the
 //! deviation as measured, with its cause (docs/realism.md), so that any change to it is seen:
-//! - knee peak swing flexion ≈ 84° (norm 55–65°): swing1 must bring the thigh to its heel-strike
-//!   angle θ3* with the tibia vertical by mid swing (the paper's end conditions), which needs the
-//!   knee folded by ≈ θ3* + the shank's back swing; the swing dynamics then overshoot;
+//! - knee peak swing flexion 63–67° (norm 55–65°): the swing1 knee damper (the shank pendulum
+//!   damped at ζ) brakes the knee's flexion from toe-off; at 1.35–1.5 m/s the knee, handed over
+//!   at toe-off flexing faster, still ends 0.2–2° over;
 //! - hip peak extension −4.3° and −4.6° at two of the six points (norm −5…−15°), ankle peak
 //!   stance dorsiflexion ≈ 21–26° (norm 8–15°) and a weak push-off plantarflexion: the stance
 //!   hip follows the ε·E bounce reference, not the virtual leg's reference
@@ -119,7 +119,8 @@ fn default_walks_against_the_published_ranges() {
             within("knee stance peak at %", kst_at as f64, 10.0, 20.0, &at);
             let (ksw, ksw_at) = peak(&knee, 50..101, true);
             within("knee swing peak at %", ksw_at as f64, 68.0, 77.0, &at);
-            within("knee swing peak (deviation)", ksw, 78.0, 90.0, &at);
+            // deviation: 63° at 1.2 m/s, up to 67° at 1.5 m/s (norm 55–65°, for free walking)
+            within("knee swing peak (partly a deviation)", ksw, 55.0, 68.0, &at);
             // ankle: −5…+3° at heel strike; stance dorsiflexion peak (deviation)
             within("ankle at HS", ankle[0], -5.0, 3.0, &at);
             let (dmax, _) = peak(&ankle, 10..60, true);

@@ -10,7 +10,7 @@ use klaw::control::swing::{self, Subphase, SwingSetup, SwingState, SwingTrial};
 use klaw::dynamics::SwingModel;
 use klaw::walk::{Step, Walker, simulate};
 use klaw::work::{self, simpson};
-use klaw::{AttributeTable, Body, GaitRequest};
+use klaw::{AttributeTable, Attributes, Body, GaitRequest};
 
 fn steps(v: f64, n: usize) -> Vec<Step> {
     let body = Body::standard(1.8, 80.0).unwrap();
@@ -106,6 +106,8 @@ fn swing_setup<'a>(step: &'a Step, model: SwingModel, hip: &'a HipPath) -> Swing
         kappa_hs: c.theta4,
         heel_ahead: c.heel_x - c.hip[0] - c.hip_shift,
         landing_velocity: 0.1,
+        // the walk's own swing1 knee damper (the default ζ): swing1 segments are re-checked
+        d_swing1: swing::knee_damper(&model, Attributes::default().servo_damping_ratio),
         k_k: 30.0,
         d_k: 2.0,
         k_h: 40.0,
@@ -114,7 +116,7 @@ fn swing_setup<'a>(step: &'a Step, model: SwingModel, hip: &'a HipPath) -> Swing
 }
 
 /// Swing: the net work of the hip and knee torques over swing1 and swing3 of converged steps
-/// (their torques need no servo gains) and over swing2 trials with servo torques equals the
+/// (their torques need no servo gains but the swing1 knee damper's) and over swing2 trials with servo torques equals the
 /// energy balance of the leg hanging from the accelerating hip.
 #[test]
 fn swing_net_work_is_the_energy_balance_in_the_hip_frame() {

@@ -1,11 +1,15 @@
 //! Swing control (KLAW 1989 §4.3, spec §5): the hip and knee torques of the three swing
 //! subphases, one trial integration of each, and their end-condition residuals.
 //!
-//! - swing1 [0, ½ t_swing]: hip torque A (1 − 1.5 s) and knee torque B s², s the fraction of
-//!   swing1 [ours]; end conditions θ3 = θ3*, tibia vertical (θ3 + θ4 = 0, i.e. x_ankle = x_knee).
-//!   Measured over the grid (examples/grid.rs): constant torques whip the shank forward late and
-//!   put the toe 1–3 cm under the ground; a hip push that turns into a brake and a knee
-//!   extension that grows late keep the knee flexed while the foot passes under the hip.
+//! - swing1 [0, ½ t_swing]: hip torque A (1 − 1.5 s) and knee torque B s² − d₁ θ̇4, s the
+//!   fraction of swing1 [ours]; end conditions θ3 = θ3*, tibia vertical (θ3 + θ4 = 0, i.e.
+//!   x_ankle = x_knee). Measured over the grid (examples/grid.rs): constant torques whip the
+//!   shank forward late and put the toe 1–3 cm under the ground; a hip push that turns into a
+//!   brake and a knee extension that grows late keep the knee flexed while the foot passes under
+//!   the hip. The knee damper d₁ = 2ζ √(a22 m4 g r4) damps the shank's own pendulum at the servo
+//!   damping ratio ζ (the rectus femoris braking the knee's flexion in initial swing): without
+//!   it the knee, handed over at toe-off flexing at ≈ 6 rad/s, folds freely to 80–84° (norm
+//!   55–65°; docs/realism.md).
 //! - swing2 [½, 0.85 t_swing]: hip servo F_θ3 = −k_h (θ3 − θ3*) − d_h θ̇3; the knee follows a
 //!   linear reference from its swing1-end angle to κ_hs at t2 through a servo
 //!   −k_k (θ4 − θ4_ref) − d_k (θ̇4 − θ̇4_ref), plus the unknown constant knee torque C found so
@@ -33,6 +37,14 @@ pub const SWING2_END: f64 = 0.85;
 /// A trial stops when the thigh swings beyond ±100° (a wild guess).
 pub const THETA3_ABORT: f64 = 1.75;
 
+/// The swing1 knee damper d₁ = 2ζ √(a22 m4 g r4) (N m s/rad) [ours]: the shank swinging about
+/// the knee is a pendulum of inertia a22 = I4 + m4 r4² and stiffness m4 g r4 (small angles), and
+/// d₁ damps it at the ratio ζ.
+pub fn knee_damper(model: &SwingModel, zeta: f64) -> f64 {
+    let a22 = model.mass_matrix(&Vector2::zeros())[(1, 1)];
+    2.0 * zeta * (a22 * model.m4 * model.g * model.r4).sqrt()
+}
+
 /// Everything about one swing that does not change between trials.
 #[derive(Clone, Copy, Debug)]
 pub struct SwingSetup<'a> {
@@ -54,6 +66,8 @@ pub struct SwingSetup<'a> {
     pub heel_ahead: f64,
     /// Downward heel velocity wanted at contact (m/s).
     pub landing_velocity: f64,
+    /// Swing1 knee damper d₁ (N m s/rad).
+    pub d_swing1: f64,
     /// Swing2 knee servo (N m/rad, N m s/rad).
     pub k_k: f64,
     pub d_k: f64,
@@ -103,10 +117,14 @@ impl SwingForces<'_> {
         match self.sub {
             Subphase::Swing1 { hip, knee } => {
                 // hip: a push that turns into a brake, A (1 − 1.5 s); knee: B s², an extension
-                // that grows late, so the knee flexes first (s = fraction of swing1)
+                // that grows late, so the knee flexes first (s = fraction of swing1), braked
+                // by the damper
                 let s =
                     ((t - self.setup.t_off) / (self.setup.t1 - self.setup.t_off)).clamp(0.0, 1.0);
-                Vector2::new(hip * (1.0 - 1.5 * s), knee * s * s)
+                Vector2::new(
+                    hip * (1.0 - 1.5 * s),
+                    knee * s * s - self.setup.d_swing1 * y[3],
+                )
             }
             Subphase::Swing2 { knee, knee_start } => {
                 let s = self.setup;
@@ -245,5 +263,30 @@ impl SwingTrial {
             evaluations: out.evaluations,
             adapted: out.adapted,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::body::Body;
+
+    /// The damper gives the shank, swinging about the knee under the thigh held still, the
+    /// damping ratio ζ: a22 θ̈4 + d₁ θ̇4 + k θ4 = 0 with k the knee's gravity stiffness, taken
+    /// here as the second difference of the model's potential energy (not from m4 g r4).
+    #[test]
+    fn knee_damper_damps_the_shank_pendulum_at_zeta() {
+        for (h, m) in [(1.5, 50.0), (1.8, 80.0), (1.95, 95.0)] {
+            let model = SwingModel::new(&Body::standard(h, m).unwrap());
+            let e = 1e-4;
+            let v = |k: f64| model.potential_energy(&Vector2::new(0.0, k));
+            let stiffness = (v(e) - 2.0 * v(0.0) + v(-e)) / (e * e);
+            let a22 = model.mass_matrix(&Vector2::zeros())[(1, 1)];
+            for zeta in [0.3, 0.7, 1.0] {
+                let d = knee_damper(&model, zeta);
+                let achieved = d / (2.0 * (a22 * stiffness).sqrt());
+                assert!((achieved - zeta).abs() < 1e-6, "{h} {zeta}: {achieved}");
+            }
+        }
     }
 }
