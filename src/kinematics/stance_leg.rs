@@ -69,12 +69,15 @@ pub const TOE_OFF_KNEE_RATE: f64 = 2.0;
 
 impl KneeCurve {
     /// The curve from (κ0, κ̇0) at t0 to κ_TO at t_to, reaching it at TOE_OFF_KNEE_RATE × the
-    /// mean rate.
+    /// mean rate. A start rate below −κ0 / (t_to − t0) is raised to it [ours]: the cubic then
+    /// starts no steeper down than the line to a straight knee at toe-off and cannot swing
+    /// through hyperextension (a flat-foot knee that straightens into heel-off has an unbounded
+    /// rate, the acos of a distance at its maximum).
     pub fn new(t0: f64, kappa0: f64, rate0: f64, t_to: f64, kappa_to: f64) -> Self {
         KneeCurve {
             t0,
             kappa0,
-            rate0,
+            rate0: rate0.max(-kappa0.max(0.0) / (t_to - t0)),
             t_to,
             kappa_to,
             rate_to: TOE_OFF_KNEE_RATE * (kappa_to - kappa0) / (t_to - t0),
@@ -494,6 +497,32 @@ mod tests {
 
     /// In every foot rule the chain closes (|hip − knee| = l3, |knee − ankle| = l4 in the leg's
     /// plane), the contact point stays put and no point of the foot is under the ground.
+    /// The knee curve meets its ends (value and rate, the start rate unless bounded) and never
+    /// hyperextends, even from a knee straightening fast into heel-off; checked on a dense grid.
+    #[test]
+    fn knee_curve_meets_its_ends_and_never_hyperextends() {
+        for (k0, r0) in [
+            (0.2, 0.5),
+            (0.15, -0.2),
+            (0.01, -50.0),
+            (0.0, -1e6),
+            (0.1, -0.4),
+        ] {
+            let c = KneeCurve::new(1.0, k0, r0, 1.3, 0.7);
+            let (v0, d0) = c.at(1.0);
+            let (v1, d1) = c.at(1.3);
+            assert!((v0 - k0).abs() < 1e-12 && (v1 - 0.7).abs() < 1e-12);
+            assert!((d1 - TOE_OFF_KNEE_RATE * (0.7 - k0) / 0.3).abs() < 1e-9);
+            if r0 >= -k0 / 0.3 {
+                assert!((d0 - r0).abs() < 1e-9, "{k0} {r0}: {d0}");
+            }
+            for i in 0..=1000 {
+                let (v, _) = c.at(1.0 + 0.3 * i as f64 / 1000.0);
+                assert!(v >= -1e-12, "{k0} {r0}: {v} at {i}");
+            }
+        }
+    }
+
     #[test]
     fn chain_closes_and_contacts_hold() {
         let (b, mut l) = leg();
