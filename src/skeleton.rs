@@ -48,11 +48,45 @@ pub fn zxy_matrix(a: f64, b: f64, c: f64) -> DMat3 {
 /// With `m = R_z R_x R_y`: m₂₁ = sin b, (m₀₁, m₁₁) = cos b (−sin a, cos a),
 /// (m₂₀, m₂₂) = cos b (−sin c, cos c).
 pub fn zxy_angles(m: &DMat3) -> [f64; 3] {
-    let r = |i: usize, j: usize| m.col(j)[i];
+    zxy_from(|i, j| m.col(j)[i])
+}
+
+/// [`zxy_angles`] of the matrix whose entry (i, j) is `r(i, j)` (only five are read).
+fn zxy_from(r: impl Fn(usize, usize) -> f64) -> [f64; 3] {
     let b = r(2, 1).clamp(-1.0, 1.0).asin();
     let a = (-r(0, 1)).atan2(r(1, 1));
     let c = (-r(2, 0)).atan2(r(2, 2));
     [a, b, c]
+}
+
+/// Largest |angle| (rad) of the middle rotation, and of the outer ones, for which
+/// [`zxy_angles`]`(`[`zxy_matrix`]`(a, b, c))` and its YXZ counterpart return (a, b, c) to
+/// round-off: well inside b ∈ (−90°, 90°) (the decomposition loses accuracy near gimbal lock)
+/// and a, c ∈ (−180°, 180°).
+const ROUND_TRIP_MIDDLE: f64 = 1.5;
+const ROUND_TRIP_OUTER: f64 = 3.0;
+
+fn round_trips(a: f64, b: f64, c: f64) -> bool {
+    b.abs() <= ROUND_TRIP_MIDDLE && a.abs() <= ROUND_TRIP_OUTER && c.abs() <= ROUND_TRIP_OUTER
+}
+
+/// [`zxy_angles`]`(&`[`zxy_matrix`]`(a, b, c))` without the matrix: (a, b, c) itself where
+/// the decomposition returns it.
+fn zxy_round_trip(a: f64, b: f64, c: f64) -> [f64; 3] {
+    if round_trips(a, b, c) {
+        [a, b, c]
+    } else {
+        zxy_angles(&zxy_matrix(a, b, c))
+    }
+}
+
+/// [`yxz_angles`]`(&`[`yxz_matrix`]`(r, p, q))` without the matrix, as [`zxy_round_trip`].
+fn yxz_round_trip(r: f64, p: f64, q: f64) -> [f64; 3] {
+    if round_trips(r, p, q) {
+        [r, p, q]
+    } else {
+        yxz_angles(&yxz_matrix(r, p, q))
+    }
 }
 
 /// `R_y(r) · R_x(p) · R_z(q)`: the order of the pelvis and lumbar angles of [`Landmarks`].
@@ -304,14 +338,33 @@ fn leg_frames(leg: &LegPoints, side: Side, time: f64) -> Result<LegFrames> {
     })
 }
 
-fn arm_frames(thorax: &Frame, arm: &ArmAngles, side: Side, body: &Body) -> Result<ArmFrames> {
+/// An arm's shoulder flexion, abduction and elbow flexion, or [`Error::NotFinite`] naming the
+/// first that is not finite.
+fn arm_angles(arm: &ArmAngles, side: Side) -> Result<[f64; 3]> {
     let s = side.suffix();
-    let flexion = finite_named(format_args!("{s}.shoulder_flexion"), arm.shoulder_flexion)?;
-    let abduction = finite_named(
-        format_args!("{s}.shoulder_abduction"),
-        arm.shoulder_abduction,
-    )?;
-    let elbow = finite_named(format_args!("{s}.elbow_flexion"), arm.elbow_flexion)?;
+    Ok([
+        finite_named(format_args!("{s}.shoulder_flexion"), arm.shoulder_flexion)?,
+        finite_named(
+            format_args!("{s}.shoulder_abduction"),
+            arm.shoulder_abduction,
+        )?,
+        finite_named(format_args!("{s}.elbow_flexion"), arm.elbow_flexion)?,
+    ])
+}
+
+/// The shoulder and elbow of an arm placed `R_thorax · R_z(flexion) · R_x(∓abduction)`, forearm
+/// `· R_z(elbow)` ([`arm_frames`]): their angles are those it was built from (where the
+/// decompositions return them, [`zxy_round_trip`]).
+fn arm_joints([flexion, abduction, elbow]: [f64; 3], side: Side) -> ArmJoints {
+    let s = side.sign();
+    ArmJoints {
+        shoulder: joint3(zxy_round_trip(flexion, -s * abduction, 0.0), s, 1.0),
+        elbow: joint3(zxy_round_trip(elbow, 0.0, 0.0), s, 1.0),
+    }
+}
+
+fn arm_frames(thorax: &Frame, arm: &ArmAngles, side: Side, body: &Body) -> Result<ArmFrames> {
+    let [flexion, abduction, elbow] = arm_angles(arm, side)?;
     let f = &body.figure;
     let shoulder = thorax.point(DVec3::new(
         0.0,
@@ -343,23 +396,12 @@ impl Skeleton {
     /// The segment frames of `lm`. Errors: a non-finite number ([`Error::NotFinite`], naming the
     /// field), a degenerate segment or a knee axis along a segment ([`Error::Geometry`]).
     pub fn new(lm: &Landmarks, body: &Body) -> Result<Self> {
-        let t = finite("time", lm.time)?;
-        let pelvis_origin = point(format_args!("pelvis"), lm.pelvis)?;
-        let tilt = finite("pelvis_tilt", lm.pelvis_tilt)?;
-        let list = finite("pelvis_list", lm.pelvis_list)?;
-        let rotation = finite("pelvis_rotation", lm.pelvis_rotation)?;
-        let pelvis = Frame {
-            origin: pelvis_origin,
-            axes: yxz_matrix(rotation, -list, -tilt),
-        };
-        let lumbar = yxz_matrix(
-            finite("lumbar_rotation", lm.lumbar_rotation)?,
-            finite("lumbar_bending", lm.lumbar_bending)?,
-            finite("lumbar_extension", lm.lumbar_extension)?,
-        );
+        let trunk = Trunk::new(lm)?;
+        let (t, pelvis) = (trunk.time, trunk.pelvis);
+        let [lr, lb, le] = trunk.lumbar;
         let thorax = Frame {
-            origin: pelvis_origin,
-            axes: pelvis.axes * lumbar,
+            origin: pelvis.origin,
+            axes: pelvis.axes * yxz_matrix(lr, lb, le),
         };
         Ok(Skeleton {
             pelvis,
@@ -387,18 +429,6 @@ impl Skeleton {
 
     /// The clinical angles of these frames (the module doc gives the definitions).
     pub fn clinical(&self, time: f64, step: usize) -> Clinical {
-        let [r, p, q] = yxz_angles(&self.pelvis.axes);
-        let [lr, lb, le] = yxz_angles(&(self.pelvis.axes.transpose() * self.thorax.axes));
-        let leg = |side: Side| {
-            let l = self.leg(side);
-            let s = side.sign();
-            LegAngles {
-                hip: joint(&self.pelvis.axes, &l.thigh.axes, s, 1.0),
-                knee: joint(&l.thigh.axes, &l.shank.axes, s, -1.0),
-                ankle: joint(&l.shank.axes, &l.foot.axes, s, 1.0),
-                mtp: joint(&l.foot.axes, &l.toe.axes, s, 1.0),
-            }
-        };
         let arm = |side: Side| {
             let a = self.arm(side);
             let s = side.sign();
@@ -407,21 +437,15 @@ impl Skeleton {
                 elbow: joint(&a.upper_arm.axes, &a.forearm.axes, s, 1.0),
             }
         };
-        Clinical {
+        assemble(
             time,
             step,
-            pelvis: self.pelvis.origin.to_array(),
-            pelvis_tilt: -q,
-            pelvis_list: -p,
-            pelvis_rotation: r,
-            lumbar_extension: le,
-            lumbar_bending: lb,
-            lumbar_rotation: lr,
-            right: leg(Side::Right),
-            left: leg(Side::Left),
-            right_arm: arm(Side::Right),
-            left_arm: arm(Side::Left),
-        }
+            &self.pelvis,
+            yxz_angles(&self.pelvis.axes),
+            yxz_angles(&(self.pelvis.axes.transpose() * self.thorax.axes)),
+            [&self.right, &self.left],
+            [arm(Side::Right), arm(Side::Left)],
+        )
     }
 
     /// The largest distance (m) between a landmark and where the body's rigid segments put it:
@@ -472,7 +496,16 @@ impl Skeleton {
 
 /// The clinical angles of the joint from `parent` to `child` axes.
 fn joint(parent: &DMat3, child: &DMat3, side: f64, flexion_sign: f64) -> Joint3 {
-    let [a, b, c] = zxy_angles(&(parent.transpose() * *child));
+    // (Pᵀ C)ᵢⱼ = Pᵢ · Cⱼ (columns): only the entries the decomposition reads
+    joint3(
+        zxy_from(|i, j| parent.col(i).dot(child.col(j))),
+        side,
+        flexion_sign,
+    )
+}
+
+/// The clinical signs of the ZXY angles `[a, b, c]` of a joint.
+fn joint3([a, b, c]: [f64; 3], side: f64, flexion_sign: f64) -> Joint3 {
     Joint3 {
         flexion: flexion_sign * a,
         adduction: side * b,
@@ -480,9 +513,102 @@ fn joint(parent: &DMat3, child: &DMat3, side: f64, flexion_sign: f64) -> Joint3 
     }
 }
 
-/// The clinical angles of one frame: [`Skeleton::new`] then [`Skeleton::clinical`].
-pub fn clinical(lm: &Landmarks, body: &Body) -> Result<Clinical> {
-    Ok(Skeleton::new(lm, body)?.clinical(lm.time, lm.step))
+/// The clinical angles of one frame: those of [`Skeleton::new`] then [`Skeleton::clinical`]
+/// (the same errors, the same angles to round-off), without the frames the angles are read back
+/// from: the pelvis, lumbar and arm angles are the landmarks' own (the frames are built from
+/// them, [`zxy_round_trip`]), and no arm is placed (the angles do not depend on `_body`).
+pub fn clinical(lm: &Landmarks, _body: &Body) -> Result<Clinical> {
+    let trunk = Trunk::new(lm)?;
+    let right = leg_frames(&lm.right, Side::Right, trunk.time)?;
+    let left = leg_frames(&lm.left, Side::Left, trunk.time)?;
+    let right_arm = arm_joints(arm_angles(&lm.right_arm, Side::Right)?, Side::Right);
+    let left_arm = arm_joints(arm_angles(&lm.left_arm, Side::Left)?, Side::Left);
+    let [lr, lb, le] = trunk.lumbar;
+    Ok(assemble(
+        lm.time,
+        lm.step,
+        &trunk.pelvis,
+        yxz_round_trip(trunk.rotation, -trunk.list, -trunk.tilt),
+        yxz_round_trip(lr, lb, le),
+        [&right, &left],
+        [right_arm, left_arm],
+    ))
+}
+
+/// The checked time and trunk angles of a frame, and its pelvis frame
+/// `R_y(rotation) · R_x(−list) · R_z(−tilt)`.
+struct Trunk {
+    time: f64,
+    tilt: f64,
+    list: f64,
+    rotation: f64,
+    pelvis: Frame,
+    /// Lumbar rotation, bending, extension.
+    lumbar: [f64; 3],
+}
+
+impl Trunk {
+    /// Errors: the first non-finite of time, pelvis, pelvis angles, lumbar angles.
+    fn new(lm: &Landmarks) -> Result<Self> {
+        let time = finite("time", lm.time)?;
+        let origin = point(format_args!("pelvis"), lm.pelvis)?;
+        let tilt = finite("pelvis_tilt", lm.pelvis_tilt)?;
+        let list = finite("pelvis_list", lm.pelvis_list)?;
+        let rotation = finite("pelvis_rotation", lm.pelvis_rotation)?;
+        let lumbar = [
+            finite("lumbar_rotation", lm.lumbar_rotation)?,
+            finite("lumbar_bending", lm.lumbar_bending)?,
+            finite("lumbar_extension", lm.lumbar_extension)?,
+        ];
+        Ok(Trunk {
+            time,
+            tilt,
+            list,
+            rotation,
+            pelvis: Frame {
+                origin,
+                axes: yxz_matrix(rotation, -list, -tilt),
+            },
+            lumbar,
+        })
+    }
+}
+
+/// The clinical angles from the pelvis frame and its YXZ angles `[r, p, q]`, the lumbar YXZ
+/// angles, the legs' frames and the arms' joints.
+fn assemble(
+    time: f64,
+    step: usize,
+    pelvis: &Frame,
+    [r, p, q]: [f64; 3],
+    [lr, lb, le]: [f64; 3],
+    legs: [&LegFrames; 2],
+    [right_arm, left_arm]: [ArmJoints; 2],
+) -> Clinical {
+    let leg = |l: &LegFrames, side: Side| {
+        let s = side.sign();
+        LegAngles {
+            hip: joint(&pelvis.axes, &l.thigh.axes, s, 1.0),
+            knee: joint(&l.thigh.axes, &l.shank.axes, s, -1.0),
+            ankle: joint(&l.shank.axes, &l.foot.axes, s, 1.0),
+            mtp: joint(&l.foot.axes, &l.toe.axes, s, 1.0),
+        }
+    };
+    Clinical {
+        time,
+        step,
+        pelvis: pelvis.origin.to_array(),
+        pelvis_tilt: -q,
+        pelvis_list: -p,
+        pelvis_rotation: r,
+        lumbar_extension: le,
+        lumbar_bending: lb,
+        lumbar_rotation: lr,
+        right: leg(legs[0], Side::Right),
+        left: leg(legs[1], Side::Left),
+        right_arm,
+        left_arm,
+    }
 }
 
 #[cfg(test)]

@@ -384,3 +384,71 @@ fn closed_form_foot_pitches_match_the_numeric_solvers() {
     }
     assert!(rolling > 1000 && limited > 100, "{rolling} {limited}");
 }
+
+/// `skeleton::clinical` (angles of the trunk and arms taken from the landmarks) agrees with the
+/// angles decomposed from the segment frames, `Skeleton::new(..).clinical(..)`, to round-off on
+/// real walks' frames, also with trunk and arm angles beyond the range where the decomposition
+/// returns them, and fails with the same error on the same non-finite field.
+#[test]
+fn clinical_angles_match_the_decomposed_frames() {
+    use klaw::skeleton::{Clinical, Skeleton, clinical};
+    let flat = |c: &Clinical| {
+        let j = |j: &klaw::skeleton::Joint3| [j.flexion, j.adduction, j.rotation];
+        let mut v = vec![
+            c.time,
+            c.pelvis_tilt,
+            c.pelvis_list,
+            c.pelvis_rotation,
+            c.lumbar_extension,
+            c.lumbar_bending,
+            c.lumbar_rotation,
+        ];
+        v.extend(c.pelvis);
+        for l in [&c.right, &c.left] {
+            for x in [&l.hip, &l.knee, &l.ankle, &l.mtp] {
+                v.extend(j(x));
+            }
+        }
+        for a in [&c.right_arm, &c.left_arm] {
+            v.extend(j(&a.shoulder));
+            v.extend(j(&a.elbow));
+        }
+        v
+    };
+    let same = |lm: &Landmarks, b: &Body| {
+        let fast = flat(&clinical(lm, b).unwrap());
+        let framed = flat(&Skeleton::new(lm, b).unwrap().clinical(lm.time, lm.step));
+        for (x, y) in fast.iter().zip(&framed) {
+            assert!((x - y).abs() < 1e-12, "t {}: {fast:?}\n{framed:?}", lm.time);
+        }
+    };
+    for (v, h) in [(1.4, 1.8), (0.6, 1.8)] {
+        let (b, attrs, w) = walk_of(v, h);
+        for k in 0..=200 {
+            let mut lm = figure_at(&w, &attrs, w.duration() * k as f64 / 200.0);
+            same(&lm, &b);
+            lm.pelvis_list = 1.55;
+            lm.pelvis_rotation = -3.1;
+            lm.lumbar_bending = -1.52;
+            lm.right_arm.shoulder_flexion = 3.05;
+            lm.left_arm.shoulder_abduction = 1.56;
+            lm.left_arm.elbow_flexion = 3.1;
+            same(&lm, &b);
+        }
+        let lm = figure_at(&w, &attrs, 0.3);
+        let breaks: [fn(&mut Landmarks); 5] = [
+            |l| l.pelvis_tilt = f64::NAN,
+            |l| l.lumbar_extension = f64::INFINITY,
+            |l| l.left.toe[2] = f64::NAN,
+            |l| l.right_arm.elbow_flexion = f64::NAN,
+            |l| l.left.knee = l.left.hip,
+        ];
+        for f in breaks {
+            let mut broken = lm;
+            f(&mut broken);
+            let a = clinical(&broken, &b).unwrap_err().to_string();
+            let e = Skeleton::new(&broken, &b).unwrap_err().to_string();
+            assert_eq!(a, e);
+        }
+    }
+}
