@@ -5,7 +5,11 @@ use crate::body::Body;
 
 /// Rotate a foot-frame vector (x forward, y up, foot flat) by the pitch p (heel up +).
 pub fn pitch(v: [f64; 2], p: f64) -> [f64; 2] {
-    let (s, c) = p.sin_cos();
+    rotate(v, p.sin_cos())
+}
+
+/// [`pitch`] by the pitch whose sine and cosine are (s, c).
+fn rotate(v: [f64; 2], (s, c): (f64, f64)) -> [f64; 2] {
     [v[0] * c + v[1] * s, -v[0] * s + v[1] * c]
 }
 
@@ -57,9 +61,10 @@ impl Foot {
 
     /// Foot points for an ankle at `ankle`, foot pitch `p` (heel up +) and toe dorsiflexion θ6.
     pub fn points(&self, ankle: [f64; 2], p: f64, theta6: f64) -> FootPoints {
-        let meta = add(ankle, pitch([self.h12, -self.l9], p));
+        let sc = p.sin_cos();
+        let meta = add(ankle, rotate([self.h12, -self.l9], sc));
         FootPoints {
-            heel: add(ankle, pitch([-self.l8, -self.l9], p)),
+            heel: add(ankle, rotate([-self.l8, -self.l9], sc)),
             meta,
             toe: add(meta, pitch([self.l13, 0.0], p - theta6)),
         }
