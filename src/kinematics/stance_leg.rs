@@ -400,21 +400,24 @@ impl StanceLeg {
             let Foot { h12, l9, l13, .. } = self.foot;
             let t6 = self.theta6_max;
             let meta_x = self.ankle_x + h12;
-            let about_meta = Arc::new([meta_x, 0.0], [h12, -l9]);
-            // pitch([l13, 0], p − θ6_max) = pitch(pitch([l13, 0], −θ6_max), p)
-            let (s6, c6) = t6.sin_cos();
-            let about_toe = Arc::new([meta_x + l13, 0.0], [h12 + l13 * c6, -l9 + l13 * s6]);
+            let about_meta = || Arc::new([meta_x, 0.0], [h12, -l9]);
+            let about_toe = || {
+                // pitch([l13, 0], p − θ6_max) = pitch(pitch([l13, 0], −θ6_max), p)
+                let (s6, c6) = t6.sin_cos();
+                Arc::new([meta_x + l13, 0.0], [h12 + l13 * c6, -l9 + l13 * s6])
+            };
             let b = (a * a - dz * dz).sqrt();
-            let first = |arc: Arc, lo: f64, hi: f64| {
+            let first = |arc: &dyn Fn() -> Arc, lo: f64, hi: f64| {
                 if lo <= hi {
-                    arc.pitches_at(hip, b)
+                    arc()
+                        .pitches_at(hip, b)
                         .and_then(|roots| first_in(roots, lo, hi))
                 } else {
                     None
                 }
             };
-            first(about_meta, 0.0, t6.min(MAX_PITCH))
-                .or_else(|| first(about_toe, t6.max(0.0), MAX_PITCH))
+            first(&about_meta, 0.0, t6.min(MAX_PITCH))
+                .or_else(|| first(&about_toe, t6.max(0.0), MAX_PITCH))
                 .ok_or_else(|| {
                     format!(
                         "the rolling foot cannot reach the hip: hip–ankle distance {a:.4} m for knee flexion {:.1}° is out of reach",
