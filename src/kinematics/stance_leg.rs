@@ -215,12 +215,12 @@ impl Arc {
         let dy = target[1] - self.pivot[1];
         let d2 = dx * dx + dy * dy;
         let c = (d2 + self.radius * self.radius - b * b) / (2.0 * self.radius * d2.sqrt());
-        if !(c.abs() <= 1.0) {
-            return None;
-        }
-        let base = dy.atan2(-dx) - self.phase;
-        let half = c.acos();
-        Some([base - half, base + half])
+        // (NaN fails the test too)
+        (c.abs() <= 1.0).then(|| {
+            let base = dy.atan2(-dx) - self.phase;
+            let half = c.acos();
+            [base - half, base + half]
+        })
     }
 }
 
