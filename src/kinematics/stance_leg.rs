@@ -18,7 +18,7 @@ use std::f64::consts::{FRAC_PI_3, TAU};
 
 use crate::body::Body;
 use crate::control::stance::smoothstep;
-use crate::kinematics::foot::{Foot, FootPoints};
+use crate::kinematics::foot::{Foot, FootPoints, bisect};
 
 /// A leg pose: sagittal points (x forward, y up, world heights; the foot in the vertical plane of
 /// its ankle) and the in-plane angles.
@@ -180,11 +180,6 @@ const MAX_PITCH: f64 = 1.8;
 /// count as in it (it is then clamped into the range).
 const ROOT_SLACK: f64 = 1e-12;
 
-/// Within this distance (rad) of the heel rocker's closed-form reach boundary its bisection
-/// evaluates the geometry: the boundary is exact to ≈ 1e-15 rad, and 1e-11 rad moves the ankle
-/// ≈ 1e-12 m, far more than the round-off of the distance it is compared by.
-const BISECTION_SLACK: f64 = 1e-11;
-
 /// The ankle of a foot turning rigidly about a pivot on the ground, as a function of the foot
 /// pitch p (heel up +): `ankle + pitch(v, p) = pivot` for the foot-frame vector v from the
 /// ankle to the pivot, i.e. `ankle(p) = pivot + radius · (−cos(p + phase), sin(p + phase))`
@@ -329,11 +324,10 @@ impl StanceLeg {
     /// the straight leg cannot reach it with that sole angle, the smallest angle at which it
     /// can [ours]: the telescopic leg is longer than the anatomical one just after heel strike
     /// (w* > l1 at most speeds, spec §7 "known geometric tension"), so the foot comes down as
-    /// the hip passes over it. Bisection to 1e-12 rad, its steps decided by the closed-form
-    /// angle φ* (the ankle turns about the heel: the first angle on (rule, π/3] where that
-    /// circle meets the one of in-plane radius √(l1² − dz²) about the hip) and by the geometry
-    /// only within [`BISECTION_SLACK`] of φ*: the bisection's own angle (the knee is acos of
-    /// the leg's extension there, so its last bits set the knee), at a few evaluations.
+    /// the hip passes over it. Bisection to 1e-12 rad (the knee is acos of the leg's extension
+    /// there, so the bisection's last bits set it), steered by the closed form ([`bisect`]): the
+    /// ankle turns about the heel, so the angle is the first on (rule, π/3] where that circle
+    /// meets the one of in-plane radius √(l1² − dz²) about the hip.
     fn reach_limited_sole(&self, hip: [f64; 2], dz: f64, rule: f64) -> f64 {
         let l1 = self.l3 + self.l4;
         let too_far = |phi: f64| {
@@ -343,30 +337,20 @@ impl StanceLeg {
         if hip[0] >= self.ankle_x || !too_far(rule) {
             return rule;
         }
-        let (mut lo, mut hi) = (rule, FRAC_PI_3);
-        if too_far(hi) {
-            return hi;
+        if too_far(FRAC_PI_3) {
+            return FRAC_PI_3;
         }
-        // the leg reaches at π/3 and not at the rule: the circles meet in between; the pitch
-        // is −φ (NaN if round-off hides where: then every step evaluates the geometry)
+        // the leg reaches at π/3 and not at the rule: the circles meet in between (NaN if
+        // round-off hides where); the pitch is −φ
         let heel = Arc::new(
             [self.ankle_x - self.foot.l8, 0.0],
             [-self.foot.l8, -self.foot.l9],
         );
-        let boundary = heel
+        let guess = heel
             .pitches_at(hip, (l1 * l1 - dz * dz).sqrt())
-            .and_then(|roots| first_in(roots.map(|p| -p), lo, hi))
+            .and_then(|roots| first_in(roots.map(|p| -p), rule, FRAC_PI_3))
             .unwrap_or(f64::NAN);
-        while hi - lo > 1e-12 {
-            let m = 0.5 * (lo + hi);
-            let far = if (m - boundary).abs() > BISECTION_SLACK {
-                m < boundary
-            } else {
-                too_far(m)
-            };
-            if far { lo = m } else { hi = m }
-        }
-        hi
+        bisect(|phi| !too_far(phi), FRAC_PI_3, rule, guess)
     }
 
     /// The rolling foot's pose for knee flexion κ: the pitch solves |hip − ankle(p)| = a(κ), in
