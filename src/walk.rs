@@ -924,7 +924,7 @@ impl Step {
         let t = self.constraints.timing;
         let s = ((tau - t.t_ds) / t.t_swing).clamp(0.0, 1.0);
         let floor = self.toe_clearance * (PI * s).sin().powi(2);
-        let pitch = foot.clear_pitch(y[0] + y[1] - theta5, ankle[1], theta6, floor);
+        let (_, foot_points) = foot.clear_pitch(y[0] + y[1] - theta5, ankle, theta6, floor);
         SwingPose {
             phase: sub.name(),
             theta3: y[0],
@@ -933,7 +933,7 @@ impl Step {
             dz,
             knee,
             ankle,
-            foot: foot.points(ankle, pitch, theta6),
+            foot: foot_points,
         }
     }
 

@@ -114,20 +114,29 @@ impl Foot {
         self.l9.atan2(self.l8) - (ankle_y / self.l8.hypot(self.l9)).asin()
     }
 
-    /// The swing foot's pitch: the rule's pitch when it keeps the heel on or above the ground
-    /// and the toe on or above `floor`; otherwise the rule clamped into the range where both
-    /// hold (the floor drops to the ground when both cannot hold).
-    pub fn clear_pitch(&self, rule: f64, ankle_y: f64, theta6: f64, floor: f64) -> f64 {
-        let pts = self.points([0.0, ankle_y], rule, theta6);
+    /// The swing foot's pitch, and its points with the ankle at `ankle`: the rule's pitch when
+    /// it keeps the heel on or above the ground and the toe on or above `floor`; otherwise the
+    /// rule clamped into the range where both hold (the floor drops to the ground when both
+    /// cannot hold).
+    pub fn clear_pitch(
+        &self,
+        rule: f64,
+        ankle: [f64; 2],
+        theta6: f64,
+        floor: f64,
+    ) -> (f64, FootPoints) {
+        let pts = self.points(ankle, rule, theta6);
         if pts.heel[1] >= 0.0 && pts.meta[1].min(pts.toe[1]) >= floor {
-            return rule;
+            return (rule, pts);
         }
+        let ankle_y = ankle[1];
         let lo = self.min_pitch(ankle_y);
         let mut hi = self.max_pitch(ankle_y, theta6, floor);
         if hi < lo {
             hi = self.max_pitch(ankle_y, theta6, 0.0).max(lo);
         }
-        rule.clamp(lo, hi)
+        let pitch = rule.clamp(lo, hi);
+        (pitch, self.points(ankle, pitch, theta6))
     }
 
     /// Ankle of a foot rolling over the ground whose metatarsal joint stood at `meta_x` when the
@@ -248,8 +257,9 @@ mod tests {
             );
         }
         // the rule is kept when it is clear, clamped when it is not
-        assert_eq!(f.clear_pitch(0.2, 0.3, 0.0, 0.01), 0.2);
-        let clamped = f.clear_pitch(1.0, ankle_y, 0.0, 0.01);
+        assert_eq!(f.clear_pitch(0.2, [0.0, 0.3], 0.0, 0.01).0, 0.2);
+        let (clamped, pts) = f.clear_pitch(1.0, [0.1, ankle_y], 0.0, 0.01);
+        assert_eq!(pts, f.points([0.1, ankle_y], clamped, 0.0));
         assert!(clamped < 1.0 && f.points([0.0, ankle_y], clamped, 0.0).lowest() >= 0.01 - 1e-9);
     }
 
