@@ -232,13 +232,13 @@ fn finite(name: &str, value: f64) -> Result<f64> {
     }
 }
 
-/// `p` as a vector, or [`Error::NotFinite`] naming `name.axis` (the name is only formatted on
+/// `p` as a vector, or [`Error::NotFinite`] naming `name().axis` (the name is only built on
 /// error: this runs several times per frame).
-fn point(name: std::fmt::Arguments, p: [f64; 3]) -> Result<DVec3> {
+fn point(name: impl FnOnce() -> String, p: [f64; 3]) -> Result<DVec3> {
     for (axis, v) in ["x", "y", "z"].iter().zip(p) {
         if !v.is_finite() {
             return Err(Error::NotFinite {
-                name: format!("{name}.{axis}"),
+                name: format!("{}.{axis}", name()),
                 value: v,
             });
         }
@@ -246,12 +246,12 @@ fn point(name: std::fmt::Arguments, p: [f64; 3]) -> Result<DVec3> {
     Ok(DVec3::from_array(p))
 }
 
-/// [`finite`] with the name formatted only on error.
-fn finite_named(name: std::fmt::Arguments, value: f64) -> Result<f64> {
+/// [`finite`] with the name built only on error.
+fn finite_named(name: impl FnOnce() -> String, value: f64) -> Result<f64> {
     if value.is_finite() {
         Ok(value)
     } else {
-        finite(&name.to_string(), value)
+        finite(&name(), value)
     }
 }
 
@@ -261,40 +261,43 @@ fn geometry(time: f64, what: String) -> Error {
     }
 }
 
-/// `v / |v|`, or an error naming `what` when v is (nearly) zero.
-fn unit(v: DVec3, time: f64, what: std::fmt::Arguments) -> Result<DVec3> {
+/// `v / |v|`, or an error naming `what()` when v is (nearly) zero.
+fn unit(v: DVec3, time: f64, what: impl Fn() -> String) -> Result<DVec3> {
     let n = v.length();
     if n > 1e-9 {
         Ok(v / n)
     } else {
-        Err(geometry(time, format!("{what} has zero length")))
+        Err(geometry(time, format!("{} has zero length", what())))
     }
 }
 
 /// The component of `hint` perpendicular to the unit vector `axis`, normalized.
-fn perpendicular(hint: DVec3, axis: DVec3, time: f64, what: std::fmt::Arguments) -> Result<DVec3> {
-    let hint = unit(hint, time, what)?;
+fn perpendicular(hint: DVec3, axis: DVec3, time: f64, what: impl Fn() -> String) -> Result<DVec3> {
+    let hint = unit(hint, time, &what)?;
     let p = hint - hint.dot(axis) * axis;
     if p.length() < 1e-6 {
-        return Err(geometry(time, format!("{what} is parallel to the segment")));
+        return Err(geometry(
+            time,
+            format!("{} is parallel to the segment", what()),
+        ));
     }
     Ok(p.normalize())
 }
 
 fn leg_frames(leg: &LegPoints, side: Side, time: f64) -> Result<LegFrames> {
     let s = side.suffix();
-    let hip = point(format_args!("{s}.hip"), leg.hip)?;
-    let knee = point(format_args!("{s}.knee"), leg.knee)?;
-    let ankle = point(format_args!("{s}.ankle"), leg.ankle)?;
-    let heel = point(format_args!("{s}.heel"), leg.heel)?;
-    let mtp = point(format_args!("{s}.mtp"), leg.mtp)?;
-    let toe = point(format_args!("{s}.toe"), leg.toe)?;
-    let knee_axis = point(format_args!("{s}.knee_axis"), leg.knee_axis)?;
+    let hip = point(|| format!("{s}.hip"), leg.hip)?;
+    let knee = point(|| format!("{s}.knee"), leg.knee)?;
+    let ankle = point(|| format!("{s}.ankle"), leg.ankle)?;
+    let heel = point(|| format!("{s}.heel"), leg.heel)?;
+    let mtp = point(|| format!("{s}.mtp"), leg.mtp)?;
+    let toe = point(|| format!("{s}.toe"), leg.toe)?;
+    let knee_axis = point(|| format!("{s}.knee_axis"), leg.knee_axis)?;
 
     // y along the segment, z the knee axis, x = y × z (forward)
     let y_z = |origin: DVec3, y: DVec3, z: DVec3, what: &str| -> Result<Frame> {
-        let y = unit(y, time, format_args!("the {what} of the {s} leg"))?;
-        let z = perpendicular(z, y, time, format_args!("the {s} knee axis"))?;
+        let y = unit(y, time, || format!("the {what} of the {s} leg"))?;
+        let z = perpendicular(z, y, time, || format!("the {s} knee axis"))?;
         Ok(Frame {
             origin,
             axes: DMat3::from_cols(y.cross(z), y, z),
@@ -303,29 +306,17 @@ fn leg_frames(leg: &LegPoints, side: Side, time: f64) -> Result<LegFrames> {
     let thigh = y_z(hip, hip - knee, knee_axis, "thigh")?;
     let shank = y_z(knee, knee - ankle, knee_axis, "shank")?;
     // foot: x heel → mtp, y towards the ankle, z = x × y
-    let x = unit(
-        mtp - heel,
-        time,
-        format_args!("the {s} foot's heel–mtp line"),
-    )?;
-    let y = perpendicular(
-        ankle - heel,
-        x,
-        time,
-        format_args!("the {s} heel–ankle line"),
-    )?;
+    let x = unit(mtp - heel, time, || format!("the {s} foot's heel–mtp line"))?;
+    let y = perpendicular(ankle - heel, x, time, || format!("the {s} heel–ankle line"))?;
     let foot = Frame {
         origin: ankle,
         axes: DMat3::from_cols(x, y, x.cross(y)),
     };
     // toe: x mtp → toe tip, z the foot's lateral axis, y = z × x
-    let x = unit(toe - mtp, time, format_args!("the {s} toe"))?;
-    let z = perpendicular(
-        foot.axes.z_axis,
-        x,
-        time,
-        format_args!("the {s} foot's lateral axis"),
-    )?;
+    let x = unit(toe - mtp, time, || format!("the {s} toe"))?;
+    let z = perpendicular(foot.axes.z_axis, x, time, || {
+        format!("the {s} foot's lateral axis")
+    })?;
     let toe = Frame {
         origin: mtp,
         axes: DMat3::from_cols(x, z.cross(x), z),
@@ -343,12 +334,9 @@ fn leg_frames(leg: &LegPoints, side: Side, time: f64) -> Result<LegFrames> {
 fn arm_angles(arm: &ArmAngles, side: Side) -> Result<[f64; 3]> {
     let s = side.suffix();
     Ok([
-        finite_named(format_args!("{s}.shoulder_flexion"), arm.shoulder_flexion)?,
-        finite_named(
-            format_args!("{s}.shoulder_abduction"),
-            arm.shoulder_abduction,
-        )?,
-        finite_named(format_args!("{s}.elbow_flexion"), arm.elbow_flexion)?,
+        finite_named(|| format!("{s}.shoulder_flexion"), arm.shoulder_flexion)?,
+        finite_named(|| format!("{s}.shoulder_abduction"), arm.shoulder_abduction)?,
+        finite_named(|| format!("{s}.elbow_flexion"), arm.elbow_flexion)?,
     ])
 }
 
@@ -551,7 +539,7 @@ impl Trunk {
     /// Errors: the first non-finite of time, pelvis, pelvis angles, lumbar angles.
     fn new(lm: &Landmarks) -> Result<Self> {
         let time = finite("time", lm.time)?;
-        let origin = point(format_args!("pelvis"), lm.pelvis)?;
+        let origin = point(|| format!("pelvis"), lm.pelvis)?;
         let tilt = finite("pelvis_tilt", lm.pelvis_tilt)?;
         let list = finite("pelvis_list", lm.pelvis_list)?;
         let rotation = finite("pelvis_rotation", lm.pelvis_rotation)?;
