@@ -275,13 +275,15 @@ fn unit(v: DVec3, time: f64, what: impl Fn() -> String) -> Result<DVec3> {
 fn perpendicular(hint: DVec3, axis: DVec3, time: f64, what: impl Fn() -> String) -> Result<DVec3> {
     let hint = unit(hint, time, &what)?;
     let p = hint - hint.dot(axis) * axis;
-    if p.length() < 1e-6 {
+    let n = p.length();
+    if n < 1e-6 {
         return Err(geometry(
             time,
             format!("{} is parallel to the segment", what()),
         ));
     }
-    Ok(p.normalize())
+    // p.normalize(), without measuring p again
+    Ok(p * n.recip())
 }
 
 fn leg_frames(leg: &LegPoints, side: Side, time: f64) -> Result<LegFrames> {
