@@ -541,7 +541,7 @@ impl Trunk {
     /// Errors: the first non-finite of time, pelvis, pelvis angles, lumbar angles.
     fn new(lm: &Landmarks) -> Result<Self> {
         let time = finite("time", lm.time)?;
-        let origin = point(|| format!("pelvis"), lm.pelvis)?;
+        let origin = point(|| "pelvis".to_string(), lm.pelvis)?;
         let tilt = finite("pelvis_tilt", lm.pelvis_tilt)?;
         let list = finite("pelvis_list", lm.pelvis_list)?;
         let rotation = finite("pelvis_rotation", lm.pelvis_rotation)?;
