@@ -262,7 +262,7 @@ impl StanceLeg {
 
     /// The prescribed knee after heel-off at time t, if the heel is off by then.
     pub fn knee_curve(&self, t: f64) -> Option<(f64, f64)> {
-        match (self.heel_off, self.to_toe_off) {
+        match (&self.heel_off, &self.to_toe_off) {
             (_, Some(k)) if t >= k.t0 => Some(k.at(t)),
             (Some(k), _) if t >= k.t0 => Some(k.at(t)),
             _ => None,
@@ -283,8 +283,10 @@ impl StanceLeg {
     /// The pose at time t for a hip joint at `hip` (world x, y) with lateral offset `dz` from the
     /// ankle.
     pub fn pose(&self, hip: [f64; 2], dz: f64, t: f64) -> Result<LegPose, String> {
-        match self.phase(t) {
-            FootPhase::HeelRocker | FootPhase::FootFlat => {
+        // the rule of [`Self::phase`], the knee curve evaluated once
+        match self.knee_curve(t) {
+            Some((kappa, _)) => self.rolling_pose(hip, dz, kappa),
+            None => {
                 let rule = if t < self.t_hs + self.t_fgm {
                     self.sole_hs * (1.0 - smoothstep((t - self.t_hs) / self.t_fgm))
                 } else {
@@ -305,10 +307,6 @@ impl StanceLeg {
                     theta6: 0.0,
                     gap,
                 })
-            }
-            FootPhase::Rolling => {
-                let (kappa, _) = self.knee_curve(t).expect("rolling has a knee curve");
-                self.rolling_pose(hip, dz, kappa)
             }
         }
     }
