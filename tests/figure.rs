@@ -313,10 +313,10 @@ fn bisected_sole(
 
 /// The stance legs' pitches agree with the numeric solvers the closed forms replaced at every
 /// millisecond of real walks, slow to fast, both for the stance leg and for the hind leg in
-/// double support: the rolling foot's to 1e-9 rad, the heel rocker's reach-limited sole angle
-/// exactly (its bisection is only steered by the closed form); and the rolling pitch closes the leg:
-/// |hip − ankle(p)| = a(κ) to 1e-12 m, with no smaller pitch where the residual changes sign
-/// (a 1e-4 rad scan).
+/// double support: the rolling foot's to 1e-12 rad (the old solve's tolerance was 1e-13), the
+/// heel rocker's reach-limited sole angle exactly (its bisection is only steered by the closed
+/// form); and the rolling pitch closes the leg: |hip − ankle(p)| = a(κ) to 1e-12 m, with no
+/// smaller pitch where the residual changes sign (a 1e-4 rad scan).
 #[test]
 fn closed_form_foot_pitches_match_the_numeric_solvers() {
     use klaw::kinematics::stance_leg::{FootPhase, StanceLeg};
@@ -348,7 +348,11 @@ fn closed_form_foot_pitches_match_the_numeric_solvers() {
                                 continue;
                             };
                             rolling += 1;
-                            assert!((pose.pitch - p).abs() < 1e-9, "{v} {t}: {} {p}", pose.pitch);
+                            assert!(
+                                (pose.pitch - p).abs() < 1e-12,
+                                "{v} {t}: {} {p}",
+                                pose.pitch
+                            );
                             let meta_x = leg.ankle_x + leg.foot.h12;
                             let residual = |p: f64| {
                                 let (an, _) = leg.foot.rolling_ankle(meta_x, p, leg.theta6_max);
