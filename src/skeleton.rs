@@ -48,11 +48,45 @@ pub fn zxy_matrix(a: f64, b: f64, c: f64) -> DMat3 {
 /// With `m = R_z R_x R_y`: m₂₁ = sin b, (m₀₁, m₁₁) = cos b (−sin a, cos a),
 /// (m₂₀, m₂₂) = cos b (−sin c, cos c).
 pub fn zxy_angles(m: &DMat3) -> [f64; 3] {
-    let r = |i: usize, j: usize| m.col(j)[i];
+    zxy_from(|i, j| m.col(j)[i])
+}
+
+/// [`zxy_angles`] of the matrix whose entry (i, j) is `r(i, j)` (only five are read).
+fn zxy_from(r: impl Fn(usize, usize) -> f64) -> [f64; 3] {
     let b = r(2, 1).clamp(-1.0, 1.0).asin();
     let a = (-r(0, 1)).atan2(r(1, 1));
     let c = (-r(2, 0)).atan2(r(2, 2));
     [a, b, c]
+}
+
+/// Largest |angle| (rad) of the middle rotation, and of the outer ones, for which
+/// [`zxy_angles`]`(`[`zxy_matrix`]`(a, b, c))` and its YXZ counterpart return (a, b, c) to
+/// round-off: well inside b ∈ (−90°, 90°) (the decomposition loses accuracy near gimbal lock)
+/// and a, c ∈ (−180°, 180°).
+const ROUND_TRIP_MIDDLE: f64 = 1.5;
+const ROUND_TRIP_OUTER: f64 = 3.0;
+
+fn round_trips(a: f64, b: f64, c: f64) -> bool {
+    b.abs() <= ROUND_TRIP_MIDDLE && a.abs() <= ROUND_TRIP_OUTER && c.abs() <= ROUND_TRIP_OUTER
+}
+
+/// [`zxy_angles`]`(&`[`zxy_matrix`]`(a, b, c))` without the matrix: (a, b, c) itself where
+/// the decomposition returns it.
+fn zxy_round_trip(a: f64, b: f64, c: f64) -> [f64; 3] {
+    if round_trips(a, b, c) {
+        [a, b, c]
+    } else {
+        zxy_angles(&zxy_matrix(a, b, c))
+    }
+}
+
+/// [`yxz_angles`]`(&`[`yxz_matrix`]`(r, p, q))` without the matrix, as [`zxy_round_trip`].
+fn yxz_round_trip(r: f64, p: f64, q: f64) -> [f64; 3] {
+    if round_trips(r, p, q) {
+        [r, p, q]
+    } else {
+        yxz_angles(&yxz_matrix(r, p, q))
+    }
 }
 
 /// `R_y(r) · R_x(p) · R_z(q)`: the order of the pelvis and lumbar angles of [`Landmarks`].
@@ -198,13 +232,13 @@ fn finite(name: &str, value: f64) -> Result<f64> {
     }
 }
 
-/// `p` as a vector, or [`Error::NotFinite`] naming `name.axis` (the name is only formatted on
+/// `p` as a vector, or [`Error::NotFinite`] naming `name().axis` (the name is only built on
 /// error: this runs several times per frame).
-fn point(name: std::fmt::Arguments, p: [f64; 3]) -> Result<DVec3> {
+fn point(name: impl FnOnce() -> String, p: [f64; 3]) -> Result<DVec3> {
     for (axis, v) in ["x", "y", "z"].iter().zip(p) {
         if !v.is_finite() {
             return Err(Error::NotFinite {
-                name: format!("{name}.{axis}"),
+                name: format!("{}.{axis}", name()),
                 value: v,
             });
         }
@@ -212,12 +246,12 @@ fn point(name: std::fmt::Arguments, p: [f64; 3]) -> Result<DVec3> {
     Ok(DVec3::from_array(p))
 }
 
-/// [`finite`] with the name formatted only on error.
-fn finite_named(name: std::fmt::Arguments, value: f64) -> Result<f64> {
+/// [`finite`] with the name built only on error.
+fn finite_named(name: impl FnOnce() -> String, value: f64) -> Result<f64> {
     if value.is_finite() {
         Ok(value)
     } else {
-        finite(&name.to_string(), value)
+        finite(&name(), value)
     }
 }
 
@@ -227,40 +261,45 @@ fn geometry(time: f64, what: String) -> Error {
     }
 }
 
-/// `v / |v|`, or an error naming `what` when v is (nearly) zero.
-fn unit(v: DVec3, time: f64, what: std::fmt::Arguments) -> Result<DVec3> {
+/// `v / |v|`, or an error naming `what()` when v is (nearly) zero.
+fn unit(v: DVec3, time: f64, what: impl Fn() -> String) -> Result<DVec3> {
     let n = v.length();
     if n > 1e-9 {
         Ok(v / n)
     } else {
-        Err(geometry(time, format!("{what} has zero length")))
+        Err(geometry(time, format!("{} has zero length", what())))
     }
 }
 
 /// The component of `hint` perpendicular to the unit vector `axis`, normalized.
-fn perpendicular(hint: DVec3, axis: DVec3, time: f64, what: std::fmt::Arguments) -> Result<DVec3> {
-    let hint = unit(hint, time, what)?;
+fn perpendicular(hint: DVec3, axis: DVec3, time: f64, what: impl Fn() -> String) -> Result<DVec3> {
+    let hint = unit(hint, time, &what)?;
     let p = hint - hint.dot(axis) * axis;
-    if p.length() < 1e-6 {
-        return Err(geometry(time, format!("{what} is parallel to the segment")));
+    let n = p.length();
+    if n < 1e-6 {
+        return Err(geometry(
+            time,
+            format!("{} is parallel to the segment", what()),
+        ));
     }
-    Ok(p.normalize())
+    // p.normalize(), without measuring p again
+    Ok(p * n.recip())
 }
 
 fn leg_frames(leg: &LegPoints, side: Side, time: f64) -> Result<LegFrames> {
     let s = side.suffix();
-    let hip = point(format_args!("{s}.hip"), leg.hip)?;
-    let knee = point(format_args!("{s}.knee"), leg.knee)?;
-    let ankle = point(format_args!("{s}.ankle"), leg.ankle)?;
-    let heel = point(format_args!("{s}.heel"), leg.heel)?;
-    let mtp = point(format_args!("{s}.mtp"), leg.mtp)?;
-    let toe = point(format_args!("{s}.toe"), leg.toe)?;
-    let knee_axis = point(format_args!("{s}.knee_axis"), leg.knee_axis)?;
+    let hip = point(|| format!("{s}.hip"), leg.hip)?;
+    let knee = point(|| format!("{s}.knee"), leg.knee)?;
+    let ankle = point(|| format!("{s}.ankle"), leg.ankle)?;
+    let heel = point(|| format!("{s}.heel"), leg.heel)?;
+    let mtp = point(|| format!("{s}.mtp"), leg.mtp)?;
+    let toe = point(|| format!("{s}.toe"), leg.toe)?;
+    let knee_axis = point(|| format!("{s}.knee_axis"), leg.knee_axis)?;
 
     // y along the segment, z the knee axis, x = y × z (forward)
     let y_z = |origin: DVec3, y: DVec3, z: DVec3, what: &str| -> Result<Frame> {
-        let y = unit(y, time, format_args!("the {what} of the {s} leg"))?;
-        let z = perpendicular(z, y, time, format_args!("the {s} knee axis"))?;
+        let y = unit(y, time, || format!("the {what} of the {s} leg"))?;
+        let z = perpendicular(z, y, time, || format!("the {s} knee axis"))?;
         Ok(Frame {
             origin,
             axes: DMat3::from_cols(y.cross(z), y, z),
@@ -269,29 +308,17 @@ fn leg_frames(leg: &LegPoints, side: Side, time: f64) -> Result<LegFrames> {
     let thigh = y_z(hip, hip - knee, knee_axis, "thigh")?;
     let shank = y_z(knee, knee - ankle, knee_axis, "shank")?;
     // foot: x heel → mtp, y towards the ankle, z = x × y
-    let x = unit(
-        mtp - heel,
-        time,
-        format_args!("the {s} foot's heel–mtp line"),
-    )?;
-    let y = perpendicular(
-        ankle - heel,
-        x,
-        time,
-        format_args!("the {s} heel–ankle line"),
-    )?;
+    let x = unit(mtp - heel, time, || format!("the {s} foot's heel–mtp line"))?;
+    let y = perpendicular(ankle - heel, x, time, || format!("the {s} heel–ankle line"))?;
     let foot = Frame {
         origin: ankle,
         axes: DMat3::from_cols(x, y, x.cross(y)),
     };
     // toe: x mtp → toe tip, z the foot's lateral axis, y = z × x
-    let x = unit(toe - mtp, time, format_args!("the {s} toe"))?;
-    let z = perpendicular(
-        foot.axes.z_axis,
-        x,
-        time,
-        format_args!("the {s} foot's lateral axis"),
-    )?;
+    let x = unit(toe - mtp, time, || format!("the {s} toe"))?;
+    let z = perpendicular(foot.axes.z_axis, x, time, || {
+        format!("the {s} foot's lateral axis")
+    })?;
     let toe = Frame {
         origin: mtp,
         axes: DMat3::from_cols(x, z.cross(x), z),
@@ -304,14 +331,30 @@ fn leg_frames(leg: &LegPoints, side: Side, time: f64) -> Result<LegFrames> {
     })
 }
 
-fn arm_frames(thorax: &Frame, arm: &ArmAngles, side: Side, body: &Body) -> Result<ArmFrames> {
+/// An arm's shoulder flexion, abduction and elbow flexion, or [`Error::NotFinite`] naming the
+/// first that is not finite.
+fn arm_angles(arm: &ArmAngles, side: Side) -> Result<[f64; 3]> {
     let s = side.suffix();
-    let flexion = finite_named(format_args!("{s}.shoulder_flexion"), arm.shoulder_flexion)?;
-    let abduction = finite_named(
-        format_args!("{s}.shoulder_abduction"),
-        arm.shoulder_abduction,
-    )?;
-    let elbow = finite_named(format_args!("{s}.elbow_flexion"), arm.elbow_flexion)?;
+    Ok([
+        finite_named(|| format!("{s}.shoulder_flexion"), arm.shoulder_flexion)?,
+        finite_named(|| format!("{s}.shoulder_abduction"), arm.shoulder_abduction)?,
+        finite_named(|| format!("{s}.elbow_flexion"), arm.elbow_flexion)?,
+    ])
+}
+
+/// The shoulder and elbow of an arm placed `R_thorax · R_z(flexion) · R_x(∓abduction)`, forearm
+/// `· R_z(elbow)` ([`arm_frames`]): their angles are those it was built from (where the
+/// decompositions return them, [`zxy_round_trip`]).
+fn arm_joints([flexion, abduction, elbow]: [f64; 3], side: Side) -> ArmJoints {
+    let s = side.sign();
+    ArmJoints {
+        shoulder: joint3(zxy_round_trip(flexion, -s * abduction, 0.0), s, 1.0),
+        elbow: joint3(zxy_round_trip(elbow, 0.0, 0.0), s, 1.0),
+    }
+}
+
+fn arm_frames(thorax: &Frame, arm: &ArmAngles, side: Side, body: &Body) -> Result<ArmFrames> {
+    let [flexion, abduction, elbow] = arm_angles(arm, side)?;
     let f = &body.figure;
     let shoulder = thorax.point(DVec3::new(
         0.0,
@@ -343,23 +386,12 @@ impl Skeleton {
     /// The segment frames of `lm`. Errors: a non-finite number ([`Error::NotFinite`], naming the
     /// field), a degenerate segment or a knee axis along a segment ([`Error::Geometry`]).
     pub fn new(lm: &Landmarks, body: &Body) -> Result<Self> {
-        let t = finite("time", lm.time)?;
-        let pelvis_origin = point(format_args!("pelvis"), lm.pelvis)?;
-        let tilt = finite("pelvis_tilt", lm.pelvis_tilt)?;
-        let list = finite("pelvis_list", lm.pelvis_list)?;
-        let rotation = finite("pelvis_rotation", lm.pelvis_rotation)?;
-        let pelvis = Frame {
-            origin: pelvis_origin,
-            axes: yxz_matrix(rotation, -list, -tilt),
-        };
-        let lumbar = yxz_matrix(
-            finite("lumbar_rotation", lm.lumbar_rotation)?,
-            finite("lumbar_bending", lm.lumbar_bending)?,
-            finite("lumbar_extension", lm.lumbar_extension)?,
-        );
+        let trunk = Trunk::new(lm)?;
+        let (t, pelvis) = (trunk.time, trunk.pelvis);
+        let [lr, lb, le] = trunk.lumbar;
         let thorax = Frame {
-            origin: pelvis_origin,
-            axes: pelvis.axes * lumbar,
+            origin: pelvis.origin,
+            axes: pelvis.axes * yxz_matrix(lr, lb, le),
         };
         Ok(Skeleton {
             pelvis,
@@ -387,18 +419,6 @@ impl Skeleton {
 
     /// The clinical angles of these frames (the module doc gives the definitions).
     pub fn clinical(&self, time: f64, step: usize) -> Clinical {
-        let [r, p, q] = yxz_angles(&self.pelvis.axes);
-        let [lr, lb, le] = yxz_angles(&(self.pelvis.axes.transpose() * self.thorax.axes));
-        let leg = |side: Side| {
-            let l = self.leg(side);
-            let s = side.sign();
-            LegAngles {
-                hip: joint(&self.pelvis.axes, &l.thigh.axes, s, 1.0),
-                knee: joint(&l.thigh.axes, &l.shank.axes, s, -1.0),
-                ankle: joint(&l.shank.axes, &l.foot.axes, s, 1.0),
-                mtp: joint(&l.foot.axes, &l.toe.axes, s, 1.0),
-            }
-        };
         let arm = |side: Side| {
             let a = self.arm(side);
             let s = side.sign();
@@ -407,21 +427,15 @@ impl Skeleton {
                 elbow: joint(&a.upper_arm.axes, &a.forearm.axes, s, 1.0),
             }
         };
-        Clinical {
+        assemble(
             time,
             step,
-            pelvis: self.pelvis.origin.to_array(),
-            pelvis_tilt: -q,
-            pelvis_list: -p,
-            pelvis_rotation: r,
-            lumbar_extension: le,
-            lumbar_bending: lb,
-            lumbar_rotation: lr,
-            right: leg(Side::Right),
-            left: leg(Side::Left),
-            right_arm: arm(Side::Right),
-            left_arm: arm(Side::Left),
-        }
+            &self.pelvis,
+            yxz_angles(&self.pelvis.axes),
+            yxz_angles(&(self.pelvis.axes.transpose() * self.thorax.axes)),
+            [&self.right, &self.left],
+            [arm(Side::Right), arm(Side::Left)],
+        )
     }
 
     /// The largest distance (m) between a landmark and where the body's rigid segments put it:
@@ -472,7 +486,16 @@ impl Skeleton {
 
 /// The clinical angles of the joint from `parent` to `child` axes.
 fn joint(parent: &DMat3, child: &DMat3, side: f64, flexion_sign: f64) -> Joint3 {
-    let [a, b, c] = zxy_angles(&(parent.transpose() * *child));
+    // (Pᵀ C)ᵢⱼ = Pᵢ · Cⱼ (columns): only the entries the decomposition reads
+    joint3(
+        zxy_from(|i, j| parent.col(i).dot(child.col(j))),
+        side,
+        flexion_sign,
+    )
+}
+
+/// The clinical signs of the ZXY angles `[a, b, c]` of a joint.
+fn joint3([a, b, c]: [f64; 3], side: f64, flexion_sign: f64) -> Joint3 {
     Joint3 {
         flexion: flexion_sign * a,
         adduction: side * b,
@@ -480,9 +503,102 @@ fn joint(parent: &DMat3, child: &DMat3, side: f64, flexion_sign: f64) -> Joint3 
     }
 }
 
-/// The clinical angles of one frame: [`Skeleton::new`] then [`Skeleton::clinical`].
-pub fn clinical(lm: &Landmarks, body: &Body) -> Result<Clinical> {
-    Ok(Skeleton::new(lm, body)?.clinical(lm.time, lm.step))
+/// The clinical angles of one frame: those of [`Skeleton::new`] then [`Skeleton::clinical`]
+/// (the same errors, the same angles to round-off), without the frames the angles are read back
+/// from: the pelvis, lumbar and arm angles are the landmarks' own (the frames are built from
+/// them, [`zxy_round_trip`]), and no arm is placed (the angles do not depend on `_body`).
+pub fn clinical(lm: &Landmarks, _body: &Body) -> Result<Clinical> {
+    let trunk = Trunk::new(lm)?;
+    let right = leg_frames(&lm.right, Side::Right, trunk.time)?;
+    let left = leg_frames(&lm.left, Side::Left, trunk.time)?;
+    let right_arm = arm_joints(arm_angles(&lm.right_arm, Side::Right)?, Side::Right);
+    let left_arm = arm_joints(arm_angles(&lm.left_arm, Side::Left)?, Side::Left);
+    let [lr, lb, le] = trunk.lumbar;
+    Ok(assemble(
+        lm.time,
+        lm.step,
+        &trunk.pelvis,
+        yxz_round_trip(trunk.rotation, -trunk.list, -trunk.tilt),
+        yxz_round_trip(lr, lb, le),
+        [&right, &left],
+        [right_arm, left_arm],
+    ))
+}
+
+/// The checked time and trunk angles of a frame, and its pelvis frame
+/// `R_y(rotation) · R_x(−list) · R_z(−tilt)`.
+struct Trunk {
+    time: f64,
+    tilt: f64,
+    list: f64,
+    rotation: f64,
+    pelvis: Frame,
+    /// Lumbar rotation, bending, extension.
+    lumbar: [f64; 3],
+}
+
+impl Trunk {
+    /// Errors: the first non-finite of time, pelvis, pelvis angles, lumbar angles.
+    fn new(lm: &Landmarks) -> Result<Self> {
+        let time = finite("time", lm.time)?;
+        let origin = point(|| "pelvis".to_string(), lm.pelvis)?;
+        let tilt = finite("pelvis_tilt", lm.pelvis_tilt)?;
+        let list = finite("pelvis_list", lm.pelvis_list)?;
+        let rotation = finite("pelvis_rotation", lm.pelvis_rotation)?;
+        let lumbar = [
+            finite("lumbar_rotation", lm.lumbar_rotation)?,
+            finite("lumbar_bending", lm.lumbar_bending)?,
+            finite("lumbar_extension", lm.lumbar_extension)?,
+        ];
+        Ok(Trunk {
+            time,
+            tilt,
+            list,
+            rotation,
+            pelvis: Frame {
+                origin,
+                axes: yxz_matrix(rotation, -list, -tilt),
+            },
+            lumbar,
+        })
+    }
+}
+
+/// The clinical angles from the pelvis frame and its YXZ angles `[r, p, q]`, the lumbar YXZ
+/// angles, the legs' frames and the arms' joints.
+fn assemble(
+    time: f64,
+    step: usize,
+    pelvis: &Frame,
+    [r, p, q]: [f64; 3],
+    [lr, lb, le]: [f64; 3],
+    legs: [&LegFrames; 2],
+    [right_arm, left_arm]: [ArmJoints; 2],
+) -> Clinical {
+    let leg = |l: &LegFrames, side: Side| {
+        let s = side.sign();
+        LegAngles {
+            hip: joint(&pelvis.axes, &l.thigh.axes, s, 1.0),
+            knee: joint(&l.thigh.axes, &l.shank.axes, s, -1.0),
+            ankle: joint(&l.shank.axes, &l.foot.axes, s, 1.0),
+            mtp: joint(&l.foot.axes, &l.toe.axes, s, 1.0),
+        }
+    };
+    Clinical {
+        time,
+        step,
+        pelvis: pelvis.origin.to_array(),
+        pelvis_tilt: -q,
+        pelvis_list: -p,
+        pelvis_rotation: r,
+        lumbar_extension: le,
+        lumbar_bending: lb,
+        lumbar_rotation: lr,
+        right: leg(legs[0], Side::Right),
+        left: leg(legs[1], Side::Left),
+        right_arm,
+        left_arm,
+    }
 }
 
 #[cfg(test)]

@@ -750,6 +750,48 @@ pub struct SwingPose {
     pub foot: FootPoints,
 }
 
+/// A step at one instant: what the figure hangs from, evaluated once ([`Step::at`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Instant {
+    /// Step time τ (s).
+    pub tau: f64,
+    /// The stance state and whether the knee is locked.
+    pub state: StanceState,
+    pub locked: bool,
+    /// The dynamic hip, the pelvis centre (x relative to the stance ankle): [`Step::hip`].
+    pub centre: [f64; 2],
+    /// The determinants: [`Step::pelvis`].
+    pub pelvis: PelvisMotion,
+    /// [`Determinants::hip_offset`] of the right and the left hip joint.
+    pub hip_offsets: [[f64; 3]; 2],
+    /// [`Determinants::ankle_z`] of the right and the left ankle.
+    pub ankle_z: [f64; 2],
+}
+
+impl Instant {
+    fn index(side: Side) -> usize {
+        match side {
+            Side::Right => 0,
+            Side::Left => 1,
+        }
+    }
+
+    /// The hip joint of `leg` relative to the pelvis centre (m, world axes).
+    pub fn hip_offset(&self, leg: Side) -> [f64; 3] {
+        self.hip_offsets[Self::index(leg)]
+    }
+
+    /// [`Step::hip_joint`]: the hip joint of `leg` (x relative to the stance ankle, world y)
+    /// and [`Determinants::lateral_offset`] from that leg's ankle.
+    pub fn hip_joint(&self, leg: Side) -> ([f64; 2], f64) {
+        let o = self.hip_offset(leg);
+        (
+            [self.centre[0] + o[0], self.centre[1] + o[1]],
+            self.pelvis.lateral + o[2] - self.ankle_z[Self::index(leg)],
+        )
+    }
+}
+
 impl Step {
     /// The dynamic hip, the pelvis centre (x relative to the stance ankle), at step time τ.
     pub fn hip(&self, tau: f64) -> [f64; 2] {
@@ -765,13 +807,31 @@ impl Step {
     /// The hip joint of `leg` (x relative to the stance ankle, world y) and its lateral offset
     /// from that leg's ankle, at step time τ.
     pub fn hip_joint(&self, leg: Side, tau: f64) -> ([f64; 2], f64) {
-        let h = self.hip(tau);
-        let p = self.pelvis(tau);
-        let o = self.determinants.hip_offset(leg, &p);
-        (
-            [h[0] + o[0], h[1] + o[1]],
-            self.determinants.lateral_offset(leg, &p),
-        )
+        self.at(tau).hip_joint(leg)
+    }
+
+    /// The stance state, the dynamic hip and the pelvis at step time τ, each evaluated once.
+    pub fn at(&self, tau: f64) -> Instant {
+        let (state, locked) = self.stance.state(tau);
+        let centre = self
+            .stance_setup
+            .model
+            .hip(&Vector3::new(state[0], state[1], state[2]));
+        let pelvis = self.pelvis(tau);
+        let right = self.determinants.hip_offset(Side::Right, &pelvis);
+        Instant {
+            tau,
+            state,
+            locked,
+            centre,
+            pelvis,
+            // hip_offset(Left) is hip_offset(Right) with the half width negated: exactly −right
+            hip_offsets: [right, right.map(|x| -x)],
+            ankle_z: [
+                self.determinants.ankle_z(Side::Right),
+                self.determinants.ankle_z(Side::Left),
+            ],
+        }
     }
 
     /// The swing-side hip joint relative to the pelvis centre in the swing leg's plane, at step
@@ -787,10 +847,15 @@ impl Step {
 
     /// The stance leg's pose at step time τ (x relative to the stance ankle).
     pub fn stance_pose(&self, tau: f64) -> std::result::Result<LegPose, String> {
-        let (h, dz) = self.hip_joint(self.side, tau);
-        let mut p = self
-            .stance_leg
-            .pose([h[0] + self.x_ankle, h[1]], dz, self.t_start + tau)?;
+        self.stance_pose_at(&self.at(tau))
+    }
+
+    /// [`Self::stance_pose`] at an instant of this step.
+    pub fn stance_pose_at(&self, now: &Instant) -> std::result::Result<LegPose, String> {
+        let (h, dz) = now.hip_joint(self.side);
+        let mut p =
+            self.stance_leg
+                .pose([h[0] + self.x_ankle, h[1]], dz, self.t_start + now.tau)?;
         shift_pose(&mut p, -self.x_ankle);
         Ok(p)
     }
@@ -819,8 +884,14 @@ impl Step {
 
     /// The swing (or, in double support, hind) leg at step time τ.
     pub fn swing_pose(&self, tau: f64, foot: &Foot) -> SwingPose {
+        self.swing_pose_at(&self.at(tau), foot)
+    }
+
+    /// [`Self::swing_pose`] at an instant of this step.
+    pub fn swing_pose_at(&self, now: &Instant, foot: &Foot) -> SwingPose {
+        let tau = now.tau;
         let t = self.constraints.timing;
-        let (hip, dz) = self.hip_joint(self.side.other(), tau);
+        let (hip, dz) = now.hip_joint(self.side.other());
         let (l3, l4) = (self.stance_leg.l3, self.stance_leg.l4);
         if tau < t.t_ds
             && let Ok(mut p) =
@@ -854,7 +925,7 @@ impl Step {
         let t = self.constraints.timing;
         let s = ((tau - t.t_ds) / t.t_swing).clamp(0.0, 1.0);
         let floor = self.toe_clearance * (PI * s).sin().powi(2);
-        let pitch = foot.clear_pitch(y[0] + y[1] - theta5, ankle[1], theta6, floor);
+        let (_, foot_points) = foot.clear_pitch(y[0] + y[1] - theta5, ankle, theta6, floor);
         SwingPose {
             phase: sub.name(),
             theta3: y[0],
@@ -863,16 +934,16 @@ impl Step {
             dz,
             knee,
             ankle,
-            foot: foot.points(ankle, pitch, theta6),
+            foot: foot_points,
         }
     }
 
     /// The frame at world time t.
     pub fn frame(&self, t: f64, foot: &Foot) -> Frame {
         let tau = (t - self.t_start).clamp(0.0, self.constraints.timing.t_step);
-        let (y, locked) = self.stance.state(tau);
-        let hip = self.hip(tau);
-        let sw = self.swing_pose(tau, foot);
+        let now = self.at(tau);
+        let (y, locked, hip) = (now.state, now.locked, now.centre);
+        let sw = self.swing_pose_at(&now, foot);
         let x0 = self.x_ankle;
         Frame {
             time_s: t,

@@ -225,3 +225,234 @@ fn bisections_end_far_into_a_long_walk() {
     let k = leg.heel_off.expect("the heel rises");
     assert!(k.t0 > t0 + 0.078 && k.t0 < t0 + 0.55);
 }
+
+/// The pitch of the rolling foot by the numeric solver the closed form replaced: the first sign
+/// change of |hip − ankle(p)| − a(κ) on a 0.05 rad grid from the flat foot, then Brent's method
+/// to 1e-13 rad. `None` when the foot stays flat (the hip nearer than a(κ) with the foot flat)
+/// or cannot reach.
+fn scanned_pitch(
+    leg: &klaw::kinematics::stance_leg::StanceLeg,
+    hip: [f64; 2],
+    dz: f64,
+    a: f64,
+) -> Option<f64> {
+    use argmin::core::{CostFunction, Executor};
+    use argmin::solver::brent::BrentRoot;
+    struct Residual<'a>(
+        &'a klaw::kinematics::stance_leg::StanceLeg,
+        [f64; 2],
+        f64,
+        f64,
+    );
+    impl CostFunction for Residual<'_> {
+        type Param = f64;
+        type Output = f64;
+        fn cost(&self, p: &f64) -> Result<f64, argmin::core::Error> {
+            let Residual(leg, hip, dz, a) = *self;
+            let (ankle, _) = leg
+                .foot
+                .rolling_ankle(leg.ankle_x + leg.foot.h12, *p, leg.theta6_max);
+            Ok(((hip[0] - ankle[0]).powi(2) + (hip[1] - ankle[1]).powi(2) + dz * dz).sqrt() - a)
+        }
+    }
+    let problem = Residual(leg, hip, dz, a);
+    let f = |p: f64| problem.cost(&p).unwrap();
+    let (mut lo, mut flo) = (0.0, f(0.0));
+    if flo < 0.0 {
+        return None;
+    }
+    if flo.abs() < 1e-13 {
+        return Some(0.0);
+    }
+    let mut hi = lo;
+    loop {
+        hi += 0.05;
+        let fhi = f(hi);
+        if flo * fhi <= 0.0 {
+            break;
+        }
+        if hi >= 1.8 {
+            return None;
+        }
+        (lo, flo) = (hi, fhi);
+    }
+    let res = Executor::new(problem, BrentRoot::new(lo, hi, 1e-13))
+        .configure(|s| s.param(0.5 * (lo + hi)).max_iters(100))
+        .run()
+        .unwrap();
+    res.state.best_param
+}
+
+/// The heel rocker's reach-limited sole angle by the bisection the closed form replaced: the
+/// smallest sole angle on [rule, π/3] at which the straight leg reaches the hip, to 1e-12 rad
+/// (`None` when the rule's angle reaches, or the hip is ahead of the ankle).
+fn bisected_sole(
+    leg: &klaw::kinematics::stance_leg::StanceLeg,
+    hip: [f64; 2],
+    dz: f64,
+    rule: f64,
+) -> Option<f64> {
+    let l1 = leg.l3 + leg.l4;
+    let too_far = |phi: f64| {
+        let (s, c) = phi.sin_cos();
+        let (l8, l9) = (leg.foot.l8, leg.foot.l9);
+        let a = [leg.ankle_x - l8 + l8 * c - l9 * s, l8 * s + l9 * c];
+        ((hip[0] - a[0]).powi(2) + (hip[1] - a[1]).powi(2) + dz * dz).sqrt() > l1
+    };
+    if hip[0] >= leg.ankle_x || !too_far(rule) {
+        return None;
+    }
+    let (mut lo, mut hi) = (rule, std::f64::consts::FRAC_PI_3);
+    assert!(!too_far(hi));
+    while hi - lo > 1e-12 {
+        let m = 0.5 * (lo + hi);
+        if too_far(m) { lo = m } else { hi = m }
+    }
+    Some(hi)
+}
+
+/// The stance legs' pitches agree with the numeric solvers the closed forms replaced at every
+/// millisecond of real walks, slow to fast, both for the stance leg and for the hind leg in
+/// double support: the rolling foot's to 1e-12 rad (the old solve's tolerance was 1e-13), the
+/// heel rocker's reach-limited sole angle exactly (its bisection is only steered by the closed
+/// form); and the rolling pitch closes the leg: |hip − ankle(p)| = a(κ) to 1e-12 m, with no
+/// smaller pitch where the residual changes sign (a 1e-4 rad scan).
+#[test]
+fn closed_form_foot_pitches_match_the_numeric_solvers() {
+    use klaw::kinematics::stance_leg::{FootPhase, StanceLeg};
+    let (mut rolling, mut limited) = (0, 0);
+    for (v, h) in [(1.4, 1.8), (0.6, 1.8), (0.8, 1.6), (1.9, 1.9)] {
+        let (b, _, w) = walk_of(v, h);
+        for s in &w.steps {
+            let t_step = s.constraints.timing.t_step;
+            let legs: [(&StanceLeg, klaw::kinematics::pelvis::Side, f64); 2] = [
+                (&s.stance_leg, s.side, t_step),
+                (&s.hind_leg, s.side.other(), s.constraints.timing.t_ds),
+            ];
+            for (leg, side, until) in legs {
+                let n = (until * 1000.0) as usize;
+                for k in 0..=n {
+                    let tau = k as f64 / 1000.0;
+                    let t = s.t_start + tau;
+                    let (h, dz) = s.hip_joint(side, tau);
+                    let hip = [h[0] + s.x_ankle, h[1]];
+                    let Ok(pose) = leg.pose(hip, dz, t) else {
+                        continue;
+                    };
+                    match leg.phase(t) {
+                        FootPhase::Rolling => {
+                            let (kappa, _) = leg.knee_curve(t).unwrap();
+                            let a = b.hip_ankle_distance(kappa);
+                            let Some(p) = scanned_pitch(leg, hip, dz, a) else {
+                                assert_eq!(pose.pitch, 0.0, "{v} {t}: the foot stays flat");
+                                continue;
+                            };
+                            rolling += 1;
+                            assert!(
+                                (pose.pitch - p).abs() < 1e-12,
+                                "{v} {t}: {} {p}",
+                                pose.pitch
+                            );
+                            let meta_x = leg.ankle_x + leg.foot.h12;
+                            let residual = |p: f64| {
+                                let (an, _) = leg.foot.rolling_ankle(meta_x, p, leg.theta6_max);
+                                ((hip[0] - an[0]).powi(2) + (hip[1] - an[1]).powi(2) + dz * dz)
+                                    .sqrt()
+                                    - a
+                            };
+                            assert!(residual(pose.pitch).abs() < 1e-12, "{v} {t}");
+                            let mut q = 0.0;
+                            while q + 1e-4 < pose.pitch - 1e-9 {
+                                assert!(residual(q) * residual(q + 1e-4) > 0.0, "{v} {t} {q}");
+                                q += 1e-4;
+                            }
+                        }
+                        _ => {
+                            let rule = if t < leg.t_hs + leg.t_fgm {
+                                let x = (t - leg.t_hs) / leg.t_fgm;
+                                leg.sole_hs * (1.0 - x * x * (3.0 - 2.0 * x))
+                            } else {
+                                0.0
+                            };
+                            if let Some(phi) = bisected_sole(leg, hip, dz, rule) {
+                                limited += 1;
+                                assert_eq!(pose.pitch, -phi, "{v} {t}: the bisection's own angle");
+                            } else {
+                                assert!((pose.pitch + rule).abs() < 1e-15, "{v} {t}");
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    assert!(rolling > 1000 && limited > 100, "{rolling} {limited}");
+}
+
+/// `skeleton::clinical` (angles of the trunk and arms taken from the landmarks) agrees with the
+/// angles decomposed from the segment frames, `Skeleton::new(..).clinical(..)`, to round-off on
+/// real walks' frames, also with trunk and arm angles beyond the range where the decomposition
+/// returns them, and fails with the same error on the same non-finite field.
+#[test]
+fn clinical_angles_match_the_decomposed_frames() {
+    use klaw::skeleton::{Clinical, Skeleton, clinical};
+    let flat = |c: &Clinical| {
+        let j = |j: &klaw::skeleton::Joint3| [j.flexion, j.adduction, j.rotation];
+        let mut v = vec![
+            c.time,
+            c.pelvis_tilt,
+            c.pelvis_list,
+            c.pelvis_rotation,
+            c.lumbar_extension,
+            c.lumbar_bending,
+            c.lumbar_rotation,
+        ];
+        v.extend(c.pelvis);
+        for l in [&c.right, &c.left] {
+            for x in [&l.hip, &l.knee, &l.ankle, &l.mtp] {
+                v.extend(j(x));
+            }
+        }
+        for a in [&c.right_arm, &c.left_arm] {
+            v.extend(j(&a.shoulder));
+            v.extend(j(&a.elbow));
+        }
+        v
+    };
+    let same = |lm: &Landmarks, b: &Body| {
+        let fast = flat(&clinical(lm, b).unwrap());
+        let framed = flat(&Skeleton::new(lm, b).unwrap().clinical(lm.time, lm.step));
+        for (x, y) in fast.iter().zip(&framed) {
+            assert!((x - y).abs() < 1e-12, "t {}: {fast:?}\n{framed:?}", lm.time);
+        }
+    };
+    for (v, h) in [(1.4, 1.8), (0.6, 1.8)] {
+        let (b, attrs, w) = walk_of(v, h);
+        for k in 0..=200 {
+            let mut lm = figure_at(&w, &attrs, w.duration() * k as f64 / 200.0);
+            same(&lm, &b);
+            lm.pelvis_list = 1.55;
+            lm.pelvis_rotation = -3.1;
+            lm.lumbar_bending = -1.52;
+            lm.right_arm.shoulder_flexion = 3.05;
+            lm.left_arm.shoulder_abduction = 1.56;
+            lm.left_arm.elbow_flexion = 3.1;
+            same(&lm, &b);
+        }
+        let lm = figure_at(&w, &attrs, 0.3);
+        let breaks: [fn(&mut Landmarks); 5] = [
+            |l| l.pelvis_tilt = f64::NAN,
+            |l| l.lumbar_extension = f64::INFINITY,
+            |l| l.left.toe[2] = f64::NAN,
+            |l| l.right_arm.elbow_flexion = f64::NAN,
+            |l| l.left.knee = l.left.hip,
+        ];
+        for f in breaks {
+            let mut broken = lm;
+            f(&mut broken);
+            let a = clinical(&broken, &b).unwrap_err().to_string();
+            let e = Skeleton::new(&broken, &b).unwrap_err().to_string();
+            assert_eq!(a, e);
+        }
+    }
+}

@@ -129,10 +129,8 @@ pub fn landmarks(step: &Step, t: f64, attrs: &Attributes) -> Result<Landmarks> {
     let c = &step.constraints;
     let tau = (t - step.t_start).clamp(0.0, c.timing.t_step);
     let x0 = step.x_ankle;
-    let (state, _) = step.stance.state(tau);
-    let centre = step.hip(tau);
-    let p = step.pelvis(tau);
-    let det = &step.determinants;
+    let now = step.at(tau);
+    let (state, centre, p) = (now.state, now.centre, now.pelvis);
     let (l3, l4) = (step.stance_leg.l3, step.stance_leg.l4);
     let invariant = |what: String| Error::Invariant {
         step: step.index,
@@ -140,11 +138,11 @@ pub fn landmarks(step: &Step, t: f64, attrs: &Attributes) -> Result<Landmarks> {
         what,
     };
     let hip3 = |side: Side| {
-        let o = det.hip_offset(side, &p);
+        let o = now.hip_offset(side);
         [x0 + centre[0] + o[0], centre[1] + o[1], p.lateral + o[2]]
     };
-    let stance = step.stance_pose(tau).map_err(invariant)?;
-    let (_, dz_stance) = step.hip_joint(step.side, tau);
+    let stance = step.stance_pose_at(&now).map_err(invariant)?;
+    let (_, dz_stance) = now.hip_joint(step.side);
     let stance_leg = place_leg(
         hip3(step.side),
         dz_stance,
@@ -154,7 +152,7 @@ pub fn landmarks(step: &Step, t: f64, attrs: &Attributes) -> Result<Landmarks> {
         &shifted(&stance.foot, x0),
     );
     let foot: Foot = step.stance_leg.foot;
-    let sw = step.swing_pose(tau, &foot);
+    let sw = step.swing_pose_at(&now, &foot);
     let swing_leg = place_leg(
         hip3(step.side.other()),
         sw.dz,

@@ -5,7 +5,11 @@ use crate::body::Body;
 
 /// Rotate a foot-frame vector (x forward, y up, foot flat) by the pitch p (heel up +).
 pub fn pitch(v: [f64; 2], p: f64) -> [f64; 2] {
-    let (s, c) = p.sin_cos();
+    rotate(v, p.sin_cos())
+}
+
+/// [`pitch`] by the pitch whose sine and cosine are (s, c).
+fn rotate(v: [f64; 2], (s, c): (f64, f64)) -> [f64; 2] {
     [v[0] * c + v[1] * s, -v[0] * s + v[1] * c]
 }
 
@@ -57,9 +61,10 @@ impl Foot {
 
     /// Foot points for an ankle at `ankle`, foot pitch `p` (heel up +) and toe dorsiflexion θ6.
     pub fn points(&self, ankle: [f64; 2], p: f64, theta6: f64) -> FootPoints {
-        let meta = add(ankle, pitch([self.h12, -self.l9], p));
+        let sc = p.sin_cos();
+        let meta = add(ankle, rotate([self.h12, -self.l9], sc));
         FootPoints {
-            heel: add(ankle, pitch([-self.l8, -self.l9], p)),
+            heel: add(ankle, rotate([-self.l8, -self.l9], sc)),
             meta,
             toe: add(meta, pitch([self.l13, 0.0], p - theta6)),
         }
@@ -68,40 +73,70 @@ impl Foot {
     /// The largest pitch (heel up +) at which the metatarsal joint and the toe tip of a foot with
     /// its ankle at height `ankle_y` and toe angle θ6 stay at or above `floor` (both heights fall
     /// monotonically with the pitch on [−π/2, π/3]).
+    /// By bisection, steered by [`Self::max_pitch_closed_form`].
     pub fn max_pitch(&self, ankle_y: f64, theta6: f64, floor: f64) -> f64 {
         let meta = |p: f64| ankle_y + pitch([self.h12, -self.l9], p)[1];
         boundary(
             |p| meta(p).min(meta(p) + pitch([self.l13, 0.0], p - theta6)[1]) >= floor,
             -std::f64::consts::FRAC_PI_2,
             true,
+            self.max_pitch_closed_form(ankle_y, theta6, floor),
         )
+    }
+
+    /// [`Self::max_pitch`] in closed form: the metatarsal joint is at height
+    /// `ankle_y − (h12 sin p + l9 cos p)` and the toe tip at `ankle_y − (A sin p + B cos p)`
+    /// with (A, B) = (h12 + l13 cos θ6, l9 − l13 sin θ6), so each reaches the floor where
+    /// `sin(p + atan2(b, a)) = (ankle_y − floor) / |(a, b)|`; the boundary is the lower of the
+    /// two (NaN when neither reaches it).
+    fn max_pitch_closed_form(&self, ankle_y: f64, theta6: f64, floor: f64) -> f64 {
+        let reaches = |a: f64, b: f64| ((ankle_y - floor) / a.hypot(b)).asin() - b.atan2(a);
+        let (s6, c6) = theta6.sin_cos();
+        reaches(self.h12, self.l9).min(reaches(self.h12 + self.l13 * c6, self.l9 - self.l13 * s6))
     }
 
     /// The smallest pitch (heel up +) that keeps the heel at or above the ground, for an ankle at
     /// height `ankle_y` (the heel's height l8 sin p − l9 cos p rises with p from its lowest
     /// point, p = −atan(l8/l9) with the heel straight under the ankle, up to π/3).
+    /// By bisection, steered by [`Self::min_pitch_closed_form`].
     pub fn min_pitch(&self, ankle_y: f64) -> f64 {
         boundary(
             |p| ankle_y + pitch([-self.l8, -self.l9], p)[1] >= 0.0,
             -(self.l8 / self.l9).atan(),
             false,
+            self.min_pitch_closed_form(ankle_y),
         )
     }
 
-    /// The swing foot's pitch: the rule's pitch when it keeps the heel on or above the ground
-    /// and the toe on or above `floor`; otherwise the rule clamped into the range where both
-    /// hold (the floor drops to the ground when both cannot hold).
-    pub fn clear_pitch(&self, rule: f64, ankle_y: f64, theta6: f64, floor: f64) -> f64 {
-        let pts = self.points([0.0, ankle_y], rule, theta6);
+    /// [`Self::min_pitch`] in closed form: l8 sin p − l9 cos p = r sin(p − β) with
+    /// r = |(l8, l9)| and β = atan2(l9, l8), so the heel touches at p = β − asin(ankle_y / r).
+    fn min_pitch_closed_form(&self, ankle_y: f64) -> f64 {
+        self.l9.atan2(self.l8) - (ankle_y / self.l8.hypot(self.l9)).asin()
+    }
+
+    /// The swing foot's pitch, and its points with the ankle at `ankle`: the rule's pitch when
+    /// it keeps the heel on or above the ground and the toe on or above `floor`; otherwise the
+    /// rule clamped into the range where both hold (the floor drops to the ground when both
+    /// cannot hold).
+    pub fn clear_pitch(
+        &self,
+        rule: f64,
+        ankle: [f64; 2],
+        theta6: f64,
+        floor: f64,
+    ) -> (f64, FootPoints) {
+        let pts = self.points(ankle, rule, theta6);
         if pts.heel[1] >= 0.0 && pts.meta[1].min(pts.toe[1]) >= floor {
-            return rule;
+            return (rule, pts);
         }
+        let ankle_y = ankle[1];
         let lo = self.min_pitch(ankle_y);
         let mut hi = self.max_pitch(ankle_y, theta6, floor);
         if hi < lo {
             hi = self.max_pitch(ankle_y, theta6, 0.0).max(lo);
         }
-        rule.clamp(lo, hi)
+        let pitch = rule.clamp(lo, hi);
+        (pitch, self.points(ankle, pitch, theta6))
     }
 
     /// Ankle of a foot rolling over the ground whose metatarsal joint stood at `meta_x` when the
@@ -118,23 +153,52 @@ impl Foot {
     }
 }
 
-/// The pitch on [lo, π/3] where `ok` changes, by bisection to 1e-12 rad: `ok` holds below the
-/// boundary when `below` (the largest good pitch is returned), above it otherwise (the smallest).
-/// Returns the end of the range when `ok` holds, or fails, everywhere.
-fn boundary(ok: impl Fn(f64) -> bool, lo: f64, below: bool) -> f64 {
+/// The pitch on [lo, π/3] where `ok` changes, by [`bisect`] (its closed form `guess`, NaN for
+/// none): `ok` holds below the boundary when `below` (the largest good pitch is returned),
+/// above it otherwise (the smallest). Returns the end of the range when `ok` holds, or fails,
+/// everywhere.
+fn boundary(ok: impl Fn(f64) -> bool, lo: f64, below: bool, guess: f64) -> f64 {
     let hi = std::f64::consts::FRAC_PI_3;
-    let (mut good, mut bad) = if below { (lo, hi) } else { (hi, lo) };
+    let (good, bad) = if below { (lo, hi) } else { (hi, lo) };
     if ok(bad) {
         return bad;
     }
     if !ok(good) {
         return good;
     }
-    while (bad - good).abs() > 1e-12 {
-        let m = 0.5 * (good + bad);
-        if ok(m) { good = m } else { bad = m }
+    bisect(ok, good, bad, guess)
+}
+
+/// Within this distance (rad) of a closed-form boundary [`bisect`] evaluates its predicate: the
+/// closed forms are exact to ≈ 1e-15 rad, and 1e-11 rad moves a foot point by ≈ 1e-12 m, far
+/// more than the round-off of the heights and distances the predicates compare.
+const GUESS_SLACK: f64 = 1e-11;
+
+/// Bisection to 1e-12 rad between `good`, where `ok` holds, and `bad`, where it fails; returns
+/// the last good point. Each step is decided by the side of `guess` (the boundary in closed
+/// form) the midpoint falls on, and by `ok` only within [`GUESS_SLACK`] of it: when `ok` changes
+/// once on the interval these are `ok`'s own decisions, so the end is that of bisecting `ok`, at
+/// a few evaluations instead of ≈ 40. The ends are checked (`ok(good)`, not `ok(bad)`): a guess
+/// that is off, or NaN, bisects `ok` itself.
+pub(crate) fn bisect(ok: impl Fn(f64) -> bool, good: f64, bad: f64, guess: f64) -> f64 {
+    let good_side = (good - guess).signum();
+    let run = |steer: bool| {
+        let (mut good, mut bad) = (good, bad);
+        while (bad - good).abs() > 1e-12 {
+            let m = 0.5 * (good + bad);
+            let holds = if steer && (m - guess).abs() > GUESS_SLACK {
+                (m - guess).signum() == good_side
+            } else {
+                ok(m)
+            };
+            if holds { good = m } else { bad = m }
+        }
+        (good, bad)
+    };
+    match run(!guess.is_nan()) {
+        (good, bad) if ok(good) && !ok(bad) => good,
+        _ => run(false).0,
     }
-    good
 }
 
 #[cfg(test)]
@@ -193,9 +257,68 @@ mod tests {
             );
         }
         // the rule is kept when it is clear, clamped when it is not
-        assert_eq!(f.clear_pitch(0.2, 0.3, 0.0, 0.01), 0.2);
-        let clamped = f.clear_pitch(1.0, ankle_y, 0.0, 0.01);
+        assert_eq!(f.clear_pitch(0.2, [0.0, 0.3], 0.0, 0.01).0, 0.2);
+        let (clamped, pts) = f.clear_pitch(1.0, [0.1, ankle_y], 0.0, 0.01);
+        assert_eq!(pts, f.points([0.1, ankle_y], clamped, 0.0));
         assert!(clamped < 1.0 && f.points([0.0, ankle_y], clamped, 0.0).lowest() >= 0.01 - 1e-9);
+    }
+
+    /// The clearance limits' closed forms are the boundaries their predicates change at (to
+    /// 1e-12 rad, against bisection alone), and the steered bisections end where bisection
+    /// alone does, bit for bit, over a grid of ankle heights, toe angles and floors.
+    #[test]
+    fn pitch_limits_closed_forms_are_the_bisections() {
+        let f = foot();
+        let (lo_min, hi) = (-(f.l8 / f.l9).atan(), std::f64::consts::FRAC_PI_3);
+        let lo_max = -std::f64::consts::FRAC_PI_2;
+        let (mut steered_min, mut steered_max) = (0, 0);
+        for i in 0..=40 {
+            let ankle_y = 0.02 + 0.005 * i as f64;
+            let heel_ok = |p: f64| ankle_y + pitch([-f.l8, -f.l9], p)[1] >= 0.0;
+            if !heel_ok(lo_min) && heel_ok(hi) {
+                let plain = bisect(heel_ok, hi, lo_min, f64::NAN);
+                assert!((f.min_pitch_closed_form(ankle_y) - plain).abs() < 1e-12);
+                assert_eq!(f.min_pitch(ankle_y), plain);
+                steered_min += 1;
+            }
+            for theta6 in [0.0, 0.3, 0.6, 1.0] {
+                for floor in [0.0, 0.01, 0.03] {
+                    let meta = |p: f64| ankle_y + pitch([f.h12, -f.l9], p)[1];
+                    let ok =
+                        |p: f64| meta(p).min(meta(p) + pitch([f.l13, 0.0], p - theta6)[1]) >= floor;
+                    if ok(lo_max) && !ok(hi) {
+                        let plain = bisect(ok, lo_max, hi, f64::NAN);
+                        let closed = f.max_pitch_closed_form(ankle_y, theta6, floor);
+                        assert!((closed - plain).abs() < 1e-12, "{ankle_y} {theta6} {floor}");
+                        assert_eq!(f.max_pitch(ankle_y, theta6, floor), plain);
+                        steered_max += 1;
+                    }
+                }
+            }
+        }
+        assert!(
+            steered_min > 5 && steered_max > 50,
+            "{steered_min} {steered_max}"
+        );
+    }
+
+    /// Steered by an exact guess, the bisection evaluates its predicate a few times only and
+    /// ends where bisecting the predicate does; a wrong guess still ends there.
+    #[test]
+    fn steered_bisection_is_the_bisection() {
+        let boundary = 0.123_456_789_012_345_6;
+        let evaluations = std::cell::Cell::new(0);
+        let ok = |p: f64| {
+            evaluations.set(evaluations.get() + 1);
+            p <= boundary
+        };
+        let plain = bisect(ok, -1.0, 1.0, f64::NAN);
+        assert!(evaluations.get() > 40);
+        evaluations.set(0);
+        assert_eq!(bisect(ok, -1.0, 1.0, boundary + 1e-15), plain);
+        assert!(evaluations.get() < 10, "{}", evaluations.get());
+        assert_eq!(bisect(ok, -1.0, 1.0, 0.5), plain);
+        assert_eq!(bisect(ok, -1.0, 1.0, -3.0), plain);
     }
 
     /// Rotating about the heel: the distances between the foot points are those of the body

@@ -14,12 +14,11 @@
 //! leg can no longer reach the hip. Legs are worked in their own plane: a hip joint with lateral
 //! offset `dz` from the ankle is at 3-D distance √(Δx² + Δy² + dz²), and the leg's plane contains
 //! the forward axis, so the in-plane drop from hip to ankle is √(Δy² + dz²).
-use argmin::core::{CostFunction, Executor};
-use argmin::solver::brent::BrentRoot;
+use std::f64::consts::{FRAC_PI_3, TAU};
 
 use crate::body::Body;
 use crate::control::stance::smoothstep;
-use crate::kinematics::foot::{Foot, FootPoints};
+use crate::kinematics::foot::{Foot, FootPoints, bisect};
 
 /// A leg pose: sagittal points (x forward, y up, world heights; the foot in the vertical plane of
 /// its ankle) and the in-plane angles.
@@ -177,26 +176,62 @@ pub struct StanceLeg {
     pub to_toe_off: Option<KneeCurve>,
 }
 
-struct PitchResidual<'a> {
-    leg: &'a StanceLeg,
-    hip: [f64; 2],
-    dz: f64,
-    a: f64,
+/// The largest pitch (rad) the rolling foot may take to reach the hip.
+const MAX_PITCH: f64 = 1.8;
+
+/// How far (rad) outside its range a root found in closed form may fall by round-off and still
+/// count as in it (it is then clamped into the range).
+const ROOT_SLACK: f64 = 1e-12;
+
+/// The ankle of a foot turning rigidly about a pivot on the ground, as a function of the foot
+/// pitch p (heel up +): `ankle + pitch(v, p) = pivot` for the foot-frame vector v from the
+/// ankle to the pivot, i.e. `ankle(p) = pivot + radius · (−cos(p + phase), sin(p + phase))`
+/// with `radius · (cos phase, −sin phase) = v`.
+#[derive(Clone, Copy, Debug)]
+struct Arc {
+    pivot: [f64; 2],
+    radius: f64,
+    phase: f64,
 }
 
-impl CostFunction for PitchResidual<'_> {
-    type Param = f64;
-    type Output = f64;
-    fn cost(&self, p: &f64) -> Result<f64, argmin::core::Error> {
-        let (ankle, _) = self.leg.rolling(*p);
-        let dx = self.hip[0] - ankle[0];
-        let dy = self.hip[1] - ankle[1];
-        Ok((dx * dx + dy * dy + self.dz * self.dz).sqrt() - self.a)
+impl Arc {
+    fn new(pivot: [f64; 2], v: [f64; 2]) -> Self {
+        Arc {
+            pivot,
+            radius: v[0].hypot(v[1]),
+            phase: (-v[1]).atan2(v[0]),
+        }
+    }
+
+    /// The two families of pitches at which the ankle is at in-plane distance `b` from `target`
+    /// (a circle–circle intersection), each defined modulo 2π: with D = target − pivot,
+    /// |D − radius · u(p + phase)|² = b² reads cos(p + phase − ψ) = c with ψ the direction of
+    /// (−D_x, D_y) and c = (|D|² + radius² − b²) / (2 radius |D|). `None` when the circles do
+    /// not meet (|c| > 1, or a NaN).
+    fn pitches_at(&self, target: [f64; 2], b: f64) -> Option<[f64; 2]> {
+        let dx = target[0] - self.pivot[0];
+        let dy = target[1] - self.pivot[1];
+        let d2 = dx * dx + dy * dy;
+        let c = (d2 + self.radius * self.radius - b * b) / (2.0 * self.radius * d2.sqrt());
+        // (NaN fails the test too)
+        (c.abs() <= 1.0).then(|| {
+            let base = dy.atan2(-dx) - self.phase;
+            let half = c.acos();
+            [base - half, base + half]
+        })
     }
 }
 
-/// Bracket of the rolling foot's pitch (rad).
-const PITCH_BRACKET: (f64, f64) = (0.0, 1.8);
+/// The smallest member of the families `roots` (each modulo 2π) in [lo, hi], a member up to
+/// [`ROOT_SLACK`] outside the range clamped into it.
+fn first_in(roots: [f64; 2], lo: f64, hi: f64) -> Option<f64> {
+    let from = lo - ROOT_SLACK;
+    let first = roots
+        .map(|r| from + (r - from).rem_euclid(TAU))
+        .into_iter()
+        .fold(f64::INFINITY, f64::min);
+    (first <= hi + ROOT_SLACK).then(|| first.clamp(lo, hi))
+}
 
 impl StanceLeg {
     pub fn new(
@@ -230,7 +265,7 @@ impl StanceLeg {
 
     /// The prescribed knee after heel-off at time t, if the heel is off by then.
     pub fn knee_curve(&self, t: f64) -> Option<(f64, f64)> {
-        match (self.heel_off, self.to_toe_off) {
+        match (&self.heel_off, &self.to_toe_off) {
             (_, Some(k)) if t >= k.t0 => Some(k.at(t)),
             (Some(k), _) if t >= k.t0 => Some(k.at(t)),
             _ => None,
@@ -251,8 +286,10 @@ impl StanceLeg {
     /// The pose at time t for a hip joint at `hip` (world x, y) with lateral offset `dz` from the
     /// ankle.
     pub fn pose(&self, hip: [f64; 2], dz: f64, t: f64) -> Result<LegPose, String> {
-        match self.phase(t) {
-            FootPhase::HeelRocker | FootPhase::FootFlat => {
+        // the rule of [`Self::phase`], the knee curve evaluated once
+        match self.knee_curve(t) {
+            Some((kappa, _)) => self.rolling_pose(hip, dz, kappa),
+            None => {
                 let rule = if t < self.t_hs + self.t_fgm {
                     self.sole_hs * (1.0 - smoothstep((t - self.t_hs) / self.t_fgm))
                 } else {
@@ -274,10 +311,6 @@ impl StanceLeg {
                     gap,
                 })
             }
-            FootPhase::Rolling => {
-                let (kappa, _) = self.knee_curve(t).expect("rolling has a knee curve");
-                self.rolling_pose(hip, dz, kappa)
-            }
         }
     }
 
@@ -292,7 +325,10 @@ impl StanceLeg {
     /// the straight leg cannot reach it with that sole angle, the smallest angle at which it
     /// can [ours]: the telescopic leg is longer than the anatomical one just after heel strike
     /// (w* > l1 at most speeds, spec §7 "known geometric tension"), so the foot comes down as
-    /// the hip passes over it. Bisection to 1e-12 rad.
+    /// the hip passes over it. Bisection to 1e-12 rad (the knee is acos of the leg's extension
+    /// there, so the bisection's last bits set it), steered by the closed form ([`bisect`]): the
+    /// ankle turns about the heel, so the angle is the first on (rule, π/3] where that circle
+    /// meets the one of in-plane radius √(l1² − dz²) about the hip.
     fn reach_limited_sole(&self, hip: [f64; 2], dz: f64, rule: f64) -> f64 {
         let l1 = self.l3 + self.l4;
         let too_far = |phi: f64| {
@@ -302,31 +338,32 @@ impl StanceLeg {
         if hip[0] >= self.ankle_x || !too_far(rule) {
             return rule;
         }
-        let (mut lo, mut hi) = (rule, std::f64::consts::FRAC_PI_3);
-        if too_far(hi) {
-            return hi;
+        if too_far(FRAC_PI_3) {
+            return FRAC_PI_3;
         }
-        while hi - lo > 1e-12 {
-            let m = 0.5 * (lo + hi);
-            if too_far(m) { lo = m } else { hi = m }
-        }
-        hi
+        // the leg reaches at π/3 and not at the rule: the circles meet in between (NaN if
+        // round-off hides where); the pitch is −φ
+        let heel = Arc::new(
+            [self.ankle_x - self.foot.l8, 0.0],
+            [-self.foot.l8, -self.foot.l9],
+        );
+        let guess = heel
+            .pitches_at(hip, (l1 * l1 - dz * dz).sqrt())
+            .and_then(|roots| first_in(roots.map(|p| -p), rule, FRAC_PI_3))
+            .unwrap_or(f64::NAN);
+        bisect(|phi| !too_far(phi), FRAC_PI_3, rule, guess)
     }
 
-    /// The rolling foot's pose for knee flexion κ: the pitch solves |hip − ankle(p)| = a(κ).
+    /// The rolling foot's pose for knee flexion κ: the pitch solves |hip − ankle(p)| = a(κ), in
+    /// closed form: the ankle turns about the metatarsal joint while p ≤ θ6_max, then about the
+    /// toe tip, and the pitch is the smallest on [0, MAX_PITCH] where that circle meets the one
+    /// of in-plane radius √(a² − dz²) about the hip (the distance first falls as the heel rises,
+    /// then, past a right angle, grows again).
     fn rolling_pose(&self, hip: [f64; 2], dz: f64, kappa: f64) -> Result<LegPose, String> {
         let a = reach(self.l3, self.l4, kappa);
-        let problem = PitchResidual {
-            leg: self,
-            hip,
-            dz,
-            a,
-        };
-        // the first sign change on a 0.05 rad grid from the flat foot (the distance first falls
-        // as the heel rises, then, past a right angle, grows again)
-        let f = |p: f64| problem.cost(&p).unwrap_or(f64::NAN);
-        let (mut lo, mut flo) = (PITCH_BRACKET.0, f(PITCH_BRACKET.0));
-        if flo < 0.0 {
+        let (flat, _) = self.rolling(0.0);
+        let f0 = ((hip[0] - flat[0]).powi(2) + (hip[1] - flat[1]).powi(2) + dz * dz).sqrt() - a;
+        if f0 < 0.0 {
             // the hip is nearer than a(κ) even with the foot flat: the foot stays flat and the
             // knee flexes by the distance [ours] (the prescribed curve resumes where it meets it)
             let ankle = [self.ankle_x, self.foot.l9];
@@ -342,30 +379,36 @@ impl StanceLeg {
                 gap: 0.0,
             });
         }
-        let p = if flo.abs() < 1e-13 {
-            lo
+        let p = if f0.abs() < 1e-13 {
+            0.0
         } else {
-            let mut hi = lo;
-            loop {
-                hi += 0.05;
-                let fhi = f(hi);
-                if flo * fhi <= 0.0 {
-                    break;
+            let Foot { h12, l9, l13, .. } = self.foot;
+            let t6 = self.theta6_max;
+            let meta_x = self.ankle_x + h12;
+            let about_meta = || Arc::new([meta_x, 0.0], [h12, -l9]);
+            let about_toe = || {
+                // pitch([l13, 0], p − θ6_max) = pitch(pitch([l13, 0], −θ6_max), p)
+                let (s6, c6) = t6.sin_cos();
+                Arc::new([meta_x + l13, 0.0], [h12 + l13 * c6, -l9 + l13 * s6])
+            };
+            let b = (a * a - dz * dz).sqrt();
+            let first = |arc: &dyn Fn() -> Arc, lo: f64, hi: f64| {
+                if lo <= hi {
+                    arc()
+                        .pitches_at(hip, b)
+                        .and_then(|roots| first_in(roots, lo, hi))
+                } else {
+                    None
                 }
-                if hi >= PITCH_BRACKET.1 || fhi.is_nan() {
-                    return Err(format!(
+            };
+            first(&about_meta, 0.0, t6.min(MAX_PITCH))
+                .or_else(|| first(&about_toe, t6.max(0.0), MAX_PITCH))
+                .ok_or_else(|| {
+                    format!(
                         "the rolling foot cannot reach the hip: hip–ankle distance {a:.4} m for knee flexion {:.1}° is out of reach",
                         kappa.to_degrees()
-                    ));
-                }
-                (lo, flo) = (hi, fhi);
-            }
-            let solver = BrentRoot::new(lo, hi, 1e-13);
-            let res = Executor::new(problem, solver)
-                .configure(|s| s.param(0.5 * (lo + hi)).max_iters(100))
-                .run()
-                .map_err(|e| e.to_string())?;
-            res.state.best_param.unwrap_or(f64::NAN)
+                    )
+                })?
         };
         let (ankle, theta6) = self.rolling(p);
         let (_, theta3, knee, _) = chain(self.l3, self.l4, hip, dz, ankle);
