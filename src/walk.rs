@@ -273,7 +273,7 @@ impl Walker {
         let pelvis = |tau: f64| det.at(side, tau, t.t_step);
         // a leg's hip joint at step time τ: world (x, y) and lateral offset from its ankle
         let hip_joint = |leg: Side, tau: f64| {
-            let h = stance.hip(&setup, tau)[0];
+            let h = stance.hip_position(&setup, tau);
             let p = pelvis(tau);
             let o = det.hip_offset(leg, &p);
             ([x0 + h[0] + o[0], h[1] + o[1]], det.lateral_offset(leg, &p))

@@ -245,8 +245,9 @@ impl HipPath {
         offset: &dyn Fn(f64) -> [f64; 2],
         offset_acceleration: &dyn Fn(f64) -> Option<[f64; 2]>,
     ) -> Self {
+        let hip_acceleration = run.hip_acceleration(setup);
         let acceleration = |t: f64| {
-            let a = run.hip(setup, t)[2];
+            let a = hip_acceleration(t);
             if let Some(o) = offset_acceleration(t) {
                 return [a[0] + o[0], a[1] + o[1]];
             }
@@ -426,6 +427,29 @@ impl StanceRun {
     pub fn hip_position(&self, setup: &StanceSetup, t: f64) -> [f64; 2] {
         let (y, _) = self.state(t);
         setup.model.hip(&Vector3::new(y[0], y[1], y[2]))
+    }
+
+    /// The hip acceleration as a function of t: [`Self::hip`]`[2]` with the step's constants
+    /// (the hip reference's sin θ1^±) computed once and one `sin_cos` of θ1 per call.
+    pub fn hip_acceleration<'a>(&'a self, setup: &'a StanceSetup) -> impl Fn(f64) -> [f64; 2] + 'a {
+        let forces =
+            [false, true].map(|locked| StanceForces::new(setup, self.tau1, self.p, locked));
+        move |t| {
+            let (y, locked) = self.state(t);
+            let q = Vector3::new(y[0], y[1], y[2]);
+            let qd = Vector3::new(y[3], y[4], y[5]);
+            let (s1, c1) = y[1].sin_cos();
+            let f = &forces[usize::from(locked)];
+            let qdd = setup.model.accelerations_with(
+                s1,
+                c1,
+                &q,
+                &qd,
+                &f.generalized_sc(t, &y, s1, c1),
+                locked,
+            );
+            setup.model.hip_acceleration_with(s1, c1, &q, &qd, &qdd)
+        }
     }
 
     /// Hip position, velocity and acceleration at t (relative to the stance ankle's x).

@@ -178,9 +178,21 @@ impl StanceModel {
         qd: &Vector3<f64>,
         qdd: &Vector3<f64>,
     ) -> [f64; 2] {
+        let (s1, c1) = q[1].sin_cos();
+        self.hip_acceleration_with(s1, c1, q, qd, qdd)
+    }
+
+    /// [`Self::hip_acceleration`] with sin θ1 and cos θ1 already known.
+    pub(crate) fn hip_acceleration_with(
+        &self,
+        s1: f64,
+        c1: f64,
+        q: &Vector3<f64>,
+        qd: &Vector3<f64>,
+        qdd: &Vector3<f64>,
+    ) -> [f64; 2] {
         let (w, wd, wdd) = (q[0], qd[0], qdd[0]);
         let (t1d, t1dd) = (qd[1], qdd[1]);
-        let (s1, c1) = q[1].sin_cos();
         [
             wdd * s1 + 2.0 * wd * t1d * c1 + w * t1dd * c1 - w * t1d * t1d * s1,
             wdd * c1 - 2.0 * wd * t1d * s1 - w * t1dd * s1 - w * t1d * t1d * c1,
