@@ -7,6 +7,7 @@ use std::f64::consts::PI;
 use crate::dynamics::StanceModel;
 use crate::dynamics::impact;
 use crate::ode::{self, Phase, Segment};
+use crate::trig::sin_cos;
 
 /// State (w, θ1, θ2, ẇ, θ̇1, θ̇2).
 pub type StanceState = SVector<f64, 6>;
@@ -47,7 +48,7 @@ pub struct StanceSetup {
 /// y_ref = ȳ(u) + (e/2)(1 + cos πu), u = sin θ1 / sin θ1^± clipped to [−1, 1], with ȳ blending
 /// the two heel-strike heights (ȳ = y_hs when they are equal).
 pub fn hip_reference(s: &StanceSetup, theta1: f64) -> (f64, f64) {
-    let (s1, c1) = theta1.sin_cos();
+    let (s1, c1) = sin_cos(theta1);
     hip_reference_sc(s, s1, c1, s.theta1_start.sin(), s.theta1_end.sin())
 }
 
@@ -62,7 +63,7 @@ fn hip_reference_sc(s: &StanceSetup, s1: f64, c1: f64, sin_start: f64, sin_end: 
     } else {
         (raw, c1 / denom)
     };
-    let (sh, ch) = (0.5 * PI * u).sin_cos();
+    let (sh, ch) = sin_cos(0.5 * PI * u);
     let dy = s.y_end - s.y_start;
     let base = s.y_start + dy * 0.5 * (1.0 + sh);
     let dbase = dy * 0.25 * PI * ch;
@@ -105,7 +106,7 @@ impl<'a> StanceForces<'a> {
 
     /// Generalized forces Q = (F_w, F_θ1 − F_θ2, F_θ2) at (t, y).
     pub fn generalized(&self, t: f64, y: &StanceState) -> Vector3<f64> {
-        let (s1, c1) = y[1].sin_cos();
+        let (s1, c1) = sin_cos(y[1]);
         self.generalized_sc(t, y, s1, c1)
     }
 
@@ -140,7 +141,7 @@ impl<'a> StanceForces<'a> {
     pub fn accelerations(&self, t: f64, y: &StanceState) -> Vector3<f64> {
         let q = Vector3::new(y[0], y[1], y[2]);
         let qd = Vector3::new(y[3], y[4], y[5]);
-        let (s1, c1) = y[1].sin_cos();
+        let (s1, c1) = sin_cos(y[1]);
         self.setup.model.accelerations_with(
             s1,
             c1,
@@ -438,7 +439,7 @@ impl StanceRun {
             let (y, locked) = self.state(t);
             let q = Vector3::new(y[0], y[1], y[2]);
             let qd = Vector3::new(y[3], y[4], y[5]);
-            let (s1, c1) = y[1].sin_cos();
+            let (s1, c1) = sin_cos(y[1]);
             let f = &forces[usize::from(locked)];
             let qdd = setup.model.accelerations_with(
                 s1,
