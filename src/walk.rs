@@ -646,6 +646,57 @@ pub fn swing_hip_vy_end(
     stance.hip(setup, t)[1][1] + (offset(t)[1] - offset(t - e)[1]) / e
 }
 
+/// Uniform samples per interval in [`least`].
+const COARSE_SAMPLES: usize = 32;
+
+/// The least value of `f` on [a, b] and where it is: [`COARSE_SAMPLES`] + 1 uniform samples,
+/// then a golden-section search over the two intervals around every sample no larger than its
+/// neighbours (the ends included) down to 1e-6 (b − a); the least of all evaluations. Exact for
+/// minima that the samples see as local minima, however narrow (a toe touching the ground
+/// between two samples); `tests/walk.rs` checks it against dense sampling.
+fn least(f: impl Fn(f64) -> f64, a: f64, b: f64) -> (f64, f64) {
+    const R: f64 = 0.618_033_988_749_894_8; // (√5 − 1)/2
+    let n = COARSE_SAMPLES;
+    let at = |k: usize| a + (b - a) * k as f64 / n as f64;
+    let mut samples = [0.0; COARSE_SAMPLES + 1];
+    for (k, v) in samples.iter_mut().enumerate() {
+        *v = f(at(k));
+    }
+    let mut best = (f64::INFINITY, a);
+    let mut keep = |v: f64, x: f64| {
+        if v < best.0 {
+            best = (v, x);
+        }
+    };
+    for k in 0..=n {
+        keep(samples[k], at(k));
+        let local =
+            (k == 0 || samples[k] <= samples[k - 1]) && (k == n || samples[k] <= samples[k + 1]);
+        if !local {
+            continue;
+        }
+        let (mut lo, mut hi) = (at(k.saturating_sub(1)), at((k + 1).min(n)));
+        let (mut x1, mut x2) = (hi - R * (hi - lo), lo + R * (hi - lo));
+        let (mut f1, mut f2) = (f(x1), f(x2));
+        keep(f1, x1);
+        keep(f2, x2);
+        while hi - lo > 1e-6 * (b - a) {
+            if f1 <= f2 {
+                (hi, x2, f2) = (x2, x1, f1);
+                x1 = hi - R * (hi - lo);
+                f1 = f(x1);
+                keep(f1, x1);
+            } else {
+                (lo, x1, f1) = (x1, x2, f2);
+                x2 = lo + R * (hi - lo);
+                f2 = f(x2);
+                keep(f2, x2);
+            }
+        }
+    }
+    best
+}
+
 /// Move a pose's x coordinates by `dx`.
 fn shift_pose(p: &mut LegPose, dx: f64) {
     for q in [
@@ -921,31 +972,27 @@ impl Step {
         let dt = 1e-6;
         let before = self.swing_pose(t.t_step - dt, foot);
         let step_length = strike.foot.heel[0] + foot.l8;
-        // hip: sampled densely through the stance
-        const SAMPLES: usize = 400;
-        let (mut y_max, mut y_min) = (f64::NEG_INFINITY, f64::INFINITY);
-        for k in 0..=SAMPLES {
-            let y = self.hip(t.t_step * k as f64 / SAMPLES as f64)[1];
-            y_max = y_max.max(y);
-            y_min = y_min.min(y);
-        }
+        // hip: its highest and lowest points through the stance
+        let hip_y = |tau: f64| self.hip(tau)[1];
+        let (y_min, _) = least(&hip_y, 0.0, t.t_step);
+        let (y_max, _) = least(|tau| -hip_y(tau), 0.0, t.t_step);
+        let y_max = -y_max;
         let s = &self.stance_setup;
-        // swing foot: lowest point over the swing, and in mid swing
-        let (mut lowest, mut mid, mut knee_peak) =
-            (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY);
-        for k in 0..=SAMPLES {
-            let frac = k as f64 / SAMPLES as f64;
-            let pose = self.swing_pose(t.t_ds + frac * t.t_swing, foot);
-            knee_peak = knee_peak.max(pose.theta4);
-            let h = pose.foot.lowest();
-            if h < lowest {
-                self.lowest_at = frac;
-            }
-            lowest = lowest.min(h);
-            if (0.25..=0.75).contains(&frac) {
-                mid = mid.min(h);
-            }
-        }
+        // swing foot: lowest point over the swing, and in mid swing; the knee's peak flexion
+        let (t_off, t_swing) = (t.t_ds, t.t_swing);
+        let foot_y = |tau: f64| self.swing_pose(tau, foot).foot.lowest();
+        let (lowest, lowest_at) = least(&foot_y, t_off, t_off + t_swing);
+        let (mid, _) = least(&foot_y, t_off + 0.25 * t_swing, t_off + 0.75 * t_swing);
+        let knee = |tau: f64| {
+            let i = self
+                .swing
+                .partition_point(|(_, s)| s.t1 < tau)
+                .min(self.swing.len() - 1);
+            self.swing[i].1.state(tau)[1]
+        };
+        let (knee_peak, _) = least(|tau| -knee(tau), t_off, t_off + t_swing);
+        let knee_peak = -knee_peak;
+        self.lowest_at = (lowest_at - t_off) / t_swing;
         let r = &mut self.report;
         r.solves = self.solves.clone();
         r.achieved = Achieved {
