@@ -201,18 +201,16 @@ impl Walker {
         let y0 = StanceState::from([q[0], q[1], q[2], qd[0], qd[1], qd[2]]);
         let setup = self.stance_setup(&prev_c, &c);
 
-        let start = match self.stance_memory {
-            Some(m) => Start2::Warm(m),
-            None => {
-                // [ours] the default walk's step-0 solution, body-scaled (τ1 = 1.97 M l1,
-                // p = 0.0057 l1): grid 7 223 -> 6 854 evaluations per step (docs/engine.md)
-                let scale = self.body.mass * self.body.l1;
-                Start2::Cold {
-                    x0: Vector2::new(2.0 * scale, 0.0055 * self.body.l1),
-                    h: Vector2::new(0.01 * scale, 1e-3),
-                }
-            }
-        };
+        let (torque, l1) = (self.body.mass * self.body.l1, self.body.l1);
+        let froude = gait.velocity / (crate::plan::GRAVITY * l1).sqrt();
+        let startup =
+            |memory, unknowns, x_unit, cold| startup(memory, index, froude, unknowns, x_unit, cold);
+        let start = Start2::Warm(startup(
+            self.stance_memory,
+            [0, 1],
+            [torque, l1],
+            (COLD_STANCE, [1.0, l1]),
+        ));
         let best = std::cell::RefCell::new(None::<StanceRun>);
         // every trial follows the step sequences of the last one that chose its own steps
         let mesh = std::cell::RefCell::new(None::<StanceRun>);
@@ -388,7 +386,6 @@ impl Walker {
             k_h: a11 * wh * wh,
             d_h: 2.0 * self.attrs.servo_damping_ratio * a11 * wh,
         };
-        let torque_scale = self.body.mass * self.body.l1 * 0.01;
         let fail = |phase: &'static str| {
             move |reason: String| Error::Integration {
                 step: index,
@@ -414,8 +411,12 @@ impl Walker {
         let (s1, rep1, mem1) = self
             .solve_2d(
                 &sw,
-                self.swing1_memory,
-                Vector2::new(torque_scale, 0.5 * torque_scale),
+                startup(
+                    self.swing1_memory,
+                    [2, 3],
+                    [torque; 2],
+                    (COLD_SWING1, [1.0; 2]),
+                ),
                 |x| Subphase::Swing1 {
                     hip: x[0],
                     knee: x[1],
@@ -431,8 +432,26 @@ impl Walker {
         let (s2, rep2, mem2) = self
             .solve_1d(
                 &sw,
-                self.swing2_memory,
-                torque_scale,
+                {
+                    let fit = |c: [[f64; 3]; 7]| quadratic(c[4], froude) * torque;
+                    match (self.swing2_memory, index) {
+                        (Some(m), 1) => Memory1 {
+                            x: m.x + fit(STEP1_CHANGE),
+                            earlier: [f64::NAN; 2],
+                            ..m
+                        },
+                        (Some(m), 2) => Memory1 {
+                            earlier: [m.earlier[0] - fit(STEP1_CHANGE), m.earlier[1]],
+                            ..m
+                        },
+                        (Some(m), _) => m,
+                        (None, _) => Memory1 {
+                            x: fit(STEP0),
+                            slope: COLD_SWING2_SLOPE / torque,
+                            earlier: [f64::NAN; 2],
+                        },
+                    }
+                },
                 |x| Subphase::Swing2 {
                     knee: x,
                     knee_start: y1[1],
@@ -451,8 +470,12 @@ impl Walker {
         let (s3, rep3, mem3) = self
             .solve_2d(
                 &sw,
-                self.swing3_memory,
-                Vector2::new(torque_scale, torque_scale),
+                startup(
+                    self.swing3_memory,
+                    [5, 6],
+                    [torque; 2],
+                    (COLD_SWING3, [1.0; 2]),
+                ),
                 |x| Subphase::Swing3 {
                     hip: x[0],
                     ramp: x[1],
@@ -548,13 +571,11 @@ impl Walker {
             .set(self.evaluations.get() + u64::from(evaluations));
     }
 
-    /// A 2-D swing solve (Broyden), warm-started from `memory`, cold from zero torques with
-    /// finite-difference steps `h`.
+    /// A 2-D swing solve (Broyden), warm-started from `memory`.
     fn solve_2d(
         &self,
         sw: &SwingSetup,
-        memory: Option<Memory2>,
-        h: Vector2<f64>,
+        memory: Memory2,
         sub: impl Fn(Vector2<f64>) -> Subphase,
         t0: f64,
         y0: SwingState,
@@ -562,16 +583,9 @@ impl Walker {
         let best = std::cell::RefCell::new(None::<SwingTrial>);
         // every trial follows the step sequence of the last one that chose its own steps
         let mesh = std::cell::RefCell::new(None::<Segment<4>>);
-        let start = match memory {
-            Some(m) => Start2::Warm(m),
-            None => Start2::Cold {
-                x0: Vector2::zeros(),
-                h,
-            },
-        };
         let (_, report, mem) = shooting::solve2(
             |x| self.swing_trial(sw, sub(x), t0, y0, &mesh, &best),
-            start,
+            Start2::Warm(memory),
             &self.options,
         )?;
         Ok((best.into_inner().ok_or("no trial ran")?, report, mem))
@@ -609,8 +623,7 @@ impl Walker {
     fn solve_1d(
         &self,
         sw: &SwingSetup,
-        memory: Option<Memory1>,
-        scale: f64,
+        memory: Memory1,
         sub: impl Fn(f64) -> Subphase,
         t0: f64,
         y0: SwingState,
@@ -618,19 +631,86 @@ impl Walker {
         let best = std::cell::RefCell::new(None::<SwingTrial>);
         // every trial follows the step sequence of the last one that chose its own steps
         let mesh = std::cell::RefCell::new(None::<Segment<4>>);
-        let start = match memory {
-            Some(m) => Start1::Warm(m),
-            None => Start1::Cold {
-                x0: 0.0,
-                dx: 10.0 * scale,
-            },
-        };
         let (_, report, mem) = shooting::solve1(
             |x| Ok(self.swing_trial(sw, sub(x), t0, y0, &mesh, &best)?[0]),
-            start,
+            Start1::Warm(memory),
             &self.options,
         )?;
         Ok((best.into_inner().ok_or("no trial ran")?, report, mem))
+    }
+}
+
+/// [ours] Start-up guesses of the seven unknowns — τ1, p (stance), A, B (swing1), C (swing2),
+/// D0, D1 (swing3) — in body units (torques / (M l1), lengths / l1), as quadratics c0 + c1 F +
+/// c2 F² in the Froude speed F = v / √(g l1), least-squares fits over the grid of
+/// `tests/walk.rs` (v 0.6–2.0 m/s × H 1.5–1.95 m, M = 23 H²): the solutions of step 0 (cold
+/// start), and their change from step 0 to step 1 (the transient of the artificial first
+/// posture: τ1 falls from ≈ 3 to ≈ −0.3 M l1), added to step 0's solution at step 1.
+const STEP0: [[f64; 3]; 7] = [
+    [0.67032, 2.3926, 1.4052],
+    [-0.002633, 0.019362, -0.0028379],
+    [0.48878, -5.9229, 7.7081],
+    [0.35413, -4.1758, 1.3213],
+    [-0.24384, 1.1958, -0.44378],
+    [-1.2137, -1.9776, 4.2639],
+    [3.7103, -2.9437, -4.9643],
+];
+const STEP1_CHANGE: [[f64; 3]; 7] = [
+    [-0.86402, -3.276, -0.02131],
+    [0.00014159, -0.0012487, 0.0010748],
+    [-1.1493, 6.2971, -12.217],
+    [-0.045176, 0.24998, -0.70626],
+    [0.021051, -0.11382, 0.25013],
+    [0.013098, -0.33496, 0.26293],
+    [-0.15852, 1.3388, -1.5648],
+];
+/// [ours] Cold Jacobians (`J[i][k]` = ∂rᵢ/∂xₖ, in body units): the default walk's (1.4 m/s,
+/// H = 1.8 m, M = 80 kg) at the end of its step-0 solves, so that step 0 needs no difference
+/// trials; swing2's residual slope.
+const COLD_STANCE: [[f64; 2]; 2] = [[0.13681, -0.31846], [0.061198, 0.79898]];
+const COLD_SWING1: [[f64; 2]; 2] = [[0.73396, -0.51570], [-0.085369, 0.77527]];
+const COLD_SWING2_SLOPE: f64 = 0.32130;
+const COLD_SWING3: [[f64; 2]; 2] = [[0.047650, 0.015921], [-0.48987, -0.24642]];
+
+fn quadratic(c: [f64; 3], x: f64) -> f64 {
+    c[0] + x * (c[1] + x * c[2])
+}
+
+/// The start of step `index`'s 2-D solve of `unknowns` (of [`STEP0`]), unknown k in units of
+/// `x_unit[k]`: at step 0 the fit with the cold Jacobian (`cold`: body units, residual i in
+/// units of `cold.1[i]`); at step 1 the step-0 solution moved by the fitted transient (at step
+/// 2 moved back in the extrapolation's history); later the memory itself.
+fn startup(
+    memory: Option<Memory2>,
+    index: usize,
+    froude: f64,
+    unknowns: [usize; 2],
+    x_unit: [f64; 2],
+    cold: ([[f64; 2]; 2], [f64; 2]),
+) -> Memory2 {
+    let fit =
+        |c: [[f64; 3]; 7]| Vector2::from_fn(|k, _| quadratic(c[unknowns[k]], froude) * x_unit[k]);
+    match (memory, index) {
+        // the extrapolation's history: none before step 0's solution (not its start); at step 2
+        // the start of step 1 is in it, step 0's solution is behind it
+        (Some(m), 1) => Memory2 {
+            x: m.x + fit(STEP1_CHANGE),
+            earlier: [Vector2::repeat(f64::NAN); 2],
+            ..m
+        },
+        (Some(m), 2) => Memory2 {
+            earlier: [m.earlier[0] - fit(STEP1_CHANGE), m.earlier[1]],
+            ..m
+        },
+        (Some(m), _) => m,
+        (None, _) => {
+            let (j, r_unit) = cold;
+            Memory2 {
+                x: fit(STEP0),
+                jacobian: nalgebra::Matrix2::from_fn(|i, k| j[i][k] * r_unit[i] / x_unit[k]),
+                earlier: [Vector2::repeat(f64::NAN); 2],
+            }
+        }
     }
 }
 
