@@ -433,20 +433,16 @@ impl Walker {
             .solve_1d(
                 &sw,
                 {
-                    let fit = |c: [[f64; 3]; 7]| quadratic(c[4], froude) * torque;
-                    match (self.swing2_memory, index) {
-                        (Some(m), 1) => Memory1 {
-                            x: m.x + fit(STEP1_CHANGE),
-                            earlier: [f64::NAN; 2],
-                            ..m
-                        },
-                        (Some(m), 2) => Memory1 {
-                            earlier: [m.earlier[0] - fit(STEP1_CHANGE), m.earlier[1]],
-                            ..m
-                        },
-                        (Some(m), _) => m,
-                        (None, _) => Memory1 {
-                            x: fit(STEP0),
+                    let fit = |c: &[[f64; 3]; 7]| quadratic(c[4], froude) * torque;
+                    match self.swing2_memory {
+                        Some(mut m) => {
+                            startup_moves(index, &mut m.x, &mut m.earlier, f64::NAN, |i| {
+                                fit(&CHANGES[i - 1])
+                            });
+                            m
+                        }
+                        None => Memory1 {
+                            x: fit(&STEP0),
                             slope: COLD_SWING2_SLOPE / torque,
                             earlier: [f64::NAN; 2],
                         },
@@ -644,8 +640,9 @@ impl Walker {
 /// D0, D1 (swing3) — in body units (torques / (M l1), lengths / l1), as quadratics c0 + c1 F +
 /// c2 F² in the Froude speed F = v / √(g l1), least-squares fits over the grid of
 /// `tests/walk.rs` (v 0.6–2.0 m/s × H 1.5–1.95 m, M = 23 H²): the solutions of step 0 (cold
-/// start), and their change from step 0 to step 1 (the transient of the artificial first
-/// posture: τ1 falls from ≈ 3 to ≈ −0.3 M l1), added to step 0's solution at step 1.
+/// start), and their changes from step 0 to step 1 and from step 1 to step 2 (the transient of
+/// the artificial first posture: τ1 falls from ≈ 3 to ≈ −0.3 M l1, then rises to ≈ 0), added
+/// to the previous solution at steps 1 and 2.
 const STEP0: [[f64; 3]; 7] = [
     [0.67032, 2.3926, 1.4052],
     [-0.002633, 0.019362, -0.0028379],
@@ -655,14 +652,25 @@ const STEP0: [[f64; 3]; 7] = [
     [-1.2137, -1.9776, 4.2639],
     [3.7103, -2.9437, -4.9643],
 ];
-const STEP1_CHANGE: [[f64; 3]; 7] = [
-    [-0.86402, -3.276, -0.02131],
-    [0.00014159, -0.0012487, 0.0010748],
-    [-1.1493, 6.2971, -12.217],
-    [-0.045176, 0.24998, -0.70626],
-    [0.021051, -0.11382, 0.25013],
-    [0.013098, -0.33496, 0.26293],
-    [-0.15852, 1.3388, -1.5648],
+const CHANGES: [[[f64; 3]; 7]; 2] = [
+    [
+        [-0.86402, -3.276, -0.02131],
+        [0.00014159, -0.0012487, 0.0010748],
+        [-1.1493, 6.2971, -12.217],
+        [-0.045176, 0.24998, -0.70626],
+        [0.021051, -0.11382, 0.25013],
+        [0.013098, -0.33496, 0.26293],
+        [-0.15852, 1.3388, -1.5648],
+    ],
+    [
+        [0.019815, 1.1034, -0.92736],
+        [-2.352e-05, 0.00020673, -0.00021146],
+        [0.04122, -0.31659, 0.28945],
+        [0.026367, -0.19384, 0.18587],
+        [-0.004253, 0.025602, -0.02103],
+        [0.0085427, -0.069229, 0.080739],
+        [0.0023926, 0.012068, -0.051637],
+    ],
 ];
 /// [ours] Cold Jacobians (`J[i][k]` = ∂rᵢ/∂xₖ, in body units): the default walk's (1.4 m/s,
 /// H = 1.8 m, M = 80 kg) at the end of its step-0 solves, so that step 0 needs no difference
@@ -678,8 +686,7 @@ fn quadratic(c: [f64; 3], x: f64) -> f64 {
 
 /// The start of step `index`'s 2-D solve of `unknowns` (of [`STEP0`]), unknown k in units of
 /// `x_unit[k]`: at step 0 the fit with the cold Jacobian (`cold`: body units, residual i in
-/// units of `cold.1[i]`); at step 1 the step-0 solution moved by the fitted transient (at step
-/// 2 moved back in the extrapolation's history); later the memory itself.
+/// units of `cold.1[i]`); later the memory, with [`startup_moves`].
 fn startup(
     memory: Option<Memory2>,
     index: usize,
@@ -689,28 +696,47 @@ fn startup(
     cold: ([[f64; 2]; 2], [f64; 2]),
 ) -> Memory2 {
     let fit =
-        |c: [[f64; 3]; 7]| Vector2::from_fn(|k, _| quadratic(c[unknowns[k]], froude) * x_unit[k]);
-    match (memory, index) {
-        // the extrapolation's history: none before step 0's solution (not its start); at step 2
-        // the start of step 1 is in it, step 0's solution is behind it
-        (Some(m), 1) => Memory2 {
-            x: m.x + fit(STEP1_CHANGE),
-            earlier: [Vector2::repeat(f64::NAN); 2],
-            ..m
-        },
-        (Some(m), 2) => Memory2 {
-            earlier: [m.earlier[0] - fit(STEP1_CHANGE), m.earlier[1]],
-            ..m
-        },
-        (Some(m), _) => m,
-        (None, _) => {
+        |c: &[[f64; 3]; 7]| Vector2::from_fn(|k, _| quadratic(c[unknowns[k]], froude) * x_unit[k]);
+    match memory {
+        Some(mut m) => {
+            let nan = Vector2::repeat(f64::NAN);
+            startup_moves(index, &mut m.x, &mut m.earlier, nan, |i| {
+                fit(&CHANGES[i - 1])
+            });
+            m
+        }
+        None => {
             let (j, r_unit) = cold;
             Memory2 {
-                x: fit(STEP0),
+                x: fit(&STEP0),
                 jacobian: nalgebra::Matrix2::from_fn(|i, k| j[i][k] * r_unit[i] / x_unit[k]),
                 earlier: [Vector2::repeat(f64::NAN); 2],
             }
         }
+    }
+}
+
+/// A warm start at step `index` moved by the fitted start-up transient, `change(i)` from step
+/// i − 1 to step i ([`CHANGES`]): the point `x` at steps 1 and 2; the extrapolation's history
+/// `earlier` (`shooting::Memory2`) emptied at step 1 (step 0 started from a fit, not from a
+/// solution), and its latest entry moved back at steps 2 and 3 (it is the moved start).
+fn startup_moves<T>(
+    index: usize,
+    x: &mut T,
+    earlier: &mut [T; 2],
+    nan: T,
+    change: impl Fn(usize) -> T,
+) where
+    T: Copy + std::ops::Add<Output = T> + std::ops::Sub<Output = T>,
+{
+    if index == 1 {
+        *earlier = [nan; 2];
+    }
+    if (2..=3).contains(&index) {
+        earlier[0] = earlier[0] - change(index - 1);
+    }
+    if (1..=2).contains(&index) {
+        *x = *x + change(index);
     }
 }
 
