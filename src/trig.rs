@@ -3,6 +3,8 @@
 //! minimax polynomials of fdlibm's `__kernel_sin` / `__kernel_cos` (Sun Microsystems 1993, as in
 //! FreeBSD msun and musl; error < 2⁻⁵⁸ on [−π/4, π/4]), ≈ 40 instructions, within 1 ulp of libm
 //! (test below).
+// the constants are fdlibm's decimal spellings of the exact doubles, digit for digit
+#![allow(clippy::excessive_precision)]
 use std::f64::consts::FRAC_2_PI;
 
 /// Larger arguments go to libm (the two-part reduction below is exact for |n| < 2²⁰).
@@ -30,7 +32,7 @@ const C6: f64 = -1.135_964_755_778_819_482_65e-11;
 /// (sin x, cos x).
 #[inline]
 pub fn sin_cos(x: f64) -> (f64, f64) {
-    if !(x.abs() < REDUCTION_LIMIT) {
+    if x.is_nan() || x.abs() >= REDUCTION_LIMIT {
         return x.sin_cos();
     }
     let k = x * FRAC_2_PI + ROUND;

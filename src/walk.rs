@@ -1080,15 +1080,15 @@ impl Step {
         let step_length = strike.foot.heel[0] + foot.l8;
         // hip: its highest and lowest points through the stance
         let hip_y = |tau: f64| self.hip(tau)[1];
-        let (y_min, _) = least(&hip_y, 0.0, t.t_step);
+        let (y_min, _) = least(hip_y, 0.0, t.t_step);
         let (y_max, _) = least(|tau| -hip_y(tau), 0.0, t.t_step);
         let y_max = -y_max;
         let s = &self.stance_setup;
         // swing foot: lowest point over the swing, and in mid swing; the knee's peak flexion
         let (t_off, t_swing) = (t.t_ds, t.t_swing);
         let foot_y = |tau: f64| self.swing_pose(tau, foot).foot.lowest();
-        let (lowest, lowest_at) = least(&foot_y, t_off, t_off + t_swing);
-        let (mid, _) = least(&foot_y, t_off + 0.25 * t_swing, t_off + 0.75 * t_swing);
+        let (lowest, lowest_at) = least(foot_y, t_off, t_off + t_swing);
+        let (mid, _) = least(foot_y, t_off + 0.25 * t_swing, t_off + 0.75 * t_swing);
         let knee = |tau: f64| {
             let i = self
                 .swing
