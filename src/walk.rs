@@ -752,55 +752,106 @@ pub fn swing_hip_vy_end(
     stance.hip(setup, t)[1][1] + (offset(t)[1] - offset(t - e)[1]) / e
 }
 
-/// Uniform samples per interval in [`least`].
+/// Uniform samples per interval in [`minima`].
 const COARSE_SAMPLES: usize = 32;
+/// Uniform samples of the swing foot's height: narrow dips (the toe under the ground for 1 % of
+/// the swing while the heel rests on its floor) need them dense.
+const FOOT_SAMPLES: usize = 400;
 
-/// The least value of `f` on [a, b] and where it is: [`COARSE_SAMPLES`] + 1 uniform samples,
-/// then a golden-section search over the two intervals around every sample no larger than its
-/// neighbours (the ends included) down to 1e-6 (b − a); the least of all evaluations. Exact for
-/// minima that the samples see as local minima, however narrow (a toe touching the ground
-/// between two samples); `tests/walk.rs` checks it against dense sampling.
-fn least(f: impl Fn(f64) -> f64, a: f64, b: f64) -> (f64, f64) {
+/// (x, f(x)) at `n` + 1 uniform samples of [a, b].
+fn samples(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> Vec<(f64, f64)> {
+    (0..=n)
+        .map(|k| {
+            let x = a + (b - a) * k as f64 / n as f64;
+            (x, f(x))
+        })
+        .collect()
+}
+
+/// The least evaluation (x, f(x)) of a golden-section search for a minimum of `f` on [lo, hi],
+/// down to a bracket of `tol`.
+fn golden(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64, tol: f64) -> (f64, f64) {
     const R: f64 = 0.618_033_988_749_894_8; // (√5 − 1)/2
-    let n = COARSE_SAMPLES;
-    let at = |k: usize| a + (b - a) * k as f64 / n as f64;
-    let mut samples = [0.0; COARSE_SAMPLES + 1];
-    for (k, v) in samples.iter_mut().enumerate() {
-        *v = f(at(k));
-    }
-    let mut best = (f64::INFINITY, a);
-    let mut keep = |v: f64, x: f64| {
-        if v < best.0 {
-            best = (v, x);
-        }
-    };
-    for k in 0..=n {
-        keep(samples[k], at(k));
-        let local =
-            (k == 0 || samples[k] <= samples[k - 1]) && (k == n || samples[k] <= samples[k + 1]);
-        if !local {
-            continue;
-        }
-        let (mut lo, mut hi) = (at(k.saturating_sub(1)), at((k + 1).min(n)));
-        let (mut x1, mut x2) = (hi - R * (hi - lo), lo + R * (hi - lo));
-        let (mut f1, mut f2) = (f(x1), f(x2));
-        keep(f1, x1);
-        keep(f2, x2);
-        while hi - lo > 1e-6 * (b - a) {
-            if f1 <= f2 {
-                (hi, x2, f2) = (x2, x1, f1);
-                x1 = hi - R * (hi - lo);
-                f1 = f(x1);
-                keep(f1, x1);
-            } else {
-                (lo, x1, f1) = (x1, x2, f2);
-                x2 = lo + R * (hi - lo);
-                f2 = f(x2);
-                keep(f2, x2);
-            }
+    let (mut x1, mut x2) = (hi - R * (hi - lo), lo + R * (hi - lo));
+    let (mut f1, mut f2) = (f(x1), f(x2));
+    let mut best = if f1 <= f2 { (x1, f1) } else { (x2, f2) };
+    while hi - lo > tol {
+        let new = if f1 <= f2 {
+            (hi, x2, f2) = (x2, x1, f1);
+            x1 = hi - R * (hi - lo);
+            f1 = f(x1);
+            (x1, f1)
+        } else {
+            (lo, x1, f1) = (x1, x2, f2);
+            x2 = lo + R * (hi - lo);
+            f2 = f(x2);
+            (x2, f2)
+        };
+        if new.1 < best.1 {
+            best = new;
         }
     }
     best
+}
+
+/// Candidates for the minima of a smooth `f` on [a, b], (x, f(x)): [`COARSE_SAMPLES`] + 1
+/// uniform samples, and a [`golden`] search down to 1e-6 (b − a) over the two intervals around
+/// every sample no larger than its neighbours (to 1e-12: rounding noise; a run of such samples
+/// is searched as one bracket), the ends included. The least candidate in a sub-interval whose
+/// ends are samples is its minimum, for minima that the samples see as local minima;
+/// `tests/walk.rs` checks it against dense sampling.
+fn minima(f: impl Fn(f64) -> f64, a: f64, b: f64) -> Vec<(f64, f64)> {
+    const NOISE: f64 = 1e-12;
+    let n = COARSE_SAMPLES;
+    let mut found = samples(&f, a, b, n);
+    let value = |k: usize| found[k].1;
+    let local = |k: usize| {
+        (k == 0 || value(k) <= value(k - 1) + NOISE) && (k == n || value(k) <= value(k + 1) + NOISE)
+    };
+    let mut brackets = Vec::new();
+    let mut k = 0;
+    while k <= n {
+        if !local(k) {
+            k += 1;
+            continue;
+        }
+        let mut last = k;
+        while last < n && local(last + 1) {
+            last += 1;
+        }
+        brackets.push((found[k.saturating_sub(1)].0, found[(last + 1).min(n)].0));
+        k = last + 1;
+    }
+    for (lo, hi) in brackets {
+        found.push(golden(&f, lo, hi, 1e-6 * (b - a)));
+    }
+    found
+}
+
+/// The least sample (x, value) of `samples` (in order) in [lo, hi], refined by [`golden`] over
+/// the intervals around it down to 1e-6 of the samples' span.
+fn refine_least(f: impl Fn(f64) -> f64, samples: &[(f64, f64)], lo: f64, hi: f64) -> (f64, f64) {
+    let n = samples.len() - 1;
+    let span = samples[n].0 - samples[0].0;
+    let slack = 1e-9 * span;
+    let k = (0..=n)
+        .filter(|&k| (lo - slack..=hi + slack).contains(&samples[k].0))
+        .min_by(|&i, &j| samples[i].1.total_cmp(&samples[j].1))
+        .expect("a sample in the interval");
+    let (x0, x1) = (samples[k.saturating_sub(1)].0, samples[(k + 1).min(n)].0);
+    golden(f, x0.max(lo), x1.min(hi), 1e-6 * span)
+}
+
+/// The least of `candidates` (x, value) with x in [lo, hi] (to 1e-9 of the interval): (value, x).
+fn least_in(candidates: &[(f64, f64)], lo: f64, hi: f64) -> (f64, f64) {
+    let slack = 1e-9 * (hi - lo);
+    candidates
+        .iter()
+        .filter(|(x, _)| *x >= lo - slack && *x <= hi + slack)
+        .fold(
+            (f64::INFINITY, lo),
+            |best, &(x, v)| if v < best.0 { (v, x) } else { best },
+        )
 }
 
 /// Move a pose's x coordinates by `dx`.
@@ -1080,15 +1131,22 @@ impl Step {
         let step_length = strike.foot.heel[0] + foot.l8;
         // hip: its highest and lowest points through the stance
         let hip_y = |tau: f64| self.hip(tau)[1];
-        let (y_min, _) = least(hip_y, 0.0, t.t_step);
-        let (y_max, _) = least(|tau| -hip_y(tau), 0.0, t.t_step);
+        let (y_min, _) = least_in(&minima(hip_y, 0.0, t.t_step), 0.0, t.t_step);
+        let (y_max, _) = least_in(&minima(|tau| -hip_y(tau), 0.0, t.t_step), 0.0, t.t_step);
         let y_max = -y_max;
         let s = &self.stance_setup;
         // swing foot: lowest point over the swing, and in mid swing; the knee's peak flexion
         let (t_off, t_swing) = (t.t_ds, t.t_swing);
         let foot_y = |tau: f64| self.swing_pose(tau, foot).foot.lowest();
-        let (lowest, lowest_at) = least(foot_y, t_off, t_off + t_swing);
-        let (mid, _) = least(foot_y, t_off + 0.25 * t_swing, t_off + 0.75 * t_swing);
+        let (mid_lo, mid_hi) = (t_off + 0.25 * t_swing, t_off + 0.75 * t_swing);
+        let mut heights = samples(foot_y, t_off, t_off + t_swing, FOOT_SAMPLES);
+        let refined = [
+            refine_least(foot_y, &heights, t_off, t_off + t_swing),
+            refine_least(foot_y, &heights, mid_lo, mid_hi),
+        ];
+        heights.extend(refined);
+        let (lowest, lowest_at) = least_in(&heights, t_off, t_off + t_swing);
+        let (mid, _) = least_in(&heights, mid_lo, mid_hi);
         let knee = |tau: f64| {
             let i = self
                 .swing
@@ -1096,7 +1154,12 @@ impl Step {
                 .min(self.swing.len() - 1);
             self.swing[i].1.state(tau)[1]
         };
-        let (knee_peak, _) = least(|tau| -knee(tau), t_off, t_off + t_swing);
+        let swing_end = t_off + t_swing;
+        let (knee_peak, _) = least_in(
+            &minima(|tau| -knee(tau), t_off, swing_end),
+            t_off,
+            swing_end,
+        );
         let knee_peak = -knee_peak;
         self.lowest_at = (lowest_at - t_off) / t_swing;
         let r = &mut self.report;
