@@ -203,14 +203,21 @@ impl Walker {
 
         let (torque, l1) = (self.body.mass * self.body.l1, self.body.l1);
         let froude = gait.velocity / (crate::plan::GRAVITY * l1).sqrt();
-        let startup =
-            |memory, unknowns, x_unit, cold| startup(memory, index, froude, unknowns, x_unit, cold);
-        let start = Start2::Warm(startup(
+        let startup = |memory, unknowns, x_unit, cold, plain| {
+            startup(memory, index, froude, unknowns, x_unit, cold, plain)
+        };
+        // the plain cold starts (the fallbacks): the stance at the default walk's step-0
+        // solution of before the knee's cubic, body-scaled; the swings from zero torques
+        let (start, fallback) = startup(
             self.stance_memory,
             [0, 1],
             [torque, l1],
             (COLD_STANCE, [1.0, l1]),
-        ));
+            Start2::Cold {
+                x0: Vector2::new(2.0 * torque, 0.0055 * l1),
+                h: Vector2::new(0.01 * torque, 1e-3),
+            },
+        );
         let best = std::cell::RefCell::new(None::<StanceRun>);
         // every trial follows the step sequences of the last one that chose its own steps
         let mesh = std::cell::RefCell::new(None::<StanceRun>);
@@ -236,14 +243,14 @@ impl Walker {
             }
             Ok(r)
         };
-        let (x, report, memory) =
-            shooting::solve2(residual, start, &self.options).map_err(|reason| {
-                Error::Integration {
-                    step: index,
-                    phase: "stance",
-                    reason,
-                }
-            })?;
+        let ((x, memory), report) = with_fallback(start, fallback, |start| {
+            shooting::solve2(residual, start, &self.options).map(|(x, r, m)| ((x, m), r))
+        })
+        .map_err(|reason| Error::Integration {
+            step: index,
+            phase: "stance",
+            reason,
+        })?;
         let stance = best.into_inner().expect("at least one trial ran");
         if !report.converged {
             return Err(Error::NotConverged {
@@ -416,6 +423,10 @@ impl Walker {
                     [2, 3],
                     [torque; 2],
                     (COLD_SWING1, [1.0; 2]),
+                    Start2::Cold {
+                        x0: Vector2::zeros(),
+                        h: Vector2::new(0.01 * torque, 0.005 * torque),
+                    },
                 ),
                 |x| Subphase::Swing1 {
                     hip: x[0],
@@ -436,16 +447,24 @@ impl Walker {
                     let fit = |c: &[[f64; 3]; 7]| quadratic(c[4], froude) * torque;
                     match self.swing2_memory {
                         Some(mut m) => {
+                            let plain = m;
                             startup_moves(index, &mut m.x, &mut m.earlier, f64::NAN, |i| {
                                 fit(&CHANGES[i - 1])
                             });
-                            m
+                            let fallback = (1..=2).contains(&index).then_some(Start1::Warm(plain));
+                            (Start1::Warm(m), fallback)
                         }
-                        None => Memory1 {
-                            x: fit(&STEP0),
-                            slope: COLD_SWING2_SLOPE / torque,
-                            earlier: [f64::NAN; 2],
-                        },
+                        None => (
+                            Start1::Warm(Memory1 {
+                                x: fit(&STEP0),
+                                slope: COLD_SWING2_SLOPE / torque,
+                                earlier: [f64::NAN; 2],
+                            }),
+                            Some(Start1::Cold {
+                                x0: 0.0,
+                                dx: 0.1 * torque,
+                            }),
+                        ),
                     }
                 },
                 |x| Subphase::Swing2 {
@@ -471,6 +490,10 @@ impl Walker {
                     [5, 6],
                     [torque; 2],
                     (COLD_SWING3, [1.0; 2]),
+                    Start2::Cold {
+                        x0: Vector2::zeros(),
+                        h: Vector2::repeat(0.01 * torque),
+                    },
                 ),
                 |x| Subphase::Swing3 {
                     hip: x[0],
@@ -567,11 +590,11 @@ impl Walker {
             .set(self.evaluations.get() + u64::from(evaluations));
     }
 
-    /// A 2-D swing solve (Broyden), warm-started from `memory`.
+    /// A 2-D swing solve (Broyden) from `start` (then `fallback`, [`with_fallback`]).
     fn solve_2d(
         &self,
         sw: &SwingSetup,
-        memory: Memory2,
+        (start, fallback): (Start2, Option<Start2>),
         sub: impl Fn(Vector2<f64>) -> Subphase,
         t0: f64,
         y0: SwingState,
@@ -579,11 +602,10 @@ impl Walker {
         let best = std::cell::RefCell::new(None::<SwingTrial>);
         // every trial follows the step sequence of the last one that chose its own steps
         let mesh = std::cell::RefCell::new(None::<Segment<4>>);
-        let (_, report, mem) = shooting::solve2(
-            |x| self.swing_trial(sw, sub(x), t0, y0, &mesh, &best),
-            Start2::Warm(memory),
-            &self.options,
-        )?;
+        let residual = |x| self.swing_trial(sw, sub(x), t0, y0, &mesh, &best);
+        let (mem, report) = with_fallback(start, fallback, |start| {
+            shooting::solve2(residual, start, &self.options).map(|(_, r, m)| (m, r))
+        })?;
         Ok((best.into_inner().ok_or("no trial ran")?, report, mem))
     }
 
@@ -615,11 +637,12 @@ impl Walker {
         Ok(r)
     }
 
-    /// A 1-D swing solve (bisection then secant), warm-started from `memory`.
+    /// A 1-D swing solve (bisection then secant) from `start` (then `fallback`,
+    /// [`with_fallback`]).
     fn solve_1d(
         &self,
         sw: &SwingSetup,
-        memory: Memory1,
+        (start, fallback): (Start1, Option<Start1>),
         sub: impl Fn(f64) -> Subphase,
         t0: f64,
         y0: SwingState,
@@ -627,11 +650,10 @@ impl Walker {
         let best = std::cell::RefCell::new(None::<SwingTrial>);
         // every trial follows the step sequence of the last one that chose its own steps
         let mesh = std::cell::RefCell::new(None::<Segment<4>>);
-        let (_, report, mem) = shooting::solve1(
-            |x| Ok(self.swing_trial(sw, sub(x), t0, y0, &mesh, &best)?[0]),
-            Start1::Warm(memory),
-            &self.options,
-        )?;
+        let residual = |x| Ok(self.swing_trial(sw, sub(x), t0, y0, &mesh, &best)?[0]);
+        let (mem, report) = with_fallback(start, fallback, |start| {
+            shooting::solve1(residual, start, &self.options).map(|(_, r, m)| (m, r))
+        })?;
         Ok((best.into_inner().ok_or("no trial ran")?, report, mem))
     }
 }
@@ -685,8 +707,10 @@ fn quadratic(c: [f64; 3], x: f64) -> f64 {
 }
 
 /// The start of step `index`'s 2-D solve of `unknowns` (of [`STEP0`]), unknown k in units of
-/// `x_unit[k]`: at step 0 the fit with the cold Jacobian (`cold`: body units, residual i in
-/// units of `cold.1[i]`); later the memory, with [`startup_moves`].
+/// `x_unit[k]`, and the start to fall back on ([`with_fallback`]): at step 0 the fit with the
+/// cold Jacobian (`cold`: body units, residual i in units of `cold.1[i]`), then `plain`; at
+/// steps 1 and 2 the memory moved by [`startup_moves`], then the memory itself; later the
+/// memory alone.
 fn startup(
     memory: Option<Memory2>,
     index: usize,
@@ -694,24 +718,51 @@ fn startup(
     unknowns: [usize; 2],
     x_unit: [f64; 2],
     cold: ([[f64; 2]; 2], [f64; 2]),
-) -> Memory2 {
+    plain: Start2,
+) -> (Start2, Option<Start2>) {
     let fit =
         |c: &[[f64; 3]; 7]| Vector2::from_fn(|k, _| quadratic(c[unknowns[k]], froude) * x_unit[k]);
     match memory {
         Some(mut m) => {
+            let unmoved = m;
             let nan = Vector2::repeat(f64::NAN);
             startup_moves(index, &mut m.x, &mut m.earlier, nan, |i| {
                 fit(&CHANGES[i - 1])
             });
-            m
+            let fallback = (1..=2).contains(&index).then_some(Start2::Warm(unmoved));
+            (Start2::Warm(m), fallback)
         }
         None => {
             let (j, r_unit) = cold;
-            Memory2 {
+            let guess = Memory2 {
                 x: fit(&STEP0),
                 jacobian: nalgebra::Matrix2::from_fn(|i, k| j[i][k] * r_unit[i] / x_unit[k]),
                 earlier: [Vector2::repeat(f64::NAN); 2],
-            }
+            };
+            (Start2::Warm(guess), Some(plain))
+        }
+    }
+}
+
+/// A solve from `start`, and when it does not converge (or its first trial fails) once more
+/// from `fallback`, the report counting both: the start-up guesses are fits over the default
+/// attributes' grid, and outside it (a style preset) they can lead where the residual has no
+/// root nearby (the elderly preset's swing2 at 0.9 m/s).
+fn with_fallback<S, T>(
+    start: S,
+    fallback: Option<S>,
+    solve: impl Fn(S) -> std::result::Result<(T, SolveReport), String>,
+) -> std::result::Result<(T, SolveReport), String> {
+    let first = solve(start);
+    match (first, fallback) {
+        (Ok((t, report)), _) if report.converged => Ok((t, report)),
+        (first, None) => first,
+        (first, Some(fallback)) => {
+            let spent = first.as_ref().map_or(1, |(_, r)| r.iterations);
+            solve(fallback).map(|(t, mut report)| {
+                report.iterations += spent;
+                (t, report)
+            })
         }
     }
 }
