@@ -27,5 +27,6 @@ pub mod skeleton;
 pub mod stream;
 pub mod sweep;
 pub mod sweep_io;
+pub mod trig;
 pub mod walk;
 pub mod work;

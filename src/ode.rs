@@ -62,6 +62,15 @@ pub struct Segment<const N: usize> {
 }
 
 impl<const N: usize> Segment<N> {
+    /// The accepted steps (start, end), in order, within [t0, t1]: on each, the dense output is
+    /// one quartic polynomial.
+    pub fn steps(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
+        self.steps
+            .iter()
+            .map(|s| (s.t.max(self.t0), (s.t + s.h).min(self.t1)))
+            .filter(|(a, b)| b > a)
+    }
+
     /// The state at `t`, clamped to [t0, t1].
     pub fn state(&self, t: f64) -> SVector<f64, N> {
         if t <= self.t0 {

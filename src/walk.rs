@@ -201,18 +201,23 @@ impl Walker {
         let y0 = StanceState::from([q[0], q[1], q[2], qd[0], qd[1], qd[2]]);
         let setup = self.stance_setup(&prev_c, &c);
 
-        let start = match self.stance_memory {
-            Some(m) => Start2::Warm(m),
-            None => {
-                // [ours] the default walk's step-0 solution, body-scaled (τ1 = 1.97 M l1,
-                // p = 0.0057 l1): grid 7 223 -> 6 854 evaluations per step (docs/engine.md)
-                let scale = self.body.mass * self.body.l1;
-                Start2::Cold {
-                    x0: Vector2::new(2.0 * scale, 0.0055 * self.body.l1),
-                    h: Vector2::new(0.01 * scale, 1e-3),
-                }
-            }
+        let (torque, l1) = (self.body.mass * self.body.l1, self.body.l1);
+        let froude = gait.velocity / (crate::plan::GRAVITY * l1).sqrt();
+        let startup = |memory, unknowns, x_unit, cold, plain| {
+            startup(memory, index, froude, unknowns, x_unit, cold, plain)
         };
+        // the plain cold starts (the fallbacks): the stance at the default walk's step-0
+        // solution of before the knee's cubic, body-scaled; the swings from zero torques
+        let (start, fallback) = startup(
+            self.stance_memory,
+            [0, 1],
+            [torque, l1],
+            (COLD_STANCE, [1.0, l1]),
+            Start2::Cold {
+                x0: Vector2::new(2.0 * torque, 0.0055 * l1),
+                h: Vector2::new(0.01 * torque, 1e-3),
+            },
+        );
         let best = std::cell::RefCell::new(None::<StanceRun>);
         // every trial follows the step sequences of the last one that chose its own steps
         let mesh = std::cell::RefCell::new(None::<StanceRun>);
@@ -238,14 +243,14 @@ impl Walker {
             }
             Ok(r)
         };
-        let (x, report, memory) =
-            shooting::solve2(residual, start, &self.options).map_err(|reason| {
-                Error::Integration {
-                    step: index,
-                    phase: "stance",
-                    reason,
-                }
-            })?;
+        let ((x, memory), report) = with_fallback(start, fallback, |start| {
+            shooting::solve2(residual, start, &self.options).map(|(x, r, m)| ((x, m), r))
+        })
+        .map_err(|reason| Error::Integration {
+            step: index,
+            phase: "stance",
+            reason,
+        })?;
         let stance = best.into_inner().expect("at least one trial ran");
         if !report.converged {
             return Err(Error::NotConverged {
@@ -273,7 +278,7 @@ impl Walker {
         let pelvis = |tau: f64| det.at(side, tau, t.t_step);
         // a leg's hip joint at step time τ: world (x, y) and lateral offset from its ankle
         let hip_joint = |leg: Side, tau: f64| {
-            let h = stance.hip(&setup, tau)[0];
+            let h = stance.hip_position(&setup, tau);
             let p = pelvis(tau);
             let o = det.hip_offset(leg, &p);
             ([x0 + h[0] + o[0], h[1] + o[1]], det.lateral_offset(leg, &p))
@@ -389,7 +394,6 @@ impl Walker {
             k_h: a11 * wh * wh,
             d_h: 2.0 * self.attrs.servo_damping_ratio * a11 * wh,
         };
-        let torque_scale = self.body.mass * self.body.l1 * 0.01;
         let fail = |phase: &'static str| {
             move |reason: String| Error::Integration {
                 step: index,
@@ -415,8 +419,16 @@ impl Walker {
         let (s1, rep1, mem1) = self
             .solve_2d(
                 &sw,
-                self.swing1_memory,
-                Vector2::new(torque_scale, 0.5 * torque_scale),
+                startup(
+                    self.swing1_memory,
+                    [2, 3],
+                    [torque; 2],
+                    (COLD_SWING1, [1.0; 2]),
+                    Start2::Cold {
+                        x0: Vector2::zeros(),
+                        h: Vector2::new(0.01 * torque, 0.005 * torque),
+                    },
+                ),
                 |x| Subphase::Swing1 {
                     hip: x[0],
                     knee: x[1],
@@ -432,8 +444,30 @@ impl Walker {
         let (s2, rep2, mem2) = self
             .solve_1d(
                 &sw,
-                self.swing2_memory,
-                torque_scale,
+                {
+                    let fit = |c: &[[f64; 3]; 7]| quadratic(c[4], froude) * torque;
+                    match self.swing2_memory {
+                        Some(mut m) => {
+                            let plain = m;
+                            startup_moves(index, &mut m.x, &mut m.earlier, f64::NAN, |i| {
+                                fit(&CHANGES[i - 1])
+                            });
+                            let fallback = (1..=2).contains(&index).then_some(Start1::Warm(plain));
+                            (Start1::Warm(m), fallback)
+                        }
+                        None => (
+                            Start1::Warm(Memory1 {
+                                x: fit(&STEP0),
+                                slope: COLD_SWING2_SLOPE / torque,
+                                earlier: [f64::NAN; 2],
+                            }),
+                            Some(Start1::Cold {
+                                x0: 0.0,
+                                dx: 0.1 * torque,
+                            }),
+                        ),
+                    }
+                },
                 |x| Subphase::Swing2 {
                     knee: x,
                     knee_start: y1[1],
@@ -452,8 +486,16 @@ impl Walker {
         let (s3, rep3, mem3) = self
             .solve_2d(
                 &sw,
-                self.swing3_memory,
-                Vector2::new(torque_scale, torque_scale),
+                startup(
+                    self.swing3_memory,
+                    [5, 6],
+                    [torque; 2],
+                    (COLD_SWING3, [1.0; 2]),
+                    Start2::Cold {
+                        x0: Vector2::zeros(),
+                        h: Vector2::repeat(0.01 * torque),
+                    },
+                ),
                 |x| Subphase::Swing3 {
                     hip: x[0],
                     ramp: x[1],
@@ -549,13 +591,11 @@ impl Walker {
             .set(self.evaluations.get() + u64::from(evaluations));
     }
 
-    /// A 2-D swing solve (Broyden), warm-started from `memory`, cold from zero torques with
-    /// finite-difference steps `h`.
+    /// A 2-D swing solve (Broyden) from `start` (then `fallback`, [`with_fallback`]).
     fn solve_2d(
         &self,
         sw: &SwingSetup,
-        memory: Option<Memory2>,
-        h: Vector2<f64>,
+        (start, fallback): (Start2, Option<Start2>),
         sub: impl Fn(Vector2<f64>) -> Subphase,
         t0: f64,
         y0: SwingState,
@@ -563,18 +603,10 @@ impl Walker {
         let best = std::cell::RefCell::new(None::<SwingTrial>);
         // every trial follows the step sequence of the last one that chose its own steps
         let mesh = std::cell::RefCell::new(None::<Segment<4>>);
-        let start = match memory {
-            Some(m) => Start2::Warm(m),
-            None => Start2::Cold {
-                x0: Vector2::zeros(),
-                h,
-            },
-        };
-        let (_, report, mem) = shooting::solve2(
-            |x| self.swing_trial(sw, sub(x), t0, y0, &mesh, &best),
-            start,
-            &self.options,
-        )?;
+        let residual = |x| self.swing_trial(sw, sub(x), t0, y0, &mesh, &best);
+        let (mem, report) = with_fallback(start, fallback, |start| {
+            shooting::solve2(residual, start, &self.options).map(|(_, r, m)| (m, r))
+        })?;
         Ok((best.into_inner().ok_or("no trial ran")?, report, mem))
     }
 
@@ -606,12 +638,12 @@ impl Walker {
         Ok(r)
     }
 
-    /// A 1-D swing solve (bisection then secant), warm-started from `memory`.
+    /// A 1-D swing solve (bisection then secant) from `start` (then `fallback`,
+    /// [`with_fallback`]).
     fn solve_1d(
         &self,
         sw: &SwingSetup,
-        memory: Option<Memory1>,
-        scale: f64,
+        (start, fallback): (Start1, Option<Start1>),
         sub: impl Fn(f64) -> Subphase,
         t0: f64,
         y0: SwingState,
@@ -619,19 +651,144 @@ impl Walker {
         let best = std::cell::RefCell::new(None::<SwingTrial>);
         // every trial follows the step sequence of the last one that chose its own steps
         let mesh = std::cell::RefCell::new(None::<Segment<4>>);
-        let start = match memory {
-            Some(m) => Start1::Warm(m),
-            None => Start1::Cold {
-                x0: 0.0,
-                dx: 10.0 * scale,
-            },
-        };
-        let (_, report, mem) = shooting::solve1(
-            |x| Ok(self.swing_trial(sw, sub(x), t0, y0, &mesh, &best)?[0]),
-            start,
-            &self.options,
-        )?;
+        let residual = |x| Ok(self.swing_trial(sw, sub(x), t0, y0, &mesh, &best)?[0]);
+        let (mem, report) = with_fallback(start, fallback, |start| {
+            shooting::solve1(residual, start, &self.options).map(|(_, r, m)| (m, r))
+        })?;
         Ok((best.into_inner().ok_or("no trial ran")?, report, mem))
+    }
+}
+
+/// [ours] Start-up guesses of the seven unknowns — τ1, p (stance), A, B (swing1), C (swing2),
+/// D0, D1 (swing3) — in body units (torques / (M l1), lengths / l1), as quadratics c0 + c1 F +
+/// c2 F² in the Froude speed F = v / √(g l1), least-squares fits over the grid of
+/// `tests/walk.rs` (v 0.6–2.0 m/s × H 1.5–1.95 m, M = 23 H²): the solutions of step 0 (cold
+/// start), and their changes from step 0 to step 1 and from step 1 to step 2 (the transient of
+/// the artificial first posture: τ1 falls from ≈ 3 to ≈ −0.3 M l1, then rises to ≈ 0), added
+/// to the previous solution at steps 1 and 2.
+const STEP0: [[f64; 3]; 7] = [
+    [0.67032, 2.3926, 1.4052],
+    [-0.002633, 0.019362, -0.0028379],
+    [0.48878, -5.9229, 7.7081],
+    [0.35413, -4.1758, 1.3213],
+    [-0.24384, 1.1958, -0.44378],
+    [-1.2137, -1.9776, 4.2639],
+    [3.7103, -2.9437, -4.9643],
+];
+const CHANGES: [[[f64; 3]; 7]; 2] = [
+    [
+        [-0.86402, -3.276, -0.02131],
+        [0.00014159, -0.0012487, 0.0010748],
+        [-1.1493, 6.2971, -12.217],
+        [-0.045176, 0.24998, -0.70626],
+        [0.021051, -0.11382, 0.25013],
+        [0.013098, -0.33496, 0.26293],
+        [-0.15852, 1.3388, -1.5648],
+    ],
+    [
+        [0.019815, 1.1034, -0.92736],
+        [-2.352e-05, 0.00020673, -0.00021146],
+        [0.04122, -0.31659, 0.28945],
+        [0.026367, -0.19384, 0.18587],
+        [-0.004253, 0.025602, -0.02103],
+        [0.0085427, -0.069229, 0.080739],
+        [0.0023926, 0.012068, -0.051637],
+    ],
+];
+/// [ours] Cold Jacobians (`J[i][k]` = ∂rᵢ/∂xₖ, in body units): the default walk's (1.4 m/s,
+/// H = 1.8 m, M = 80 kg) at the end of its step-0 solves, so that step 0 needs no difference
+/// trials; swing2's residual slope.
+const COLD_STANCE: [[f64; 2]; 2] = [[0.13681, -0.31846], [0.061198, 0.79898]];
+const COLD_SWING1: [[f64; 2]; 2] = [[0.73396, -0.51570], [-0.085369, 0.77527]];
+const COLD_SWING2_SLOPE: f64 = 0.32130;
+const COLD_SWING3: [[f64; 2]; 2] = [[0.047650, 0.015921], [-0.48987, -0.24642]];
+
+fn quadratic(c: [f64; 3], x: f64) -> f64 {
+    c[0] + x * (c[1] + x * c[2])
+}
+
+/// The start of step `index`'s 2-D solve of `unknowns` (of [`STEP0`]), unknown k in units of
+/// `x_unit[k]`, and the start to fall back on ([`with_fallback`]): at step 0 the fit with the
+/// cold Jacobian (`cold`: body units, residual i in units of `cold.1[i]`), then `plain`; at
+/// steps 1 and 2 the memory moved by [`startup_moves`], then the memory itself; later the
+/// memory alone.
+fn startup(
+    memory: Option<Memory2>,
+    index: usize,
+    froude: f64,
+    unknowns: [usize; 2],
+    x_unit: [f64; 2],
+    cold: ([[f64; 2]; 2], [f64; 2]),
+    plain: Start2,
+) -> (Start2, Option<Start2>) {
+    let fit =
+        |c: &[[f64; 3]; 7]| Vector2::from_fn(|k, _| quadratic(c[unknowns[k]], froude) * x_unit[k]);
+    match memory {
+        Some(mut m) => {
+            let unmoved = m;
+            let nan = Vector2::repeat(f64::NAN);
+            startup_moves(index, &mut m.x, &mut m.earlier, nan, |i| {
+                fit(&CHANGES[i - 1])
+            });
+            let fallback = (1..=2).contains(&index).then_some(Start2::Warm(unmoved));
+            (Start2::Warm(m), fallback)
+        }
+        None => {
+            let (j, r_unit) = cold;
+            let guess = Memory2 {
+                x: fit(&STEP0),
+                jacobian: nalgebra::Matrix2::from_fn(|i, k| j[i][k] * r_unit[i] / x_unit[k]),
+                earlier: [Vector2::repeat(f64::NAN); 2],
+            };
+            (Start2::Warm(guess), Some(plain))
+        }
+    }
+}
+
+/// A solve from `start`, and when it does not converge (or its first trial fails) once more
+/// from `fallback`, the report counting both: the start-up guesses are fits over the default
+/// attributes' grid, and outside it (a style preset) they can lead where the residual has no
+/// root nearby (the elderly preset's swing2 at 0.9 m/s).
+fn with_fallback<S, T>(
+    start: S,
+    fallback: Option<S>,
+    solve: impl Fn(S) -> std::result::Result<(T, SolveReport), String>,
+) -> std::result::Result<(T, SolveReport), String> {
+    let first = solve(start);
+    match (first, fallback) {
+        (Ok((t, report)), _) if report.converged => Ok((t, report)),
+        (first, None) => first,
+        (first, Some(fallback)) => {
+            let spent = first.as_ref().map_or(1, |(_, r)| r.iterations);
+            solve(fallback).map(|(t, mut report)| {
+                report.iterations += spent;
+                (t, report)
+            })
+        }
+    }
+}
+
+/// A warm start at step `index` moved by the fitted start-up transient, `change(i)` from step
+/// i − 1 to step i ([`CHANGES`]): the point `x` at steps 1 and 2; the extrapolation's history
+/// `earlier` (`shooting::Memory2`) emptied at step 1 (step 0 started from a fit, not from a
+/// solution), and its latest entry moved back at steps 2 and 3 (it is the moved start).
+fn startup_moves<T>(
+    index: usize,
+    x: &mut T,
+    earlier: &mut [T; 2],
+    nan: T,
+    change: impl Fn(usize) -> T,
+) where
+    T: Copy + std::ops::Add<Output = T> + std::ops::Sub<Output = T>,
+{
+    if index == 1 {
+        *earlier = [nan; 2];
+    }
+    if (2..=3).contains(&index) {
+        earlier[0] = earlier[0] - change(index - 1);
+    }
+    if (1..=2).contains(&index) {
+        *x = *x + change(index);
     }
 }
 
@@ -645,6 +802,108 @@ pub fn swing_hip_vy_end(
     let t = setup.t_step;
     let e = 1e-6 * t;
     stance.hip(setup, t)[1][1] + (offset(t)[1] - offset(t - e)[1]) / e
+}
+
+/// Uniform samples per interval in [`minima`].
+const COARSE_SAMPLES: usize = 32;
+/// Uniform samples of the swing foot's height: narrow dips (the toe under the ground for 1 % of
+/// the swing while the heel rests on its floor) need them dense.
+const FOOT_SAMPLES: usize = 400;
+
+/// (x, f(x)) at `n` + 1 uniform samples x = a + (k / n) span of [a, a + span].
+fn samples(f: impl Fn(f64) -> f64, a: f64, span: f64, n: usize) -> Vec<(f64, f64)> {
+    (0..=n)
+        .map(|k| {
+            let x = a + k as f64 / n as f64 * span;
+            (x, f(x))
+        })
+        .collect()
+}
+
+/// The least evaluation (x, f(x)) of a golden-section search for a minimum of `f` on [lo, hi],
+/// down to a bracket of `tol`.
+fn golden(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64, tol: f64) -> (f64, f64) {
+    const R: f64 = 0.618_033_988_749_894_8; // (√5 − 1)/2
+    let (mut x1, mut x2) = (hi - R * (hi - lo), lo + R * (hi - lo));
+    let (mut f1, mut f2) = (f(x1), f(x2));
+    let mut best = if f1 <= f2 { (x1, f1) } else { (x2, f2) };
+    while hi - lo > tol {
+        let new = if f1 <= f2 {
+            (hi, x2, f2) = (x2, x1, f1);
+            x1 = hi - R * (hi - lo);
+            f1 = f(x1);
+            (x1, f1)
+        } else {
+            (lo, x1, f1) = (x1, x2, f2);
+            x2 = lo + R * (hi - lo);
+            f2 = f(x2);
+            (x2, f2)
+        };
+        if new.1 < best.1 {
+            best = new;
+        }
+    }
+    best
+}
+
+/// Candidates for the minima of a smooth `f` on [a, b], (x, f(x)): [`COARSE_SAMPLES`] + 1
+/// uniform samples, and a [`golden`] search down to 1e-6 (b − a) over the two intervals around
+/// every sample no larger than its neighbours (to 1e-12: rounding noise; a run of such samples
+/// is searched as one bracket), the ends included. The least candidate in a sub-interval whose
+/// ends are samples is its minimum, for minima that the samples see as local minima;
+/// `tests/walk.rs` checks it against dense sampling.
+fn minima(f: impl Fn(f64) -> f64, a: f64, b: f64) -> Vec<(f64, f64)> {
+    const NOISE: f64 = 1e-12;
+    let n = COARSE_SAMPLES;
+    let mut found = samples(&f, a, b - a, n);
+    let value = |k: usize| found[k].1;
+    let local = |k: usize| {
+        (k == 0 || value(k) <= value(k - 1) + NOISE) && (k == n || value(k) <= value(k + 1) + NOISE)
+    };
+    let mut brackets = Vec::new();
+    let mut k = 0;
+    while k <= n {
+        if !local(k) {
+            k += 1;
+            continue;
+        }
+        let mut last = k;
+        while last < n && local(last + 1) {
+            last += 1;
+        }
+        brackets.push((found[k.saturating_sub(1)].0, found[(last + 1).min(n)].0));
+        k = last + 1;
+    }
+    for (lo, hi) in brackets {
+        found.push(golden(&f, lo, hi, 1e-6 * (b - a)));
+    }
+    found
+}
+
+/// The least sample (x, value) of `samples` (in order) in [lo, hi], refined by [`golden`] over
+/// the intervals around it down to 1e-6 of the samples' span.
+fn refine_least(f: impl Fn(f64) -> f64, samples: &[(f64, f64)], lo: f64, hi: f64) -> (f64, f64) {
+    let n = samples.len() - 1;
+    let span = samples[n].0 - samples[0].0;
+    let slack = 1e-9 * span;
+    let k = (0..=n)
+        .filter(|&k| (lo - slack..=hi + slack).contains(&samples[k].0))
+        .min_by(|&i, &j| samples[i].1.total_cmp(&samples[j].1))
+        .expect("a sample in the interval");
+    let (x0, x1) = (samples[k.saturating_sub(1)].0, samples[(k + 1).min(n)].0);
+    golden(f, x0.max(lo), x1.min(hi), 1e-6 * span)
+}
+
+/// The least of `candidates` (x, value) with x in [lo, hi] (to 1e-9 of the interval): (value, x).
+fn least_in(candidates: &[(f64, f64)], lo: f64, hi: f64) -> (f64, f64) {
+    let slack = 1e-9 * (hi - lo);
+    candidates
+        .iter()
+        .filter(|(x, _)| *x >= lo - slack && *x <= hi + slack)
+        .fold(
+            (f64::INFINITY, lo),
+            |best, &(x, v)| if v < best.0 { (v, x) } else { best },
+        )
 }
 
 /// Move a pose's x coordinates by `dx`.
@@ -993,31 +1252,38 @@ impl Step {
         let dt = 1e-6;
         let before = self.swing_pose(t.t_step - dt, foot);
         let step_length = strike.foot.heel[0] + foot.l8;
-        // hip: sampled densely through the stance
-        const SAMPLES: usize = 400;
-        let (mut y_max, mut y_min) = (f64::NEG_INFINITY, f64::INFINITY);
-        for k in 0..=SAMPLES {
-            let y = self.hip(t.t_step * k as f64 / SAMPLES as f64)[1];
-            y_max = y_max.max(y);
-            y_min = y_min.min(y);
-        }
+        // hip: its highest and lowest points through the stance
+        let hip_y = |tau: f64| self.hip(tau)[1];
+        let (y_min, _) = least_in(&minima(hip_y, 0.0, t.t_step), 0.0, t.t_step);
+        let (y_max, _) = least_in(&minima(|tau| -hip_y(tau), 0.0, t.t_step), 0.0, t.t_step);
+        let y_max = -y_max;
         let s = &self.stance_setup;
-        // swing foot: lowest point over the swing, and in mid swing
-        let (mut lowest, mut mid, mut knee_peak) =
-            (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY);
-        for k in 0..=SAMPLES {
-            let frac = k as f64 / SAMPLES as f64;
-            let pose = self.swing_pose(t.t_ds + frac * t.t_swing, foot);
-            knee_peak = knee_peak.max(pose.theta4);
-            let h = pose.foot.lowest();
-            if h < lowest {
-                self.lowest_at = frac;
-            }
-            lowest = lowest.min(h);
-            if (0.25..=0.75).contains(&frac) {
-                mid = mid.min(h);
-            }
-        }
+        // swing foot: lowest point over the swing, and in mid swing; the knee's peak flexion
+        let (t_off, t_swing) = (t.t_ds, t.t_swing);
+        let foot_y = |tau: f64| self.swing_pose(tau, foot).foot.lowest();
+        let (mid_lo, mid_hi) = (t_off + 0.25 * t_swing, t_off + 0.75 * t_swing);
+        let mut heights = samples(foot_y, t_off, t_swing, FOOT_SAMPLES);
+        // mid swing: the samples alone; its check (clearance > 0) sits at the rounding noise
+        // where the heel rests on its floor, and a refined search there found 0.0 where the
+        // samples had 1e-16 (a different pelvic list at 4 of the 1 000 walks of the sweep)
+        let (mid, _) = least_in(&heights, mid_lo, mid_hi);
+        heights.push(refine_least(foot_y, &heights, t_off, t_off + t_swing));
+        let (lowest, lowest_at) = least_in(&heights, t_off, t_off + t_swing);
+        let knee = |tau: f64| {
+            let i = self
+                .swing
+                .partition_point(|(_, s)| s.t1 < tau)
+                .min(self.swing.len() - 1);
+            self.swing[i].1.state(tau)[1]
+        };
+        let swing_end = t_off + t_swing;
+        let (knee_peak, _) = least_in(
+            &minima(|tau| -knee(tau), t_off, swing_end),
+            t_off,
+            swing_end,
+        );
+        let knee_peak = -knee_peak;
+        self.lowest_at = (lowest_at - t_off) / t_swing;
         let r = &mut self.report;
         r.solves = self.solves.clone();
         r.achieved = Achieved {

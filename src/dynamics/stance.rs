@@ -17,6 +17,7 @@ use nalgebra::{Matrix2, Matrix3, Vector2, Vector3};
 
 use crate::body::Body;
 use crate::plan::GRAVITY;
+use crate::trig::sin_cos;
 
 /// Inertial parameters of the stance model.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -103,7 +104,7 @@ impl StanceModel {
         force: &Vector3<f64>,
         locked: bool,
     ) -> Vector3<f64> {
-        let (s1, c1) = q[1].sin_cos();
+        let (s1, c1) = sin_cos(q[1]);
         self.accelerations_with(s1, c1, q, qd, force, locked)
     }
 
@@ -158,13 +159,13 @@ impl StanceModel {
 
     /// Hip relative to the ankle pivot's x, absolute height: (w sin θ1, l9 + w cos θ1).
     pub fn hip(&self, q: &Vector3<f64>) -> [f64; 2] {
-        let (s1, c1) = q[1].sin_cos();
+        let (s1, c1) = sin_cos(q[1]);
         [q[0] * s1, self.l9 + q[0] * c1]
     }
 
     /// Hip velocity ẇ (s1, c1) + w θ̇1 (c1, −s1).
     pub fn hip_velocity(&self, q: &Vector3<f64>, qd: &Vector3<f64>) -> [f64; 2] {
-        let (s1, c1) = q[1].sin_cos();
+        let (s1, c1) = sin_cos(q[1]);
         [
             qd[0] * s1 + q[0] * qd[1] * c1,
             qd[0] * c1 - q[0] * qd[1] * s1,
@@ -178,9 +179,21 @@ impl StanceModel {
         qd: &Vector3<f64>,
         qdd: &Vector3<f64>,
     ) -> [f64; 2] {
+        let (s1, c1) = sin_cos(q[1]);
+        self.hip_acceleration_with(s1, c1, q, qd, qdd)
+    }
+
+    /// [`Self::hip_acceleration`] with sin θ1 and cos θ1 already known.
+    pub(crate) fn hip_acceleration_with(
+        &self,
+        s1: f64,
+        c1: f64,
+        q: &Vector3<f64>,
+        qd: &Vector3<f64>,
+        qdd: &Vector3<f64>,
+    ) -> [f64; 2] {
         let (w, wd, wdd) = (q[0], qd[0], qdd[0]);
         let (t1d, t1dd) = (qd[1], qdd[1]);
-        let (s1, c1) = q[1].sin_cos();
         [
             wdd * s1 + 2.0 * wd * t1d * c1 + w * t1dd * c1 - w * t1d * t1d * s1,
             wdd * c1 - 2.0 * wd * t1d * s1 - w * t1dd * s1 - w * t1d * t1d * c1,
@@ -199,12 +212,12 @@ struct Trig {
 
 impl Trig {
     fn new(theta1: f64, theta2: f64) -> Self {
-        let (s1, c1) = theta1.sin_cos();
+        let (s1, c1) = sin_cos(theta1);
         Self::with(s1, c1, theta2)
     }
 
     fn with(s1: f64, c1: f64, theta2: f64) -> Self {
-        let (s2, c2) = theta2.sin_cos();
+        let (s2, c2) = sin_cos(theta2);
         Trig {
             s1,
             c1,

@@ -17,6 +17,7 @@ use nalgebra::{Matrix2, Vector2};
 use crate::body::Body;
 use crate::dynamics::stance::solve2;
 use crate::plan::GRAVITY;
+use crate::trig::sin_cos;
 
 /// Inertial parameters of the swing leg.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -116,8 +117,8 @@ impl SwingModel {
 
     /// Knee and ankle for a hip at `hip`.
     pub fn joints(&self, hip: [f64; 2], q: &Vector2<f64>) -> ([f64; 2], [f64; 2]) {
-        let (s3, c3) = q[0].sin_cos();
-        let (sp, cp) = (q[0] + q[1]).sin_cos();
+        let (s3, c3) = sin_cos(q[0]);
+        let (sp, cp) = sin_cos(q[0] + q[1]);
         let knee = [hip[0] - self.l3 * s3, hip[1] - self.l3 * c3];
         (knee, [knee[0] - self.l4 * sp, knee[1] - self.l4 * cp])
     }
@@ -131,8 +132,8 @@ impl SwingModel {
 
     /// Jacobian of the ankle position (relative to the hip) with respect to (θ3, θ4).
     pub fn ankle_jacobian(&self, q: &Vector2<f64>) -> Matrix2<f64> {
-        let (s3, c3) = q[0].sin_cos();
-        let (sp, cp) = (q[0] + q[1]).sin_cos();
+        let (s3, c3) = sin_cos(q[0]);
+        let (sp, cp) = sin_cos(q[0] + q[1]);
         Matrix2::new(
             -self.l3 * c3 - self.l4 * cp,
             -self.l4 * cp,
@@ -154,8 +155,8 @@ struct Trig {
 
 impl Trig {
     fn new(q: &Vector2<f64>) -> Self {
-        let (s3, c3) = q[0].sin_cos();
-        let (s4, c4) = q[1].sin_cos();
+        let (s3, c3) = sin_cos(q[0]);
+        let (s4, c4) = sin_cos(q[1]);
         Trig {
             s3,
             c3,

@@ -154,7 +154,7 @@ impl Determinants {
         let sign = stance.sign();
         let h = leg.sign() * self.half_width;
         let w = PI / t_step;
-        let (sn, cs) = (PI * tau / t_step).sin_cos();
+        let (sn, cs) = crate::trig::sin_cos(PI * tau / t_step);
         let w2 = w * w;
         // list L, rotation R, lateral displacement D and their rates
         let l = sign * self.list * sn;
@@ -165,8 +165,8 @@ impl Determinants {
         let r2 = -w2 * r;
         let d1 = sign * self.lateral * w * cs;
         let d2 = -w2 * sign * self.lateral * sn;
-        let (sl, cl) = l.sin_cos();
-        let (sr, cr) = r.sin_cos();
+        let (sl, cl) = crate::trig::sin_cos(l);
+        let (sr, cr) = crate::trig::sin_cos(r);
         // x: h cos L sin R
         let ax = h
             * (-cl * sr * (l1 * l1 + r1 * r1) - sl * l2 * sr - 2.0 * sl * l1 * cr * r1
