@@ -1154,7 +1154,7 @@ impl Step {
             let s = ((tau - t.t_ds) / (ANKLE_NEUTRAL * (t1 - t.t_ds))).clamp(0.0, 1.0);
             (
                 self.theta5_off * (1.0 - s),
-                self.theta6_off * 0.5 * (1.0 + (PI * s).cos()),
+                self.theta6_off * 0.5 * (1.0 + crate::trig::sin_cos(PI * s).1),
             )
         } else {
             let s = ((tau - t1) / (t.t_step - t1)).clamp(0.0, 1.0);
@@ -1207,7 +1207,7 @@ impl Step {
         // 0 at heel strike: the foot's mass is in the shank, so this is kinematic only
         let t = self.constraints.timing;
         let s = ((tau - t.t_ds) / t.t_swing).clamp(0.0, 1.0);
-        let floor = self.toe_clearance * (PI * s).sin().powi(2);
+        let floor = self.toe_clearance * crate::trig::sin_cos(PI * s).0.powi(2);
         let (_, foot_points) = foot.clear_pitch(y[0] + y[1] - theta5, ankle, theta6, floor);
         SwingPose {
             phase: sub.name(),
