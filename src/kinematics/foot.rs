@@ -48,15 +48,23 @@ pub struct Foot {
     pub h12: f64,
     /// Metatarsal joint to toe tip.
     pub l13: f64,
+    /// |(l8, l9)| and atan2(l9, l8) (the heel's reach in [`Self::min_pitch_closed_form`]), and
+    /// |(h12, l9)| and atan2(l9, h12) (the metatarsal joint's in
+    /// [`Self::max_pitch_closed_form`]): constants of the foot, computed once.
+    heel_reach: (f64, f64),
+    meta_reach: (f64, f64),
 }
 
 impl Foot {
     pub fn new(body: &Body) -> Self {
+        let (l8, l9, h12) = (body.l8, body.l9, body.ankle_to_metatarsal_horizontal());
         Foot {
-            l8: body.l8,
-            l9: body.l9,
-            h12: body.ankle_to_metatarsal_horizontal(),
+            l8,
+            l9,
+            h12,
             l13: body.l13,
+            heel_reach: (l8.hypot(l9), l9.atan2(l8)),
+            meta_reach: (h12.hypot(l9), l9.atan2(h12)),
         }
     }
 
@@ -94,9 +102,10 @@ impl Foot {
     /// `sin(p + atan2(b, a)) = (ankle_y − floor) / |(a, b)|`; the boundary is the lower of the
     /// two (NaN when neither reaches it).
     fn max_pitch_closed_form(&self, ankle_y: f64, theta6: f64, floor: f64) -> f64 {
-        let reaches = |a: f64, b: f64| ((ankle_y - floor) / a.hypot(b)).asin() - b.atan2(a);
+        let reach = |(r, angle): (f64, f64)| ((ankle_y - floor) / r).asin() - angle;
         let (s6, c6) = sin_cos(theta6);
-        reaches(self.h12, self.l9).min(reaches(self.h12 + self.l13 * c6, self.l9 - self.l13 * s6))
+        let (a, b) = (self.h12 + self.l13 * c6, self.l9 - self.l13 * s6);
+        reach(self.meta_reach).min(reach((a.hypot(b), b.atan2(a))))
     }
 
     /// The smallest pitch (heel up +) that keeps the heel at or above the ground, for an ankle at
@@ -115,7 +124,8 @@ impl Foot {
     /// [`Self::min_pitch`] in closed form: l8 sin p − l9 cos p = r sin(p − β) with
     /// r = |(l8, l9)| and β = atan2(l9, l8), so the heel touches at p = β − asin(ankle_y / r).
     fn min_pitch_closed_form(&self, ankle_y: f64) -> f64 {
-        self.l9.atan2(self.l8) - (ankle_y / self.l8.hypot(self.l9)).asin()
+        let (r, beta) = self.heel_reach;
+        beta - (ankle_y / r).asin()
     }
 
     /// The swing foot's pitch, and its points with the ankle at `ankle`: the rule's pitch when
@@ -193,12 +203,20 @@ const GUESS_SLACK: f64 = 2e-13;
 /// step decided by `ok` (`steer` false) or, when `steer`, by the side of `guess` the midpoint
 /// falls on, and by `ok` only within [`GUESS_SLACK`] of it. Returns the last (good, bad) pair.
 fn halve(ok: impl Fn(f64) -> bool, good: f64, bad: f64, guess: f64, steer: bool) -> (f64, f64) {
-    let good_side = (good - guess).signum();
+    // the side of the guess `ok` holds on, and the window where `ok` decides (NaN: everywhere)
+    let good_below = good < guess;
+    let (below, above) = if steer {
+        (guess - GUESS_SLACK, guess + GUESS_SLACK)
+    } else {
+        (f64::NAN, f64::NAN)
+    };
     let (mut good, mut bad) = (good, bad);
     while (bad - good).abs() > 1e-12 {
         let m = 0.5 * (good + bad);
-        let holds = if steer && (m - guess).abs() > GUESS_SLACK {
-            (m - guess).signum() == good_side
+        let holds = if m < below {
+            good_below
+        } else if m > above {
+            !good_below
         } else {
             ok(m)
         };
