@@ -690,7 +690,7 @@ const STEP0: [[f64; 3]; 7] =
     // step 0
     [
         [6.70323e-1, 2.39256e0, 1.40519e0], // τ1: largest residual 1.39e-1
-        [-2.63332e-3, 1.93621e-2, -2.83754e-3], // p: largest residual 1.82e-3
+        [-2.63333e-3, 1.93621e-2, -2.83755e-3], // p: largest residual 1.82e-3
         [5.29451e-1, -6.38350e0, 7.52252e0], // A: largest residual 2.30e-1
         [1.85473e-1, -2.96980e0, 2.21336e0], // B: largest residual 1.85e-1
         [-2.20515e-1, 8.78326e-1, -4.96680e-1], // C: largest residual 3.38e-2
@@ -701,31 +701,34 @@ const CHANGES: [[[f64; 3]; 7]; 2] = [
     // step 0 to 1
     [
         [-8.64023e-1, -3.27601e0, -2.13070e-2], // τ1: largest residual 6.94e-2
-        [1.41969e-4, -1.24931e-3, 1.07462e-3],  // p: largest residual 3.90e-5
-        [-1.14408e0, 6.22081e0, -1.20062e1],    // A: largest residual 1.80e-1
-        [-1.34423e-1, 8.22115e-1, -1.59233e0],  // B: largest residual 4.90e-2
-        [3.80057e-2, -2.19775e-1, 4.03468e-1],  // C: largest residual 6.89e-3
-        [-4.66791e-2, 5.67657e-2, -3.41108e-1], // D0: largest residual 2.83e-2
-        [-6.31450e-2, 7.32517e-1, -6.29477e-1], // D1: largest residual 5.75e-2
+        [1.41973e-4, -1.24934e-3, 1.07465e-3],  // p: largest residual 3.90e-5
+        [-1.14408e0, 6.22082e0, -1.20062e1],    // A: largest residual 1.80e-1
+        [-1.34424e-1, 8.22120e-1, -1.59233e0],  // B: largest residual 4.90e-2
+        [3.80058e-2, -2.19775e-1, 4.03468e-1],  // C: largest residual 6.89e-3
+        [-4.66796e-2, 5.67689e-2, -3.41112e-1], // D0: largest residual 2.83e-2
+        [-6.31439e-2, 7.32511e-1, -6.29469e-1], // D1: largest residual 5.75e-2
     ],
     // step 1 to 2
     [
-        [1.98146e-2, 1.10343e0, -9.27364e-1], // τ1: largest residual 2.33e-2
-        [-2.34653e-5, 2.06188e-4, -2.10554e-4], // p: largest residual 2.72e-6
-        [4.87142e-2, -3.56769e-1, 3.32799e-1], // A: largest residual 3.81e-2
-        [1.94269e-2, -1.31326e-1, 1.24820e-1], // B: largest residual 9.97e-3
-        [-3.12396e-3, 1.65602e-2, -1.19483e-2], // C: largest residual 1.78e-3
-        [9.78939e-3, -5.77625e-2, 6.57432e-2], // D0: largest residual 3.13e-3
-        [-2.57000e-3, 1.62981e-2, -5.12563e-2], // D1: largest residual 4.26e-3
+        [1.98147e-2, 1.10343e0, -9.27364e-1], // τ1: largest residual 2.33e-2
+        [-2.34550e-5, 2.06148e-4, -2.10515e-4], // p: largest residual 2.72e-6
+        [4.87157e-2, -3.56778e-1, 3.32810e-1], // A: largest residual 3.81e-2
+        [1.94281e-2, -1.31333e-1, 1.24829e-1], // B: largest residual 9.97e-3
+        [-3.12398e-3, 1.65603e-2, -1.19484e-2], // C: largest residual 1.78e-3
+        [9.78982e-3, -5.77650e-2, 6.57465e-2], // D0: largest residual 3.13e-3
+        [-2.57073e-3, 1.63024e-2, -5.12623e-2], // D1: largest residual 4.26e-3
     ],
 ];
 /// [ours] Cold Jacobians (`J[i][k]` = ∂rᵢ/∂xₖ, in body units): the default walk's (1.4 m/s,
 /// H = 1.8 m, M = 80 kg) at the end of its step-0 solves, so that step 0 needs no difference
-/// trials; swing2's residual slope. Generated with [`STEP0`].
-const COLD_STANCE: [[f64; 2]; 2] = [[1.36525e-1, -3.18460e-1], [6.03744e-2, 7.98980e-1]];
-const COLD_SWING1: [[f64; 2]; 2] = [[4.02860e-1, -2.96273e-1], [2.25922e-1, 4.53294e-1]];
-const COLD_SWING2_SLOPE: f64 = 3.21372e-1;
-const COLD_SWING3: [[f64; 2]; 2] = [[4.76518e-2, 1.59213e-2], [-4.89915e-1, -2.46437e-1]];
+/// trials; swing2's residual slope. Generated with [`STEP0`]. A Broyden end state depends on
+/// the Jacobian it started from (these): rerun, the generator moves them by ≲ 0.3 % (six reruns
+/// after the scaled Broyden update, each from the last one's output: no fixed point below that),
+/// the fits by ≲ 1e-5 relative (solutions within the shooting tolerance).
+const COLD_STANCE: [[f64; 2]; 2] = [[1.37493e-1, -3.23551e-1], [6.48211e-2, 7.84371e-1]];
+const COLD_SWING1: [[f64; 2]; 2] = [[4.04329e-1, -3.01671e-1], [2.24350e-1, 4.50959e-1]];
+const COLD_SWING2_SLOPE: f64 = 3.21369e-1;
+const COLD_SWING3: [[f64; 2]; 2] = [[4.76546e-2, 1.59220e-2], [-4.89997e-1, -2.46457e-1]];
 
 fn quadratic(c: [f64; 3], x: f64) -> f64 {
     c[0] + x * (c[1] + x * c[2])
@@ -1154,7 +1157,7 @@ impl Step {
             let s = ((tau - t.t_ds) / (ANKLE_NEUTRAL * (t1 - t.t_ds))).clamp(0.0, 1.0);
             (
                 self.theta5_off * (1.0 - s),
-                self.theta6_off * 0.5 * (1.0 + (PI * s).cos()),
+                self.theta6_off * 0.5 * (1.0 + crate::trig::sin_cos(PI * s).1),
             )
         } else {
             let s = ((tau - t1) / (t.t_step - t1)).clamp(0.0, 1.0);
@@ -1207,7 +1210,7 @@ impl Step {
         // 0 at heel strike: the foot's mass is in the shank, so this is kinematic only
         let t = self.constraints.timing;
         let s = ((tau - t.t_ds) / t.t_swing).clamp(0.0, 1.0);
-        let floor = self.toe_clearance * (PI * s).sin().powi(2);
+        let floor = self.toe_clearance * crate::trig::sin_cos(PI * s).0.powi(2);
         let (_, foot_points) = foot.clear_pitch(y[0] + y[1] - theta5, ankle, theta6, floor);
         SwingPose {
             phase: sub.name(),

@@ -914,7 +914,15 @@ where
                     Some(rt) => {
                         let dx = trial - self.x;
                         if let Some(j) = self.jacobian.as_mut() {
-                            *j += (rt - self.r - *j * dx) * dx.transpose() / dx.norm_squared();
+                            // Broyden's update in unknowns scaled by the residual they move
+                            // (the Jacobian's column norms): scale-invariant, where the plain
+                            // update in (τ1 in N m, p in m) corrects the τ1 column only
+                            let w = Vector2::new(
+                                j.column(0).norm_squared(),
+                                j.column(1).norm_squared(),
+                            );
+                            let wdx = w.component_mul(&dx);
+                            *j += (rt - self.r - *j * dx) * wdx.transpose() / dx.dot(&wdx);
                             self.fresh = false;
                         }
                         if rt.norm() <= (1.0 - 1e-4 * lambda) * self.r.norm() {
@@ -1238,6 +1246,48 @@ mod tests {
         assert!((x - cubic_root(5.1)).abs() < 1e-9);
         assert!(warm.iterations <= 4, "{warm:?}");
         assert!(warm.iterations < cold2.iterations);
+    }
+
+    /// Broyden's update in unknowns scaled by the Jacobian's column norms: rescaling the
+    /// unknowns (by powers of two, exact in floating point) changes neither the trials nor the
+    /// solution, as it would with the plain update (the stance's τ1 in N m and p in m).
+    #[test]
+    fn broyden_is_invariant_under_rescaled_unknowns() {
+        let r = |x: Vector2<f64>| {
+            Vector2::new(
+                x[0] + 0.3 * x[1] + 0.2 * x[0] * x[1] - 1.0,
+                0.5 * x[0] - x[1] + 0.1 * x[1] * x[1] + 0.3,
+            )
+        };
+        // the exact Jacobian at the start, 20 % off in its second column
+        let x0 = Vector2::new(0.5, 0.5);
+        let j0 = Matrix2::new(
+            1.0 + 0.2 * x0[1],
+            1.2 * (0.3 + 0.2 * x0[0]),
+            0.5,
+            1.2 * (-1.0 + 0.2 * x0[1]),
+        );
+        let solve = |scale: Vector2<f64>| {
+            let start = Start2::Warm(Memory2 {
+                x: x0.component_div(&scale),
+                jacobian: j0 * Matrix2::from_diagonal(&scale),
+                earlier: [Vector2::repeat(f64::NAN); 2],
+            });
+            let (y, rep, _) = solve2(
+                |y: Vector2<f64>| Ok(r(y.component_mul(&scale))),
+                start,
+                &opts(),
+            )
+            .unwrap();
+            (y.component_mul(&scale), rep)
+        };
+        let (x, rep) = solve(Vector2::new(1.0, 1.0));
+        assert!(rep.converged && r(x).amax() <= 1e-8, "{rep:?}");
+        for scale in [[1024.0, 1.0 / 1024.0], [1.0 / 64.0, 4096.0]] {
+            let (xs, reps) = solve(Vector2::from(scale));
+            assert_eq!(reps.iterations, rep.iterations, "{scale:?}");
+            assert_eq!(xs, x, "{scale:?}");
+        }
     }
 
     #[test]

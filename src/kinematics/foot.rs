@@ -2,10 +2,11 @@
 //! l8, l9, l12, l13), and its two rolling rules (spec §7): about the metatarsal joint M while the
 //! pitch is below the metatarsal limit θ6_max, then about the toe tip T.
 use crate::body::Body;
+use crate::trig::sin_cos;
 
 /// Rotate a foot-frame vector (x forward, y up, foot flat) by the pitch p (heel up +).
 pub fn pitch(v: [f64; 2], p: f64) -> [f64; 2] {
-    rotate(v, p.sin_cos())
+    rotate(v, sin_cos(p))
 }
 
 /// [`pitch`] by the pitch whose sine and cosine are (s, c).
@@ -47,21 +48,29 @@ pub struct Foot {
     pub h12: f64,
     /// Metatarsal joint to toe tip.
     pub l13: f64,
+    /// |(l8, l9)| and atan2(l9, l8) (the heel's reach in [`Self::min_pitch_closed_form`]), and
+    /// |(h12, l9)| and atan2(l9, h12) (the metatarsal joint's in
+    /// [`Self::max_pitch_closed_form`]): constants of the foot, computed once.
+    heel_reach: (f64, f64),
+    meta_reach: (f64, f64),
 }
 
 impl Foot {
     pub fn new(body: &Body) -> Self {
+        let (l8, l9, h12) = (body.l8, body.l9, body.ankle_to_metatarsal_horizontal());
         Foot {
-            l8: body.l8,
-            l9: body.l9,
-            h12: body.ankle_to_metatarsal_horizontal(),
+            l8,
+            l9,
+            h12,
             l13: body.l13,
+            heel_reach: (l8.hypot(l9), l9.atan2(l8)),
+            meta_reach: (h12.hypot(l9), l9.atan2(h12)),
         }
     }
 
     /// Foot points for an ankle at `ankle`, foot pitch `p` (heel up +) and toe dorsiflexion θ6.
     pub fn points(&self, ankle: [f64; 2], p: f64, theta6: f64) -> FootPoints {
-        let sc = p.sin_cos();
+        let sc = sin_cos(p);
         let meta = add(ankle, rotate([self.h12, -self.l9], sc));
         FootPoints {
             heel: add(ankle, rotate([-self.l8, -self.l9], sc)),
@@ -77,7 +86,10 @@ impl Foot {
     pub fn max_pitch(&self, ankle_y: f64, theta6: f64, floor: f64) -> f64 {
         let meta = |p: f64| ankle_y + pitch([self.h12, -self.l9], p)[1];
         boundary(
-            |p| meta(p).min(meta(p) + pitch([self.l13, 0.0], p - theta6)[1]) >= floor,
+            |p| {
+                let m = meta(p);
+                m.min(m + pitch([self.l13, 0.0], p - theta6)[1]) >= floor
+            },
             -std::f64::consts::FRAC_PI_2,
             true,
             self.max_pitch_closed_form(ankle_y, theta6, floor),
@@ -90,9 +102,10 @@ impl Foot {
     /// `sin(p + atan2(b, a)) = (ankle_y − floor) / |(a, b)|`; the boundary is the lower of the
     /// two (NaN when neither reaches it).
     fn max_pitch_closed_form(&self, ankle_y: f64, theta6: f64, floor: f64) -> f64 {
-        let reaches = |a: f64, b: f64| ((ankle_y - floor) / a.hypot(b)).asin() - b.atan2(a);
-        let (s6, c6) = theta6.sin_cos();
-        reaches(self.h12, self.l9).min(reaches(self.h12 + self.l13 * c6, self.l9 - self.l13 * s6))
+        let reach = |(r, angle): (f64, f64)| ((ankle_y - floor) / r).asin() - angle;
+        let (s6, c6) = sin_cos(theta6);
+        let (a, b) = (self.h12 + self.l13 * c6, self.l9 - self.l13 * s6);
+        reach(self.meta_reach).min(reach((a.hypot(b), b.atan2(a))))
     }
 
     /// The smallest pitch (heel up +) that keeps the heel at or above the ground, for an ankle at
@@ -111,7 +124,8 @@ impl Foot {
     /// [`Self::min_pitch`] in closed form: l8 sin p − l9 cos p = r sin(p − β) with
     /// r = |(l8, l9)| and β = atan2(l9, l8), so the heel touches at p = β − asin(ankle_y / r).
     fn min_pitch_closed_form(&self, ankle_y: f64) -> f64 {
-        self.l9.atan2(self.l8) - (ankle_y / self.l8.hypot(self.l9)).asin()
+        let (r, beta) = self.heel_reach;
+        beta - (ankle_y / r).asin()
     }
 
     /// The swing foot's pitch, and its points with the ankle at `ankle`: the rule's pitch when
@@ -156,10 +170,19 @@ impl Foot {
 /// The pitch on [lo, π/3] where `ok` changes, by [`bisect`] (its closed form `guess`, NaN for
 /// none): `ok` holds below the boundary when `below` (the largest good pitch is returned),
 /// above it otherwise (the smallest). Returns the end of the range when `ok` holds, or fails,
-/// everywhere.
+/// everywhere. `ok` changes at most once on the range (the heights it compares are monotonic
+/// there), so when the guess lies inside the range and the steered bisection's own check
+/// passes (`ok` at its good end, not at its bad end), the range's ends need no evaluation:
+/// `ok` holds at the good one and fails at the bad one.
 fn boundary(ok: impl Fn(f64) -> bool, lo: f64, below: bool, guess: f64) -> f64 {
     let hi = std::f64::consts::FRAC_PI_3;
     let (good, bad) = if below { (lo, hi) } else { (hi, lo) };
+    if guess > lo
+        && guess < hi
+        && let Some(p) = steered(&ok, good, bad, guess)
+    {
+        return p;
+    }
     if ok(bad) {
         return bad;
     }
@@ -170,9 +193,47 @@ fn boundary(ok: impl Fn(f64) -> bool, lo: f64, below: bool, guess: f64) -> f64 {
 }
 
 /// Within this distance (rad) of a closed-form boundary [`bisect`] evaluates its predicate: the
-/// closed forms are exact to ≈ 1e-15 rad, and 1e-11 rad moves a foot point by ≈ 1e-12 m, far
-/// more than the round-off of the heights and distances the predicates compare.
-const GUESS_SLACK: f64 = 1e-11;
+/// closed forms are exact to ≈ 1e-15 rad, and 2e-13 rad moves a foot point by ≈ 2e-14 m, still
+/// far more than the round-off of the heights and distances the predicates compare (≈ 1e-17 m).
+/// The bisection stops at 1e-12 rad, so its last midpoints fall within it ≈ 0.3 times a call
+/// (1e-11 before: ≈ 5 evaluations of the predicate a call, two `sin_cos` each).
+const GUESS_SLACK: f64 = 2e-13;
+
+/// Bisection to 1e-12 rad between `good`, where `ok` holds, and `bad`, where it fails, each
+/// step decided by `ok` (`steer` false) or, when `steer`, by the side of `guess` the midpoint
+/// falls on, and by `ok` only within [`GUESS_SLACK`] of it. Returns the last (good, bad) pair.
+fn halve(ok: impl Fn(f64) -> bool, good: f64, bad: f64, guess: f64, steer: bool) -> (f64, f64) {
+    // the side of the guess `ok` holds on, and the window where `ok` decides (NaN: everywhere)
+    let good_below = good < guess;
+    let (below, above) = if steer {
+        (guess - GUESS_SLACK, guess + GUESS_SLACK)
+    } else {
+        (f64::NAN, f64::NAN)
+    };
+    let (mut good, mut bad) = (good, bad);
+    while (bad - good).abs() > 1e-12 {
+        let m = 0.5 * (good + bad);
+        let holds = if m < below {
+            good_below
+        } else if m > above {
+            !good_below
+        } else {
+            ok(m)
+        };
+        if holds { good = m } else { bad = m }
+    }
+    (good, bad)
+}
+
+/// The steered bisection ([`halve`]) when its ends check (`ok` at the last good point, not at
+/// the last bad one): the end of bisecting `ok` itself when `ok` changes once on the interval.
+fn steered(ok: impl Fn(f64) -> bool, good: f64, bad: f64, guess: f64) -> Option<f64> {
+    if guess.is_nan() {
+        return None;
+    }
+    let (good, bad) = halve(&ok, good, bad, guess, true);
+    (ok(good) && !ok(bad)).then_some(good)
+}
 
 /// Bisection to 1e-12 rad between `good`, where `ok` holds, and `bad`, where it fails; returns
 /// the last good point. Each step is decided by the side of `guess` (the boundary in closed
@@ -181,24 +242,7 @@ const GUESS_SLACK: f64 = 1e-11;
 /// a few evaluations instead of ≈ 40. The ends are checked (`ok(good)`, not `ok(bad)`): a guess
 /// that is off, or NaN, bisects `ok` itself.
 pub(crate) fn bisect(ok: impl Fn(f64) -> bool, good: f64, bad: f64, guess: f64) -> f64 {
-    let good_side = (good - guess).signum();
-    let run = |steer: bool| {
-        let (mut good, mut bad) = (good, bad);
-        while (bad - good).abs() > 1e-12 {
-            let m = 0.5 * (good + bad);
-            let holds = if steer && (m - guess).abs() > GUESS_SLACK {
-                (m - guess).signum() == good_side
-            } else {
-                ok(m)
-            };
-            if holds { good = m } else { bad = m }
-        }
-        (good, bad)
-    };
-    match run(!guess.is_nan()) {
-        (good, bad) if ok(good) && !ok(bad) => good,
-        _ => run(false).0,
-    }
+    steered(&ok, good, bad, guess).unwrap_or_else(|| halve(&ok, good, bad, guess, false).0)
 }
 
 #[cfg(test)]
@@ -272,8 +316,8 @@ mod tests {
         let (lo_min, hi) = (-(f.l8 / f.l9).atan(), std::f64::consts::FRAC_PI_3);
         let lo_max = -std::f64::consts::FRAC_PI_2;
         let (mut steered_min, mut steered_max) = (0, 0);
-        for i in 0..=40 {
-            let ankle_y = 0.02 + 0.005 * i as f64;
+        for i in 0..=400 {
+            let ankle_y = 0.02 + 0.0005 * i as f64;
             let heel_ok = |p: f64| ankle_y + pitch([-f.l8, -f.l9], p)[1] >= 0.0;
             if !heel_ok(lo_min) && heel_ok(hi) {
                 let plain = bisect(heel_ok, hi, lo_min, f64::NAN);
@@ -281,8 +325,8 @@ mod tests {
                 assert_eq!(f.min_pitch(ankle_y), plain);
                 steered_min += 1;
             }
-            for theta6 in [0.0, 0.3, 0.6, 1.0] {
-                for floor in [0.0, 0.01, 0.03] {
+            for theta6 in [0.0, 0.15, 0.3, 0.6, 1.0] {
+                for floor in [0.0, 0.005, 0.01, 0.03] {
                     let meta = |p: f64| ankle_y + pitch([f.h12, -f.l9], p)[1];
                     let ok =
                         |p: f64| meta(p).min(meta(p) + pitch([f.l13, 0.0], p - theta6)[1]) >= floor;
@@ -293,13 +337,29 @@ mod tests {
                         assert_eq!(f.max_pitch(ankle_y, theta6, floor), plain);
                         steered_max += 1;
                     }
+                    let reference = plain_boundary(ok, lo_max, true);
+                    assert_eq!(f.max_pitch(ankle_y, theta6, floor), reference);
                 }
             }
+            assert_eq!(f.min_pitch(ankle_y), plain_boundary(heel_ok, lo_min, false));
         }
         assert!(
             steered_min > 5 && steered_max > 50,
             "{steered_min} {steered_max}"
         );
+    }
+
+    /// [`boundary`] without a guess: the range's ends checked, then plain bisection.
+    fn plain_boundary(ok: impl Fn(f64) -> bool, lo: f64, below: bool) -> f64 {
+        let hi = std::f64::consts::FRAC_PI_3;
+        let (good, bad) = if below { (lo, hi) } else { (hi, lo) };
+        if ok(bad) {
+            bad
+        } else if !ok(good) {
+            good
+        } else {
+            bisect(ok, good, bad, f64::NAN)
+        }
     }
 
     /// Steered by an exact guess, the bisection evaluates its predicate a few times only and

@@ -105,7 +105,7 @@ impl Determinants {
         // differences there see the true derivatives
         let s = tau / t_step;
         let w = PI / t_step;
-        let (sn, cs) = (PI * s).sin_cos();
+        let (sn, cs) = crate::trig::sin_cos(PI * s);
         PelvisMotion {
             rotation: sign * self.rotation * cs,
             list: sign * self.list * sn,
@@ -121,8 +121,8 @@ impl Determinants {
     /// R_y(rot) R_x(−list) (0, 0, ±l0/2).
     pub fn hip_offset(&self, side: Side, p: &PelvisMotion) -> [f64; 3] {
         let h = side.sign() * self.half_width;
-        let (sl, cl) = p.list.sin_cos();
-        let (sr, cr) = p.rotation.sin_cos();
+        let (sl, cl) = crate::trig::sin_cos(p.list);
+        let (sr, cr) = crate::trig::sin_cos(p.rotation);
         [h * cl * sr, h * sl, h * cl * cr]
     }
 

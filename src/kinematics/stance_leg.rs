@@ -114,16 +114,12 @@ pub fn leg_points(
     l4: f64,
 ) -> ([f64; 2], [f64; 2]) {
     let shank = theta3 + theta4;
-    let drop = l3 * theta3.cos() + l4 * shank.cos();
+    let (s3, c3) = crate::trig::sin_cos(theta3);
+    let (ss, cs) = crate::trig::sin_cos(shank);
+    let drop = l3 * c3 + l4 * cs;
     let cos_phi = (1.0 - (dz / drop).powi(2)).max(0.0).sqrt();
-    let knee = [
-        hip[0] - l3 * theta3.sin(),
-        hip[1] - l3 * theta3.cos() * cos_phi,
-    ];
-    let ankle = [
-        knee[0] - l4 * shank.sin(),
-        knee[1] - l4 * shank.cos() * cos_phi,
-    ];
+    let knee = [hip[0] - l3 * s3, hip[1] - l3 * c3 * cos_phi];
+    let ankle = [knee[0] - l4 * ss, knee[1] - l4 * cs * cos_phi];
     (knee, ankle)
 }
 
