@@ -95,6 +95,8 @@ pub struct Walker {
     index: usize,
     /// Right-hand-side evaluations of the current step, over all trials.
     evaluations: std::cell::Cell<u64>,
+    /// Start the first steps' solves from the fitted guesses ([`STEP0`]).
+    startup_guesses: bool,
 }
 
 impl Walker {
@@ -138,7 +140,16 @@ impl Walker {
             x_ankle: 0.0,
             index: 0,
             evaluations: std::cell::Cell::new(0),
+            startup_guesses: true,
         }
+    }
+
+    /// The same walker with every solve started plainly (body-scaled constants, zero torques,
+    /// difference Jacobians) instead of from the fitted start-up guesses: what
+    /// `examples/startup_fit.rs` fits, so that its output does not depend on its last output.
+    pub fn without_startup_guesses(mut self) -> Self {
+        self.startup_guesses = false;
+        self
     }
 
     fn stance_setup(&self, prev: &StepConstraints, c: &StepConstraints) -> StanceSetup {
@@ -221,9 +232,13 @@ impl Walker {
 
         let (torque, l1) = (self.body.mass * self.body.l1, self.body.l1);
         let froude = gait.velocity / (crate::plan::GRAVITY * l1).sqrt();
-        let startup = |memory, unknowns, x_unit, cold, plain| {
-            startup(memory, index, froude, unknowns, x_unit, cold, plain)
-        };
+        let guesses = self.startup_guesses;
+        let startup =
+            |memory: Option<Memory2>, unknowns, x_unit, cold, plain| match (guesses, memory) {
+                (false, None) => (plain, None),
+                (false, Some(m)) => (Start2::Warm(m), None),
+                (true, _) => startup(memory, index, froude, unknowns, x_unit, cold, plain),
+            };
         // the plain cold starts (the fallbacks): the stance at the default walk's step-0
         // solution of before the knee's cubic, body-scaled; the swings from zero torques
         let (start, fallback) = startup(
@@ -464,7 +479,13 @@ impl Walker {
                 &sw,
                 {
                     let fit = |c: &[[f64; 3]; 7]| quadratic(c[4], froude) * torque;
+                    let plain = Start1::Cold {
+                        x0: 0.0,
+                        dx: 0.1 * torque,
+                    };
                     match self.swing2_memory {
+                        Some(m) if !guesses => (Start1::Warm(m), None),
+                        None if !guesses => (plain, None),
                         Some(mut m) => {
                             let plain = m;
                             startup_moves(index, &mut m.x, &mut m.earlier, f64::NAN, |i| {
@@ -479,10 +500,7 @@ impl Walker {
                                 slope: COLD_SWING2_SLOPE / torque,
                                 earlier: [f64::NAN; 2],
                             }),
-                            Some(Start1::Cold {
-                                x0: 0.0,
-                                dx: 0.1 * torque,
-                            }),
+                            Some(plain),
                         ),
                     }
                 },
@@ -689,46 +707,44 @@ impl Walker {
 const STEP0: [[f64; 3]; 7] =
     // step 0
     [
-        [6.70323e-1, 2.39256e0, 1.40519e0], // τ1: largest residual 1.39e-1
+        [6.70323e-1, 2.39256e0, 1.40518e0], // τ1: largest residual 1.39e-1
         [-2.63333e-3, 1.93621e-2, -2.83755e-3], // p: largest residual 1.82e-3
-        [5.29451e-1, -6.38350e0, 7.52252e0], // A: largest residual 2.30e-1
-        [1.85473e-1, -2.96980e0, 2.21336e0], // B: largest residual 1.85e-1
+        [5.29452e-1, -6.38351e0, 7.52252e0], // A: largest residual 2.30e-1
+        [1.85474e-1, -2.96980e0, 2.21337e0], // B: largest residual 1.85e-1
         [-2.20515e-1, 8.78326e-1, -4.96680e-1], // C: largest residual 3.38e-2
-        [-1.11276e0, -8.35584e-1, 3.46651e0], // D0: largest residual 2.32e-1
+        [-1.11276e0, -8.35586e-1, 3.46651e0], // D0: largest residual 2.32e-1
         [3.47678e0, -4.07954e0, -3.60124e0], // D1: largest residual 5.51e-1
     ];
 const CHANGES: [[[f64; 3]; 7]; 2] = [
     // step 0 to 1
     [
-        [-8.64023e-1, -3.27601e0, -2.13070e-2], // τ1: largest residual 6.94e-2
-        [1.41973e-4, -1.24934e-3, 1.07465e-3],  // p: largest residual 3.90e-5
+        [-8.64023e-1, -3.27601e0, -2.13066e-2], // τ1: largest residual 6.94e-2
+        [1.41976e-4, -1.24935e-3, 1.07465e-3],  // p: largest residual 3.90e-5
         [-1.14408e0, 6.22082e0, -1.20062e1],    // A: largest residual 1.80e-1
-        [-1.34424e-1, 8.22120e-1, -1.59233e0],  // B: largest residual 4.90e-2
+        [-1.34425e-1, 8.22122e-1, -1.59234e0],  // B: largest residual 4.90e-2
         [3.80058e-2, -2.19775e-1, 4.03468e-1],  // C: largest residual 6.89e-3
-        [-4.66796e-2, 5.67689e-2, -3.41112e-1], // D0: largest residual 2.83e-2
-        [-6.31439e-2, 7.32511e-1, -6.29469e-1], // D1: largest residual 5.75e-2
+        [-4.66799e-2, 5.67704e-2, -3.41113e-1], // D0: largest residual 2.83e-2
+        [-6.31429e-2, 7.32506e-1, -6.29464e-1], // D1: largest residual 5.75e-2
     ],
     // step 1 to 2
     [
-        [1.98147e-2, 1.10343e0, -9.27364e-1], // τ1: largest residual 2.33e-2
-        [-2.34550e-5, 2.06148e-4, -2.10515e-4], // p: largest residual 2.72e-6
-        [4.87157e-2, -3.56778e-1, 3.32810e-1], // A: largest residual 3.81e-2
-        [1.94281e-2, -1.31333e-1, 1.24829e-1], // B: largest residual 9.97e-3
-        [-3.12398e-3, 1.65603e-2, -1.19484e-2], // C: largest residual 1.78e-3
-        [9.78982e-3, -5.77650e-2, 6.57465e-2], // D0: largest residual 3.13e-3
-        [-2.57073e-3, 1.63024e-2, -5.12623e-2], // D1: largest residual 4.26e-3
+        [1.98147e-2, 1.10343e0, -9.27363e-1], // τ1: largest residual 2.33e-2
+        [-2.34703e-5, 2.06214e-4, -2.10579e-4], // p: largest residual 2.73e-6
+        [4.87158e-2, -3.56778e-1, 3.32811e-1], // A: largest residual 3.81e-2
+        [1.94283e-2, -1.31334e-1, 1.24830e-1], // B: largest residual 9.97e-3
+        [-3.12401e-3, 1.65605e-2, -1.19486e-2], // C: largest residual 1.78e-3
+        [9.79011e-3, -5.77665e-2, 6.57478e-2], // D0: largest residual 3.13e-3
+        [-2.57167e-3, 1.63072e-2, -5.12670e-2], // D1: largest residual 4.26e-3
     ],
 ];
 /// [ours] Cold Jacobians (`J[i][k]` = ∂rᵢ/∂xₖ, in body units): the default walk's (1.4 m/s,
 /// H = 1.8 m, M = 80 kg) at the end of its step-0 solves, so that step 0 needs no difference
-/// trials; swing2's residual slope. Generated with [`STEP0`]. A Broyden end state depends on
-/// the Jacobian it started from (these): rerun, the generator moves them by ≲ 0.3 % (six reruns
-/// after the scaled Broyden update, each from the last one's output: no fixed point below that),
-/// the fits by ≲ 1e-5 relative (solutions within the shooting tolerance).
-const COLD_STANCE: [[f64; 2]; 2] = [[1.37493e-1, -3.23551e-1], [6.48211e-2, 7.84371e-1]];
-const COLD_SWING1: [[f64; 2]; 2] = [[4.04329e-1, -3.01671e-1], [2.24350e-1, 4.50959e-1]];
-const COLD_SWING2_SLOPE: f64 = 3.21369e-1;
-const COLD_SWING3: [[f64; 2]; 2] = [[4.76546e-2, 1.59220e-2], [-4.89997e-1, -2.46457e-1]];
+/// trials; swing2's residual slope. Generated with [`STEP0`], from walks started plainly
+/// ([`Walker::without_startup_guesses`]), so a rerun reproduces them.
+const COLD_STANCE: [[f64; 2]; 2] = [[1.38250e-1, -3.23783e-1], [6.25177e-2, 7.85186e-1]];
+const COLD_SWING1: [[f64; 2]; 2] = [[4.01924e-1, -2.98886e-1], [2.24182e-1, 4.55209e-1]];
+const COLD_SWING2_SLOPE: f64 = 3.21372e-1;
+const COLD_SWING3: [[f64; 2]; 2] = [[4.76523e-2, 1.59215e-2], [-4.89923e-1, -2.46439e-1]];
 
 fn quadratic(c: [f64; 3], x: f64) -> f64 {
     c[0] + x * (c[1] + x * c[2])
