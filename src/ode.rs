@@ -13,7 +13,10 @@ use nalgebra::SVector;
 /// sequence per (sub)phase: the shooting trials follow a frozen mesh ([`integrate_on`]), so the
 /// tolerance is set by accuracy alone. At 1e-8 the converged magnitudes, integrated again at
 /// 1e-12, meet the step's end conditions to ≤ 1.2e-7 over the grid (`examples/evals.rs`; 6.4e-7
-/// at 1e-7, too close to the 1e-6 promise); docs/engine.md has the table.
+/// at 1e-7, too close to the 1e-6 promise; measured again after the swing1 knee damper and the
+/// start-up guesses: 5.1e-8 stance, 1.3e-8 swing3 at 1e-8; at 1e-7 the swing's net work also
+/// misses its energy balance, `tests/work.rs`, by 8e-4 J against the 7.9e-4 J bound);
+/// docs/engine.md has the table.
 pub const TOLERANCE: f64 = 1e-8;
 
 /// How precisely event times are located (s).
