@@ -28,6 +28,9 @@ use crate::work;
 /// 1e-7 m), and at 1e-7 the end-state error of ≈ 1e-7 m brought the grid's highest heel contact
 /// velocity to −0.02 m/s and one walk to +1e-8 (docs/engine.md).
 pub const SOLVE_TOLERANCE: f64 = 1e-8;
+
+/// The least mid-swing toe clearance a step may have (m): the feet's placement precision.
+pub const TOE_CLEARANCE_MIN: f64 = 1e-6;
 /// Trial integrations allowed per solve.
 pub const MAX_ITERATIONS: usize = 25;
 /// Fraction of swing1 at which the swing ankle is back at neutral.
@@ -1364,7 +1367,10 @@ impl Step {
                 ),
             );
         }
-        if r.min_toe_clearance <= 0.0 {
+        // a positive clearance, by more than the 1e-6 m to which the feet are placed (spec §5):
+        // where the toe-clearance rule cannot lift the toe it rests on the ground, at ±1e-16 m
+        // of rounding, and that walk must not pass or fail by the sign of the rounding
+        if r.min_toe_clearance <= TOE_CLEARANCE_MIN {
             return fail(
                 "swing",
                 format!(

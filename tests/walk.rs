@@ -58,7 +58,7 @@ fn check_step(s: &StepReport, label: &str) {
         -s.min_foot_height
     );
     assert!(
-        s.min_toe_clearance > 0.0,
+        s.min_toe_clearance > klaw::walk::TOE_CLEARANCE_MIN,
         "{who}: no toe clearance in mid swing"
     );
     assert!(
