@@ -490,11 +490,12 @@ impl Walker {
                         Some(m) if !guesses => (Start1::Warm(m), None),
                         None if !guesses => (plain, None),
                         Some(mut m) => {
-                            let plain = m;
+                            let unmoved = m;
                             startup_moves(index, &mut m.x, &mut m.earlier, f64::NAN, |i| {
                                 fit(&CHANGES[i - 1])
                             });
-                            let fallback = (1..=2).contains(&index).then_some(Start1::Warm(plain));
+                            let fallback =
+                                (1..=2).contains(&index).then_some(Start1::Warm(unmoved));
                             (Start1::Warm(m), fallback)
                         }
                         None => (
