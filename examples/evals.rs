@@ -106,32 +106,19 @@ fn main() {
 
     // the same for swing1 (hip magnitude A)
     use klaw::control::stance::HipPath;
-    use klaw::control::swing::{self, Subphase, SwingSetup, SwingTrial};
+    use klaw::control::swing::{Subphase, SwingSetup, SwingTrial};
     let t = s.constraints.timing;
     let path = HipPath::new(&s.stance, &s.stance_setup, t.t_ds, t.t_step, &|tau| {
         s.swing_offset(tau)
     });
-    let setup = SwingSetup {
-        model: klaw::dynamics::SwingModel::new(&body),
-        hip_path: &path,
-        hip_vy_end: 0.0,
-        t_off: t.t_ds,
-        t1: t.t_ds + swing::SWING1_END * t.t_swing,
-        t2: t.t_ds + swing::SWING2_END * t.t_swing,
-        t_end: t.t_step,
-        theta3_target: s.constraints.theta3,
-        kappa_hs: s.constraints.theta4,
-        heel_ahead: 0.0,
-        landing_velocity: 0.0,
-        d_swing1: swing::knee_damper(
-            &klaw::dynamics::SwingModel::new(&body),
-            attrs.servo_damping_ratio,
-        ),
-        k_k: 0.0,
-        d_k: 0.0,
-        k_h: 0.0,
-        d_h: 0.0,
-    };
+    // swing1 reads the timing, θ3*, the hip and its knee damper from the setup
+    let setup = SwingSetup::new(
+        klaw::dynamics::SwingModel::new(&body),
+        &path,
+        0.0,
+        &s.constraints,
+        &attrs,
+    );
     let (sub, seg) = &s.swing[0];
     let Subphase::Swing1 { hip, knee } = *sub else {
         unreachable!()
@@ -226,36 +213,17 @@ fn swing_setup<'a>(
     attrs: &Attributes,
     path: &'a klaw::control::stance::HipPath,
 ) -> klaw::control::swing::SwingSetup<'a> {
-    use klaw::control::swing;
-    let model = klaw::dynamics::SwingModel::new(body);
-    let c = &step.constraints;
-    let t = c.timing;
-    let m_hs = model.mass_matrix(&nalgebra::Vector2::new(0.0, c.theta4));
-    let (a11, a22) = (m_hs[(0, 0)], m_hs[(1, 1)]);
-    let wh = 2.0 * std::f64::consts::PI * attrs.swing_hip_frequency;
-    let z = attrs.servo_damping_ratio;
     // the swing-side hip's vertical velocity at heel strike, as the walk computes it
     let hip_vy_end = walk::swing_hip_vy_end(&step.stance, &step.stance_setup, &|tau| {
         step.swing_offset(tau)
     });
-    swing::SwingSetup {
-        model,
-        hip_path: path,
+    klaw::control::swing::SwingSetup::new(
+        klaw::dynamics::SwingModel::new(body),
+        path,
         hip_vy_end,
-        t_off: t.t_ds,
-        t1: t.t_ds + swing::SWING1_END * t.t_swing,
-        t2: t.t_ds + swing::SWING2_END * t.t_swing,
-        t_end: t.t_step,
-        theta3_target: c.theta3,
-        kappa_hs: c.theta4,
-        heel_ahead: c.heel_x - c.hip[0] - c.hip_shift,
-        landing_velocity: attrs.heel_strike_velocity,
-        d_swing1: swing::knee_damper(&model, z),
-        k_k: a22 * wh * wh,
-        d_k: 2.0 * z * a22 * wh,
-        k_h: a11 * wh * wh,
-        d_h: 2.0 * z * a11 * wh,
-    }
+        &step.constraints,
+        attrs,
+    )
 }
 
 /// The end-condition residuals of a converged step's phases when its magnitudes are integrated

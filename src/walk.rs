@@ -409,27 +409,7 @@ impl Walker {
             &swing_offset_acc,
         );
         let hip_vy_end = swing_hip_vy_end(&stance, &setup, &swing_offset);
-        let m_hs = self.swing_model.mass_matrix(&Vector2::new(0.0, c.theta4));
-        let (a11, a22) = (m_hs[(0, 0)], m_hs[(1, 1)]);
-        let wh = 2.0 * PI * self.attrs.swing_hip_frequency;
-        let sw = SwingSetup {
-            model: self.swing_model,
-            hip_path: &hip_path,
-            hip_vy_end,
-            t_off: t.t_ds,
-            t1: t.t_ds + swing::SWING1_END * t.t_swing,
-            t2: t.t_ds + swing::SWING2_END * t.t_swing,
-            t_end: t.t_step,
-            theta3_target: c.theta3,
-            kappa_hs: c.theta4,
-            heel_ahead: c.heel_x - c.hip[0] - c.hip_shift,
-            landing_velocity: self.attrs.heel_strike_velocity,
-            d_swing1: swing::knee_damper(&self.swing_model, self.attrs.servo_damping_ratio),
-            k_k: a22 * wh * wh,
-            d_k: 2.0 * self.attrs.servo_damping_ratio * a22 * wh,
-            k_h: a11 * wh * wh,
-            d_h: 2.0 * self.attrs.servo_damping_ratio * a11 * wh,
-        };
+        let sw = SwingSetup::new(self.swing_model, &hip_path, hip_vy_end, &c, &self.attrs);
         let fail = |phase: &'static str| {
             move |reason: String| Error::Integration {
                 step: index,

@@ -6,7 +6,7 @@
 use nalgebra::{Vector2, Vector3};
 
 use klaw::control::stance::HipPath;
-use klaw::control::swing::{self, Subphase, SwingSetup, SwingState, SwingTrial};
+use klaw::control::swing::{Subphase, SwingSetup, SwingState, SwingTrial};
 use klaw::dynamics::SwingModel;
 use klaw::walk::{Step, Walker, simulate};
 use klaw::work::{self, simpson};
@@ -92,26 +92,16 @@ fn swing_energy_balance(model: &SwingModel, hip: &HipPath, seg: &klaw::ode::Segm
 
 /// A swing setup for a converged step (servo gains chosen here: any torques obey the balance).
 fn swing_setup<'a>(step: &'a Step, model: SwingModel, hip: &'a HipPath) -> SwingSetup<'a> {
-    let c = step.constraints;
-    let t = c.timing;
+    // the walk's own setup (its swing1 knee damper: swing1 segments are re-checked), with
+    // servo gains of our own for the swing2 trials
     SwingSetup {
-        model,
-        hip_path: hip,
         hip_vy_end: 0.0,
-        t_off: t.t_ds,
-        t1: t.t_ds + swing::SWING1_END * t.t_swing,
-        t2: t.t_ds + swing::SWING2_END * t.t_swing,
-        t_end: t.t_step,
-        theta3_target: c.theta3,
-        kappa_hs: c.theta4,
-        heel_ahead: c.heel_x - c.hip[0] - c.hip_shift,
         landing_velocity: 0.1,
-        // the walk's own swing1 knee damper (the default ζ): swing1 segments are re-checked
-        d_swing1: swing::knee_damper(&model, Attributes::default().servo_damping_ratio),
         k_k: 30.0,
         d_k: 2.0,
         k_h: 40.0,
         d_h: 3.0,
+        ..SwingSetup::new(model, hip, 0.0, &step.constraints, &Attributes::default())
     }
 }
 

@@ -24,9 +24,11 @@
 //!   still swings forward at contact at slow speeds and the heel scrapes up from below].
 use nalgebra::{SVector, Vector2};
 
+use crate::attributes::Attributes;
 use crate::control::stance::HipPath;
 use crate::dynamics::SwingModel;
 use crate::ode::{self, Phase, Segment};
+use crate::plan::StepConstraints;
 
 /// State (θ3, θ4, θ̇3, θ̇4).
 pub type SwingState = SVector<f64, 4>;
@@ -74,6 +76,44 @@ pub struct SwingSetup<'a> {
     /// Swing2 hip servo.
     pub k_h: f64,
     pub d_h: f64,
+}
+
+impl<'a> SwingSetup<'a> {
+    /// The swing of a step with constraints `c` (timing, θ3*, κ_hs, where the heel lands) hanging
+    /// from `hip_path`, the servos' gains from the attributes: k = a (2π f_h)², d = 2ζ a (2π f_h)
+    /// with a = a11, a22 of the leg at heel strike, and the swing1 knee damper
+    /// [`knee_damper`].
+    pub fn new(
+        model: SwingModel,
+        hip_path: &'a HipPath,
+        hip_vy_end: f64,
+        c: &StepConstraints,
+        attrs: &Attributes,
+    ) -> Self {
+        let t = c.timing;
+        let m_hs = model.mass_matrix(&Vector2::new(0.0, c.theta4));
+        let (a11, a22) = (m_hs[(0, 0)], m_hs[(1, 1)]);
+        let wh = 2.0 * std::f64::consts::PI * attrs.swing_hip_frequency;
+        let z = attrs.servo_damping_ratio;
+        SwingSetup {
+            model,
+            hip_path,
+            hip_vy_end,
+            t_off: t.t_ds,
+            t1: t.t_ds + SWING1_END * t.t_swing,
+            t2: t.t_ds + SWING2_END * t.t_swing,
+            t_end: t.t_step,
+            theta3_target: c.theta3,
+            kappa_hs: c.theta4,
+            heel_ahead: c.heel_x - c.hip[0] - c.hip_shift,
+            landing_velocity: attrs.heel_strike_velocity,
+            d_swing1: knee_damper(&model, z),
+            k_k: a22 * wh * wh,
+            d_k: 2.0 * z * a22 * wh,
+            k_h: a11 * wh * wh,
+            d_h: 2.0 * z * a11 * wh,
+        }
+    }
 }
 
 /// Which subphase, with its torque magnitudes.
