@@ -168,7 +168,14 @@ fn default_walks_against_the_published_ranges() {
 /// into 8–15°.
 #[test]
 fn the_plan_heel_strike_leaves_the_trailing_ankle_above_its_norm() {
-    for (v, h) in [(1.2, 1.75), (1.2, 1.85), (1.35, 1.75), (1.35, 1.85), (1.5, 1.75), (1.5, 1.85)] {
+    for (v, h) in [
+        (1.2, 1.75),
+        (1.2, 1.85),
+        (1.35, 1.75),
+        (1.35, 1.85),
+        (1.5, 1.75),
+        (1.5, 1.85),
+    ] {
         let body = Body::standard(h, 23.0 * h * h).unwrap();
         let attrs = Attributes::default();
         let g = GaitRequest {
@@ -203,7 +210,10 @@ fn the_plan_heel_strike_leaves_the_trailing_ankle_above_its_norm() {
                 dx.hypot(dy)
             };
             // the distance falls as the heel rises (the ankle turns up towards the hip)
-            assert!(dist(0.0) > reach && dist(1.2) < reach, "v {v} H {h} knee {k}°");
+            assert!(
+                dist(0.0) > reach && dist(1.2) < reach,
+                "v {v} H {h} knee {k}°"
+            );
             let (mut lo, mut hi) = (0.0, 1.2);
             for _ in 0..60 {
                 let m = 0.5 * (lo + hi);
