@@ -8,7 +8,7 @@ use std::f64::consts::PI;
 use crate::attributes::Attributes;
 use crate::body::Body;
 use crate::control::shooting::{self, Memory1, Memory2, Options, SolveReport, Start1, Start2};
-use crate::control::stance::{HipPath, StanceRun, StanceSetup, StanceState};
+use crate::control::stance::{HipPath, StanceRun, StanceSetup, StanceState, TerminalStance};
 use crate::control::swing::{self, Subphase, SwingSetup, SwingState, SwingTrial};
 use crate::dynamics::impact::{self, ImpactReport};
 use crate::dynamics::{StanceModel, SwingModel};
@@ -155,9 +155,12 @@ impl Walker {
         self
     }
 
-    fn stance_setup(&self, prev: &StepConstraints, c: &StepConstraints) -> StanceSetup {
+    /// The stance of a step from the previous step's constraints to `c`, with pelvic list `list`.
+    fn stance_setup(&self, prev: &StepConstraints, c: &StepConstraints, list: f64) -> StanceSetup {
         let a = &self.attrs;
         let m = self.stance_model;
+        let b = &self.body;
+        let y_mid = 0.5 * (prev.hip[1] + c.hip[1]) + c.bounce;
         let ww = 2.0 * PI * a.leg_frequency;
         let w2 = 2.0 * PI * a.trunk_frequency;
         let j2 = m.trunk_inertia();
@@ -176,6 +179,16 @@ impl Walker {
             y_start: prev.hip[1],
             y_end: c.hip[1],
             bounce: c.bounce,
+            terminal: TerminalStance::new(
+                y_mid,
+                &Determinants {
+                    list,
+                    ..self.determinants
+                },
+                (c.theta1, c.w),
+                (b.l3, b.l4, b.l9, b.ankle_to_metatarsal_horizontal()),
+                a.heel_off_dorsiflexion,
+            ),
         }
     }
 
@@ -231,7 +244,7 @@ impl Walker {
         let qd_minus = impact::rates_about_pivot(&q, hip_v, trunk_rate);
         let (qd, impact) = impact::heel_strike(&self.stance_model, &q, &qd_minus);
         let y0 = StanceState::from([q[0], q[1], q[2], qd[0], qd[1], qd[2]]);
-        let setup = self.stance_setup(&prev_c, &c);
+        let setup = self.stance_setup(&prev_c, &c, list);
 
         let (torque, l1) = (self.body.mass * self.body.l1, self.body.l1);
         let froude = gait.velocity / (crate::plan::GRAVITY * l1).sqrt();
@@ -691,44 +704,44 @@ impl Walker {
 const STEP0: [[f64; 3]; 7] =
     // step 0
     [
-        [6.70323e-1, 2.39256e0, 1.40518e0], // τ1: largest residual 1.39e-1
-        [-2.63333e-3, 1.93621e-2, -2.83755e-3], // p: largest residual 1.82e-3
-        [5.29452e-1, -6.38351e0, 7.52252e0], // A: largest residual 2.30e-1
-        [1.85474e-1, -2.96980e0, 2.21337e0], // B: largest residual 1.85e-1
-        [-2.20515e-1, 8.78326e-1, -4.96680e-1], // C: largest residual 3.38e-2
-        [-1.11276e0, -8.35586e-1, 3.46651e0], // D0: largest residual 2.32e-1
-        [3.47678e0, -4.07954e0, -3.60124e0], // D1: largest residual 5.51e-1
+        [6.11203e-1, 2.64629e0, 1.28344e0], // τ1: largest residual 1.57e-1
+        [8.23789e-5, 1.35006e-2, -1.18050e-2], // p: largest residual 2.87e-3
+        [5.43150e-1, -6.44331e0, 7.57694e0], // A: largest residual 2.30e-1
+        [1.69441e-1, -2.89748e0, 2.14027e0], // B: largest residual 1.84e-1
+        [-2.21628e-1, 8.98485e-1, -5.34524e-1], // C: largest residual 3.37e-2
+        [-3.57900e0, 1.09938e1, -5.48142e0], // D0: largest residual 9.70e-1
+        [9.41434e0, -3.28989e1, 1.91651e1], // D1: largest residual 2.13e0
     ];
 const CHANGES: [[[f64; 3]; 7]; 2] = [
     // step 0 to 1
     [
-        [-8.64023e-1, -3.27601e0, -2.13066e-2], // τ1: largest residual 6.94e-2
-        [1.41976e-4, -1.24935e-3, 1.07465e-3],  // p: largest residual 3.90e-5
-        [-1.14408e0, 6.22082e0, -1.20062e1],    // A: largest residual 1.80e-1
-        [-1.34425e-1, 8.22122e-1, -1.59234e0],  // B: largest residual 4.90e-2
-        [3.80058e-2, -2.19775e-1, 4.03468e-1],  // C: largest residual 6.89e-3
-        [-4.66799e-2, 5.67704e-2, -3.41113e-1], // D0: largest residual 2.83e-2
-        [-6.31429e-2, 7.32506e-1, -6.29464e-1], // D1: largest residual 5.75e-2
+        [-1.83108e0, 3.85140e-1, -6.98855e-1], // τ1: largest residual 6.42e-1
+        [-8.41950e-5, -2.69062e-4, 6.70522e-4], // p: largest residual 3.14e-4
+        [-1.32525e0, 7.32271e0, -1.35366e1],   // A: largest residual 1.91e-1
+        [-1.16572e-1, 8.04859e-1, -1.71811e0], // B: largest residual 8.64e-2
+        [4.37306e-2, -2.64742e-1, 4.88364e-1], // C: largest residual 7.70e-3
+        [-8.65222e-3, -2.62998e-1, 5.54512e-2], // D0: largest residual 3.17e-2
+        [-1.74271e-1, 1.65015e0, -1.90634e0],  // D1: largest residual 8.30e-2
     ],
     // step 1 to 2
     [
-        [1.98147e-2, 1.10343e0, -9.27363e-1], // τ1: largest residual 2.33e-2
-        [-2.34703e-5, 2.06214e-4, -2.10579e-4], // p: largest residual 2.73e-6
-        [4.87158e-2, -3.56778e-1, 3.32811e-1], // A: largest residual 3.81e-2
-        [1.94283e-2, -1.31334e-1, 1.24830e-1], // B: largest residual 9.97e-3
-        [-3.12401e-3, 1.65605e-2, -1.19486e-2], // C: largest residual 1.78e-3
-        [9.79011e-3, -5.77665e-2, 6.57478e-2], // D0: largest residual 3.13e-3
-        [-2.57167e-3, 1.63072e-2, -5.12670e-2], // D1: largest residual 4.26e-3
+        [1.87499e-1, 4.06380e-1, -6.46030e-1], // τ1: largest residual 7.86e-2
+        [3.02360e-5, -5.90649e-5, 2.12733e-5], // p: largest residual 9.45e-6
+        [-2.85089e-2, 3.35602e-2, -2.75358e-2], // A: largest residual 1.44e-1
+        [-1.76796e-3, -2.91932e-2, 3.61974e-2], // B: largest residual 2.77e-2
+        [-3.97363e-4, 3.72737e-3, -2.51155e-3], // C: largest residual 4.70e-3
+        [-1.24033e-2, 7.01598e-2, -6.14327e-2], // D0: largest residual 2.36e-2
+        [3.77142e-2, -2.22932e-1, 1.92094e-1], // D1: largest residual 6.15e-2
     ],
 ];
 /// [ours] Cold Jacobians (`J[i][k]` = ∂rᵢ/∂xₖ, in body units): the default walk's (1.4 m/s,
 /// H = 1.8 m, M = 80 kg) at the end of its step-0 solves, so that step 0 needs no difference
 /// trials; swing2's residual slope. Generated with [`STEP0`], from walks started plainly
 /// ([`Walker::without_startup_guesses`]), so a rerun reproduces them.
-const COLD_STANCE: [[f64; 2]; 2] = [[1.38250e-1, -3.23783e-1], [6.25177e-2, 7.85186e-1]];
-const COLD_SWING1: [[f64; 2]; 2] = [[4.01924e-1, -2.98886e-1], [2.24182e-1, 4.55209e-1]];
-const COLD_SWING2_SLOPE: f64 = 3.21372e-1;
-const COLD_SWING3: [[f64; 2]; 2] = [[4.76523e-2, 1.59215e-2], [-4.89923e-1, -2.46439e-1]];
+const COLD_STANCE: [[f64; 2]; 2] = [[1.38664e-1, -3.24607e-1], [4.94311e-2, 8.12852e-1]];
+const COLD_SWING1: [[f64; 2]; 2] = [[4.01558e-1, -2.98636e-1], [2.24509e-1, 4.54549e-1]];
+const COLD_SWING2_SLOPE: f64 = 3.22547e-1;
+const COLD_SWING3: [[f64; 2]; 2] = [[4.76828e-2, 1.59268e-2], [-4.90423e-1, -2.46551e-1]];
 
 fn quadratic(c: [f64; 3], x: f64) -> f64 {
     c[0] + x * (c[1] + x * c[2])

@@ -6,11 +6,11 @@
 //! - knee peak swing flexion 63–67° (norm 55–65°): the swing1 knee damper (the shank pendulum
 //!   damped at ζ) brakes the knee's flexion from toe-off; at 1.35–1.5 m/s the knee, handed over
 //!   at toe-off flexing faster, still ends 0.2–2° over;
-//! - hip peak extension −4.3° and −4.6° at two of the six points (norm −5…−15°), ankle peak
-//!   stance dorsiflexion ≈ 21–26° (norm 8–15°) and a weak push-off plantarflexion: the stance
-//!   hip follows the ε·E bounce reference, not the virtual leg's reference
-//!   knee curve (spec §7 "known geometric tension"); late in stance the hip is too low and too
-//!   far back for the trailing leg to extend, so the knee and ankle fold instead.
+//! - ankle peak stance dorsiflexion 20–23° (norm 8–15°) and a weak push-off plantarflexion
+//!   (−7.6…−8.8°, norm −15…−25°): the stance hip follows the virtual leg's reference from
+//!   mid-stance (knee held near straight, heel rising about the metatarsal joint, spec §7), but
+//!   the plan's heel-strike height leaves the trailing ankle at ≥ 17–19° for any human knee
+//!   ([`the_plan_heel_strike_leaves_the_trailing_ankle_above_its_norm`], docs/realism.md).
 use klaw::export::{angle_columns, cycle_average};
 use klaw::figure::frames;
 use klaw::skeleton::clinical;
@@ -101,33 +101,34 @@ fn default_walks_against_the_published_ranges() {
             let (hmax, _) = peak(&hip, 0..101, true);
             let (hmin, hmin_at) = peak(&hip, 0..101, false);
             within("hip range", hmax - hmin, 40.0, 50.0, &at);
-            // deviation: the peak extension reaches the norm (−5…−15°) at 1.2 m/s and for the
-            // taller body, not at 1.5 m/s (≈ −2°)
-            within(
-                "hip peak extension (partly a deviation)",
-                hmin,
-                -15.0,
-                1.0,
-                &at,
-            );
+            within("hip peak extension", hmin, -15.0, -5.0, &at);
             within("hip peak extension at %", hmin_at as f64, 48.0, 62.0, &at);
             // knee: 0–8° at heel strike, stance peak 10–25° at 12–18 %, swing peak at 70–75 %
             within("knee at HS", knee[0], 0.0, 8.0, &at);
             let (kst, kst_at) = peak(&knee, 0..30, true);
             within("knee stance peak", kst, 10.0, 25.0, &at);
             within("knee stance peak at %", kst_at as f64, 10.0, 20.0, &at);
+            // terminal stance: the knee stays near straight (spec §7: ≈ 5°; measured 6.5–11°)
+            within(
+                "knee max in 30–42 %",
+                peak(&knee, 30..43, true).0,
+                0.0,
+                12.0,
+                &at,
+            );
             let (ksw, ksw_at) = peak(&knee, 50..101, true);
             within("knee swing peak at %", ksw_at as f64, 68.0, 77.0, &at);
             // deviation: 63° at 1.2 m/s, up to 67° at 1.5 m/s (norm 55–65°, for free walking)
             within("knee swing peak (partly a deviation)", ksw, 55.0, 68.0, &at);
-            // ankle: −5…+3° at heel strike; stance dorsiflexion peak (deviation)
+            // ankle: −5…+3° at heel strike; stance dorsiflexion peak (deviation, with its
+            // geometric floor in the test below)
             within("ankle at HS", ankle[0], -5.0, 3.0, &at);
             let (dmax, _) = peak(&ankle, 10..60, true);
             within(
                 "ankle stance dorsiflexion peak (deviation)",
                 dmax,
-                18.0,
-                30.0,
+                16.0,
+                24.0,
                 &at,
             );
             // deviation: the push-off plantarflexion around toe-off (norm −15…−25° at 60–65 %)
@@ -135,8 +136,8 @@ fn default_walks_against_the_published_ranges() {
             within(
                 "ankle plantarflexion at push-off (deviation)",
                 pmin,
-                -14.0,
-                -4.0,
+                -11.0,
+                -6.0,
                 &at,
             );
             // pelvis: list ±4–5°, rotation ±3–5°, vertical excursion 4–5 cm (± 1 cm)
@@ -192,7 +193,7 @@ fn the_plan_heel_strike_leaves_the_trailing_ankle_above_its_norm() {
         let dz = c.lateral_offset;
         // ankle with the foot pitched by p about M = (mx, 0), heel up
         let ankle = |p: f64| {
-            let (s, co) = (p as f64).sin_cos();
+            let (s, co) = p.sin_cos();
             [mx - mx * co + l9 * s, mx * s + l9 * co]
         };
         let in_plane = |p: f64| {

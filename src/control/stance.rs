@@ -42,11 +42,18 @@ pub struct StanceSetup {
     pub y_end: f64,
     /// Bounce e of the hip reference (m).
     pub bounce: f64,
+    /// The virtual leg's reference from mid-stance on.
+    pub terminal: TerminalStance,
 }
 
-/// The hip height reference and its derivative with respect to θ1, spec §4 [ours]:
-/// y_ref = ȳ(u) + (e/2)(1 + cos πu), u = sin θ1 / sin θ1^± clipped to [−1, 1], with ȳ blending
-/// the two heel-strike heights (ȳ = y_hs when they are equal).
+/// The hip height reference and its derivative with respect to θ1 [ours], u = sin θ1 / sin θ1^±
+/// clipped to [−1, 1]:
+/// - up to mid-stance (θ1 < 0), spec §4: y_ref = ȳ(u) + e cos²(πu/2), ȳ blending the two
+///   heel-strike heights with a half-sine (ȳ = y_hs in a steady gait): the bounce e = ε·E gives
+///   the loading response;
+/// - from mid-stance (θ1 ≥ 0), spec §7 "replace y_ref": the height the virtual leg gives with its
+///   knee held at the mid-stance value ([`TerminalStance`]): the stance hip joint at
+///   l9 + W(θ1) cos θ1, the pelvis centre (l0/2) sin L cos(πu/2) below it (the pelvic list).
 pub fn hip_reference(s: &StanceSetup, theta1: f64) -> (f64, f64) {
     let (s1, c1) = sin_cos(theta1);
     hip_reference_sc(s, s1, c1, s.theta1_start.sin(), s.theta1_end.sin())
@@ -64,12 +71,247 @@ fn hip_reference_sc(s: &StanceSetup, s1: f64, c1: f64, sin_start: f64, sin_end: 
         (raw, c1 / denom)
     };
     let (sh, ch) = sin_cos(0.5 * PI * u);
-    let dy = s.y_end - s.y_start;
-    let base = s.y_start + dy * 0.5 * (1.0 + sh);
-    let dbase = dy * 0.25 * PI * ch;
-    let bump = s.bounce * ch * ch;
-    let dbump = -s.bounce * PI * sh * ch;
-    (base + bump, (dbase + dbump) * du)
+    if s1 < 0.0 {
+        let dy = s.y_end - s.y_start;
+        let base = s.y_start + dy * 0.5 * (1.0 + sh);
+        let dbase = dy * 0.25 * PI * ch;
+        let bump = s.bounce * ch * ch;
+        let dbump = -s.bounce * PI * sh * ch;
+        (base + bump, (dbase + dbump) * du)
+    } else {
+        let (w, dw) = s.terminal.length(s1, c1);
+        (s.model.l9 + w * c1, dw * c1 - w * s1)
+    }
+}
+
+/// The virtual stance leg from mid-stance to heel strike (spec §7), as the telescopic leg's
+/// length W(θ1) from the pivot P (the flat foot's ankle) to the pelvis centre C [ours]. The knee
+/// stays at its mid-stance flexion κ0, so the stance hip joint J is the leg's mid-stance reach
+/// a0 from the ankle A in space, and √(a0² − dz²) in the leg's plane (dz: the lateral offset):
+/// - foot flat (A = P) while the ankle's dorsiflexion, the lean of the shank (the ankle–J line's
+///   angle plus the shank's lead δ over it at κ0), is below θ5_max;
+/// - heel-off: the foot turns about its metatarsal joint M by the pitch
+///   p = p_hs s³ (1 + c (s − 1)), s = (sin θ1 − sin θ_ho) / (sin θ1* − sin θ_ho), so that the
+///   reference is C² at heel-off (the swing reads the hip's acceleration from a cubic table,
+///   [`HipPath`]) and the heel rises ever faster into push-off; p_hs puts C at (θ1*, w*) at
+///   heel strike and c ∈ [−3, 1] makes C arrive there level (as the spec §4 reference did, so
+///   that the hip does not dip below y_hs before it), or as nearly as a monotone pitch allows.
+///
+/// The pelvis moves J from C by o(u) = (−(l0/2) sin(A sin(πu/2)), (l0/2) sin(L cos(πu/2))) and
+/// dz(u) = D cos(πu/2) + l0/2 − b/2 (rotation A, list L, lateral displacement D, step width b;
+/// u = sin θ1 / sin θ1* stands for the step's time, and cos L cos R ≈ 1 in dz: ≤ 0.4 mm), so
+/// C lies on the circle of radius √(a0² − dz²) about A − o:
+/// W = e·(A − o) + √((e·(A − o))² − |A − o|² + a0² − dz²), e = (sin θ1, cos θ1).
+/// Heel-off comes no later than at 0.7 sin θ1*, since the heel must rise before heel strike
+/// (w* > l1). A reference: `kinematics::stance_leg` is the exact figure.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TerminalStance {
+    /// a0: hip joint to ankle with the knee at κ0 (m).
+    pub reach: f64,
+    /// M relative to the pivot (m).
+    pub meta: [f64; 2],
+    /// Foot pitch at heel strike p_hs (rad), and c of the pitch's shape
+    /// s³ (1 + c (s − 1)), c ∈ [−3, 1] (monotone, ≥ 0; end rate 3 + c).
+    pub pitch_end: f64,
+    pub end_rate: f64,
+    /// sin θ_ho, sin θ1*.
+    pub sin_heel_off: f64,
+    pub sin_end: f64,
+    /// l0/2, pelvic rotation A and list L (rad).
+    pub half_width: f64,
+    pub rotation: f64,
+    pub list: f64,
+    /// dz at heel strike, l0/2 − b/2, and the lateral displacement D (m).
+    pub lateral_hs: f64,
+    pub lateral_shift: f64,
+}
+
+/// The hip's fall into heel strike as a fraction of the rigid leg's, −W sin θ1* per radian
+/// [ours]: a reference that arrives level let the tracking hip dip 5 µm below y_hs just before
+/// heel strike in the first step of the slowest walks (v 0.6 m/s, H 1.95 m).
+pub const END_FALL: f64 = 0.0;
+
+/// m of the margin m (1 − x)² above y_hs that the reference keeps between heel-off (x = 0) and
+/// heel strike (x = 1) (m).
+pub const END_MARGIN: f64 = 5e-3;
+
+/// Points between heel-off and heel strike at which [`TerminalStance::new`] checks that the
+/// reference stays above its heel-strike height.
+const HEEL_RISE_CHECKS: usize = 32;
+
+impl TerminalStance {
+    /// `y_mid`: the pelvis centre's reference height at mid-stance; `det`: the determinants
+    /// (with the step's list); `end`: θ1* and w*; `(l3, l4, l9, h12)`: thigh, shank, ankle
+    /// height and ankle to M (foot flat); `theta5_max`: the heel-off dorsiflexion.
+    pub fn new(
+        y_mid: f64,
+        det: &crate::kinematics::pelvis::Determinants,
+        (theta1_end, w_end): (f64, f64),
+        (l3, l4, l9, h12): (f64, f64, f64, f64),
+        theta5_max: f64,
+    ) -> Self {
+        let h = det.half_width;
+        let lateral_hs = h - det.half_step_width;
+        let w0 = y_mid + h * det.list.sin() - l9;
+        let reach = w0.hypot(lateral_hs + det.lateral).min(l3 + l4);
+        let cos_knee = ((reach * reach - l3 * l3 - l4 * l4) / (2.0 * l3 * l4)).clamp(-1.0, 1.0);
+        let delta = (l3 * cos_knee.acos().sin() / reach).asin();
+        let sin_end = theta1_end.sin();
+        let mut t = TerminalStance {
+            reach,
+            meta: [h12, -l9],
+            pitch_end: 0.0,
+            end_rate: 0.0,
+            sin_heel_off: 0.7 * sin_end,
+            sin_end,
+            half_width: h,
+            rotation: det.rotation,
+            list: det.list,
+            lateral_hs,
+            lateral_shift: det.lateral,
+        };
+        // heel-off: the flat foot's ankle–J line reaches θ5_max − δ (rising with θ1)
+        let line = |s1: f64| {
+            let (w, _) = t.length_at(s1);
+            let ([o, _], _) = t.offset(s1 / sin_end);
+            (w * s1 + o[0]).atan2(w * (1.0 - s1 * s1).sqrt() + o[1])
+        };
+        if line(t.sin_heel_off) > theta5_max - delta {
+            let (mut lo, mut hi) = (0.0, t.sin_heel_off);
+            for _ in 0..50 {
+                let m = 0.5 * (lo + hi);
+                if line(m) < theta5_max - delta {
+                    lo = m
+                } else {
+                    hi = m
+                }
+            }
+            t.sin_heel_off = 0.5 * (lo + hi);
+        }
+        // the heel rises earlier (by tenths of the way back to mid-stance) while the reference
+        // would dip below its heel-strike height before heel strike: slow, short steps, where
+        // the flat foot's arc falls below y_hs before the ankle reaches θ5_max
+        let y_end = w_end * theta1_end.cos();
+        for _ in 0..10 {
+            t.fit_end(w_end);
+            let dips = (1..HEEL_RISE_CHECKS).any(|k| {
+                let x = k as f64 / HEEL_RISE_CHECKS as f64;
+                let s1 = t.sin_heel_off + (sin_end - t.sin_heel_off) * x;
+                t.length_at(s1).0 * (1.0 - s1 * s1).sqrt() < y_end + END_MARGIN * (1.0 - x).powi(2)
+            });
+            if !dips {
+                break;
+            }
+            t.sin_heel_off *= 0.9;
+        }
+        t
+    }
+
+    /// p_hs so that W(θ1*) = w* (W rises with p: the ankle rises towards the hip), then c so
+    /// that the hip arrives falling gently, dy/dθ1 = W' cos θ1* − W sin θ1* = −[`END_FALL`]
+    /// W sin θ1*, where a monotone pitch allows (dW/dθ1 at the end is linear in the pitch's
+    /// end rate 3 + c).
+    fn fit_end(&mut self, w_end: f64) {
+        let sin_end = self.sin_end;
+        let (mut lo, mut hi) = (0.0, 1.2);
+        for _ in 0..42 {
+            let m = 0.5 * (lo + hi);
+            self.pitch_end = m;
+            if self.length_at(sin_end).0 < w_end {
+                lo = m
+            } else {
+                hi = m
+            }
+        }
+        self.pitch_end = 0.5 * (lo + hi);
+        // just before the end, where the pitch's rate is still on
+        let s_end = sin_end - 1e-9 * (sin_end - self.sin_heel_off);
+        let slope = |c: f64| {
+            let t = TerminalStance {
+                end_rate: c,
+                ..*self
+            };
+            let (w, dw) = t.length_at(s_end);
+            dw - (1.0 - END_FALL) * w * s_end / (1.0 - s_end * s_end).sqrt()
+        };
+        let (lo, hi) = (slope(-3.0), slope(1.0));
+        self.end_rate = if hi != lo {
+            (-3.0 + 4.0 * lo / (lo - hi)).clamp(-3.0, 1.0)
+        } else {
+            0.0
+        };
+    }
+
+    /// The ankle A(p) (relative to P) and dA/dp: P turned about M by −p (heel up).
+    fn ankle(&self, p: f64) -> ([f64; 2], [f64; 2]) {
+        let [mx, my] = self.meta;
+        let (sp, cp) = sin_cos(p);
+        // P − M = (−mx, −my), turned clockwise by p
+        let (dx, dy) = (-mx * cp - my * sp, mx * sp - my * cp);
+        ([mx + dx, my + dy], [mx * sp - my * cp, mx * cp + my * sp])
+    }
+
+    /// J − C = o(u) and the lateral offset dz(u), with their derivatives in u.
+    fn offset(&self, u: f64) -> ([[f64; 2]; 2], [f64; 2]) {
+        let (sh, ch) = sin_cos(0.5 * PI * u);
+        let h = self.half_width;
+        let (sr, cr) = sin_cos(self.rotation * sh);
+        let (sl, cl) = sin_cos(self.list * ch);
+        let k = 0.5 * PI;
+        (
+            [
+                [-h * sr, h * sl],
+                [
+                    -h * cr * self.rotation * k * ch,
+                    -h * cl * self.list * k * sh,
+                ],
+            ],
+            [
+                self.lateral_hs + self.lateral_shift * ch,
+                -self.lateral_shift * k * sh,
+            ],
+        )
+    }
+
+    /// [`Self::length`] from sin θ1 alone.
+    fn length_at(&self, s1: f64) -> (f64, f64) {
+        self.length(s1, (1.0 - s1 * s1).sqrt())
+    }
+
+    /// W(θ1) and dW/dθ1 from sin θ1, cos θ1 (θ1 ≥ 0).
+    pub fn length(&self, s1: f64, c1: f64) -> (f64, f64) {
+        let span = self.sin_end - self.sin_heel_off;
+        let s = ((s1 - self.sin_heel_off) / span).min(1.0);
+        let (p, dp) = if s <= 0.0 {
+            (0.0, 0.0)
+        } else if s < 1.0 {
+            let c = self.end_rate;
+            (
+                self.pitch_end * s * s * s * (1.0 + c * (s - 1.0)),
+                self.pitch_end * s * s * (3.0 + c * (4.0 * s - 3.0)) * c1 / span,
+            )
+        } else {
+            (self.pitch_end, 0.0)
+        };
+        let (ankle, dankle) = self.ankle(p);
+        let u = (s1 / self.sin_end).min(1.0);
+        let du = if u < 1.0 { c1 / self.sin_end } else { 0.0 };
+        let ([o, o_u], [dz, dz_u]) = self.offset(u);
+        // the circle's centre A − o and radius² a0² − dz², with their θ1-derivatives
+        let a = [ankle[0] - o[0], ankle[1] - o[1]];
+        let da = [dankle[0] * dp - o_u[0] * du, dankle[1] * dp - o_u[1] * du];
+        let r2 = self.reach * self.reach - dz * dz;
+        let dr2 = -2.0 * dz * dz_u * du;
+        // W² − 2W (e·a) + |a|² − r² = 0, the larger root
+        let ea = s1 * a[0] + c1 * a[1];
+        let aa = a[0] * a[0] + a[1] * a[1];
+        let w = ea + (ea * ea - aa + r2).max(0.0).sqrt();
+        // implicitly: W' (W − e·a) = W (e'·a + e·a') − a·a' + (r²)'/2, e' = (cos θ1, −sin θ1)
+        let e1a = c1 * a[0] - s1 * a[1];
+        let eda = s1 * da[0] + c1 * da[1];
+        let ada = a[0] * da[0] + a[1] * da[1];
+        (w, (w * (e1a + eda) - ada + 0.5 * dr2) / (w - ea))
+    }
 }
 
 /// smoothstep(x) = 3x² − 2x³ on [0, 1], clamped.
@@ -87,6 +329,8 @@ pub struct StanceForces<'a> {
     /// Leg extension p (m) of the position actuator, blended in over the second half-step.
     pub p: f64,
     pub locked: bool,
+    /// The leg has passed the vertical (event 3 has fired).
+    pub past_mid: bool,
     /// sin θ1^− and sin θ1^+ of the hip reference (constants of the step).
     sin_start: f64,
     sin_end: f64,
@@ -99,6 +343,7 @@ impl<'a> StanceForces<'a> {
             tau1,
             p,
             locked,
+            past_mid: false,
             sin_start: setup.theta1_start.sin(),
             sin_end: setup.theta1_end.sin(),
         }
@@ -153,14 +398,16 @@ impl<'a> StanceForces<'a> {
     }
 }
 
-/// Events: 0 lock / release, 1 |θ1| too large, 2 leg collapsed.
-impl Phase<6, 3> for StanceForces<'_> {
+/// Events: 0 lock / release, 1 |θ1| too large, 2 leg collapsed, 3 mid-stance (θ1 rising
+/// through 0, where the hip reference changes from the bounce to the virtual leg and its
+/// curvature jumps: the integration and the hip table break there).
+impl Phase<6, 4> for StanceForces<'_> {
     fn rhs(&self, t: f64, y: &StanceState) -> StanceState {
         let a = self.accelerations(t, y);
         StanceState::from([y[3], y[4], y[5], a[0], a[1], a[2]])
     }
 
-    fn events(&self, _t: f64, y: &StanceState) -> [f64; 3] {
+    fn events(&self, _t: f64, y: &StanceState) -> [f64; 4] {
         let (w, th1) = (y[0], y[1]);
         let switch = if self.locked {
             -th1 // release when the leg passes the vertical
@@ -169,7 +416,17 @@ impl Phase<6, 3> for StanceForces<'_> {
         } else {
             1.0
         };
-        [switch, THETA1_ABORT - th1.abs(), w - 0.5 * self.setup.l1]
+        let mid = if self.locked || self.past_mid {
+            1.0
+        } else {
+            -th1
+        };
+        [
+            switch,
+            THETA1_ABORT - th1.abs(),
+            w - 0.5 * self.setup.l1,
+            mid,
+        ]
     }
 }
 
@@ -375,10 +632,13 @@ impl StanceRun {
             evaluations: 0,
             adapted: false,
         };
-        let (mut t, mut y, mut locked) = (0.0, y0, false);
+        let (mut t, mut y, mut locked, mut past_mid) = (0.0, y0, false, false);
         'outer: for t_break in breaks {
             while t < t_break {
-                let forces = StanceForces::new(setup, tau1, p, locked);
+                let forces = StanceForces {
+                    past_mid,
+                    ..StanceForces::new(setup, tau1, p, locked)
+                };
                 let follow = match mesh.and_then(|m| m.segments.get(run.segments.len())) {
                     Some((seg, l)) if *l == locked && seg.t0 == t => ode::Mesh::Aligned(seg),
                     Some((seg, l)) if *l == locked => ode::Mesh::Shifted(seg),
@@ -392,7 +652,8 @@ impl StanceRun {
                 run.segments.push((out.segment, locked));
                 match out.event {
                     None => {}
-                    Some(0) if locked => locked = false,
+                    Some(0) if locked => (locked, past_mid) = (false, true),
+                    Some(3) => past_mid = true,
                     Some(0) => {
                         // the knee locks: a plastic impulse along the leg stops ẇ
                         let q = Vector3::new(y[0], y[1], y[2]);
