@@ -733,3 +733,133 @@ impl StanceRun {
         ]
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::walk::Walker;
+    use crate::{Attributes, Body, GaitRequest};
+
+    /// The stance setup of a steady step (step 5) at `v` m/s for the default body.
+    fn setup_at(v: f64) -> StanceSetup {
+        let body = Body::standard(1.8, 80.0).unwrap();
+        let attrs = Attributes::default();
+        let g = GaitRequest {
+            velocity: Some(v),
+            ..Default::default()
+        }
+        .complete(&body, &attrs)
+        .unwrap();
+        let mut walker = Walker::new(body, attrs);
+        (0..6)
+            .map(|_| walker.step(g).unwrap())
+            .last()
+            .unwrap()
+            .stance_setup
+    }
+
+    fn steady_setup() -> StanceSetup {
+        setup_at(1.4)
+    }
+
+    /// W(θ1*) = w*; the hip arrives level (dy/dθ1 = W' cos θ1* − W sin θ1* = 0) where c lies
+    /// inside [−3, 1] (0.6 m/s), and where c is at its bound (1.4 m/s: the pitch's end rate
+    /// 3 + c is at most 4) it falls, but slower than the rigid leg's W sin θ1*.
+    #[test]
+    fn terminal_reference_meets_the_plan_end_and_arrives_level() {
+        for v in [0.6, 1.4] {
+            let s = setup_at(v);
+            let t = &s.terminal;
+            let (se, ce) = s.theta1_end.sin_cos();
+            assert!((t.length(se, ce).0 - s.w_end).abs() < 1e-9);
+            let th = s.theta1_end - 1e-7;
+            let (w, dw) = t.length(th.sin(), th.cos());
+            let slope = dw * th.cos() - w * th.sin();
+            if t.end_rate > -3.0 && t.end_rate < 1.0 {
+                assert!(slope.abs() < 1e-5, "v {v}: {slope}");
+            } else {
+                assert!(slope < 0.0 && slope > -w * th.sin(), "v {v}: {slope}");
+            }
+            assert_eq!(v == 0.6, t.end_rate < 1.0, "v {v}: c = {}", t.end_rate);
+            // heel-off between mid-stance and heel strike, and the heel up at heel strike
+            assert!(t.sin_heel_off > 0.0 && t.sin_heel_off < se && t.pitch_end > 0.0);
+        }
+    }
+
+    /// dW/dθ1 (the implicit derivative) against central differences of W, on the flat foot,
+    /// after heel-off and near heel strike.
+    #[test]
+    fn terminal_reference_derivative_matches_finite_differences() {
+        let s = steady_setup();
+        let t = &s.terminal;
+        let h = 1e-6;
+        for f in [0.1, 0.3, 0.5, 0.7, 0.9, 0.99] {
+            let th = f * s.theta1_end;
+            let w = |x: f64| t.length(x.sin(), x.cos()).0;
+            let fd = (w(th + h) - w(th - h)) / (2.0 * h);
+            let dw = t.length(th.sin(), th.cos()).1;
+            assert!(
+                (fd - dw).abs() < 1e-7 * (1.0 + dw.abs()),
+                "{f}: {fd} vs {dw}"
+            );
+        }
+    }
+
+    /// The reference is the virtual leg: after heel-off the ankle A, the stance foot's ankle
+    /// turned about M by the pitch p(s) (a rotation matrix here), stays |P − M| from M, and the
+    /// hip joint J = C + o(u), o from the determinants, is the leg's 3-D reach a0 from A with the
+    /// lateral offset dz(u) (l0/2 − b/2 + D cos(πu/2)).
+    #[test]
+    fn terminal_reference_is_the_virtual_leg() {
+        let s = steady_setup();
+        let t = &s.terminal;
+        let [mx, my] = t.meta;
+        for f in [0.5, 0.7, 0.9, 1.0] {
+            let s1 = t.sin_heel_off + f * (t.sin_end - t.sin_heel_off);
+            let c1 = (1.0 - s1 * s1).sqrt();
+            let w = t.length(s1, c1).0;
+            let p = t.pitch_end * f.powi(3) * (1.0 + t.end_rate * (f - 1.0));
+            // P − M turned clockwise (heel up) by p
+            let (sp, cp) = p.sin_cos();
+            let (vx, vy) = (-mx, -my);
+            let a = [mx + cp * vx + sp * vy, my - sp * vx + cp * vy];
+            assert!(((a[0] - mx).hypot(a[1] - my) - mx.hypot(my)).abs() < 1e-12);
+            assert!(a[1] > 0.0, "the heel has risen");
+            let u = s1 / t.sin_end;
+            let half = 0.5 * PI * u;
+            let j = [
+                w * s1 - t.half_width * (t.rotation * half.sin()).sin(),
+                w * c1 + t.half_width * (t.list * half.cos()).sin(),
+            ];
+            let dz = t.lateral_hs + t.lateral_shift * half.cos();
+            let reach = ((j[0] - a[0]).powi(2) + (j[1] - a[1]).powi(2) + dz * dz).sqrt();
+            assert!(
+                (reach - t.reach).abs() < 1e-12,
+                "{f}: {reach} vs {}",
+                t.reach
+            );
+        }
+    }
+
+    /// The whole reference: C¹ at mid-stance where the bounce hands over to the virtual leg
+    /// (value and slope from either side), at y_mid there, and never under the heel-strike
+    /// height over the stance.
+    #[test]
+    fn hip_reference_is_c1_at_mid_stance_and_stays_above_heel_strike() {
+        let s = steady_setup();
+        let (ym, dm) = hip_reference(&s, -1e-9);
+        let (yp, dp) = hip_reference(&s, 1e-9);
+        assert!(
+            (ym - yp).abs() < 1e-9 && (dm - dp).abs() < 1e-6,
+            "{ym} {yp} {dm} {dp}"
+        );
+        let y_mid = 0.5 * (s.y_start + s.y_end) + s.bounce;
+        assert!((ym - y_mid).abs() < 1e-9);
+        let n = 2000;
+        for k in 0..=n {
+            let th = -s.theta1_start + (s.theta1_start + s.theta1_end) * k as f64 / n as f64;
+            let y = hip_reference(&s, th).0;
+            assert!(y >= s.y_start.min(s.y_end) - 1e-12, "θ1 {th}: {y}");
+        }
+    }
+}
