@@ -136,7 +136,11 @@ pub fn swing_work(setup: &SwingSetup, subphases: &[(Subphase, &Segment<4>)], n: 
     subphases
         .iter()
         .map(|(sub, seg)| {
-            let forces = SwingForces { setup, sub: *sub };
+            let forces = SwingForces {
+                setup,
+                sub: *sub,
+                piece: None,
+            };
             integrate(|t, y| swing_powers(&forces, t, y), seg, n)
         })
         .fold(Work::default(), |a, b| a + b)

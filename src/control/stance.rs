@@ -87,6 +87,9 @@ pub struct StanceForces<'a> {
     /// Leg extension p (m) of the position actuator, blended in over the second half-step.
     pub p: f64,
     pub locked: bool,
+    /// The leg torque on or off whatever t ([`Self::with_torque`]); `None`: on for
+    /// t < 0.4 t_step.
+    torque: Option<bool>,
     /// sin θ1^− and sin θ1^+ of the hip reference (constants of the step).
     sin_start: f64,
     sin_end: f64,
@@ -99,9 +102,19 @@ impl<'a> StanceForces<'a> {
             tau1,
             p,
             locked,
+            torque: None,
             sin_start: setup.theta1_start.sin(),
             sin_end: setup.theta1_end.sin(),
         }
+    }
+
+    /// The same forces with the leg torque on (or off) at every t: an integration segment lies
+    /// on one side of the switch at 0.4 t_step, and the stages at its end, t = 0.4 t_step, must
+    /// see the segment's torque (its limit from inside), not the value past the switch (the
+    /// step then failed its error test, down to 1e-5 s steps, and kept a 1e-7 error).
+    pub fn with_torque(mut self, on: bool) -> Self {
+        self.torque = Some(on);
+        self
     }
 
     /// Generalized forces Q = (F_w, F_θ1 − F_θ2, F_θ2) at (t, y).
@@ -115,7 +128,7 @@ impl<'a> StanceForces<'a> {
         let s = self.setup;
         let (w, th2, wd, th1d, th2d) = (y[0], y[2], y[3], y[4], y[5]);
         let f2 = -s.k_2 * (th2 - s.theta2_ref) - s.d_2 * th2d;
-        let f1 = if t < TORQUE_OFF * s.t_step {
+        let f1 = if self.torque.unwrap_or(t < TORQUE_OFF * s.t_step) {
             self.tau1
         } else {
             0.0
@@ -310,11 +323,23 @@ impl HipPath {
 
     /// The hip acceleration at t (clamped to the tabulated interval).
     pub fn acceleration(&self, t: f64) -> [f64; 2] {
-        let p = self
-            .pieces
+        self.acceleration_on(self.piece(t), t)
+    }
+
+    /// The index of the piece (between [`Self::breaks`]) that holds t, a break starting the
+    /// next piece.
+    pub fn piece(&self, t: f64) -> usize {
+        self.pieces
             .iter()
-            .find(|p| t < p.t1)
-            .unwrap_or(&self.pieces[self.pieces.len() - 1]);
+            .position(|p| t < p.t1)
+            .unwrap_or(self.pieces.len() - 1)
+    }
+
+    /// The acceleration of piece `piece` at t (clamped to the piece): at a break, the limit
+    /// from inside the piece, which an integration that stops at the break needs for its last
+    /// stages.
+    pub fn acceleration_on(&self, piece: usize, t: f64) -> [f64; 2] {
+        let p = &self.pieces[piece];
         let n = p.acc.len() - 3;
         let x = ((t - p.t0) / p.dt).clamp(0.0, n as f64);
         let i = (x.floor() as usize).min(n - 1);
@@ -378,7 +403,8 @@ impl StanceRun {
         let (mut t, mut y, mut locked) = (0.0, y0, false);
         'outer: for t_break in breaks {
             while t < t_break {
-                let forces = StanceForces::new(setup, tau1, p, locked);
+                let forces = StanceForces::new(setup, tau1, p, locked)
+                    .with_torque(t < TORQUE_OFF * setup.t_step);
                 let follow = match mesh.and_then(|m| m.segments.get(run.segments.len())) {
                     Some((seg, l)) if *l == locked && seg.t0 == t => ode::Mesh::Aligned(seg),
                     Some((seg, l)) if *l == locked => ode::Mesh::Shifted(seg),

@@ -149,6 +149,10 @@ impl Subphase {
 pub struct SwingForces<'a> {
     pub setup: &'a SwingSetup<'a>,
     pub sub: Subphase,
+    /// The hip path's piece the integration is on ([`HipPath::acceleration_on`]), so that its
+    /// stages at a break see the piece's acceleration, not the next one's; `None`: the piece
+    /// holding t.
+    pub piece: Option<usize>,
 }
 
 impl SwingForces<'_> {
@@ -189,7 +193,10 @@ impl SwingForces<'_> {
 impl Phase<4, 2> for SwingForces<'_> {
     fn rhs(&self, t: f64, y: &SwingState) -> SwingState {
         let s = self.setup;
-        let hip_acc = s.hip_path.acceleration(t);
+        let hip_acc = match self.piece {
+            Some(piece) => s.hip_path.acceleration_on(piece, t),
+            None => s.hip_path.acceleration(t),
+        };
         let q = Vector2::new(y[0], y[1]);
         let qd = Vector2::new(y[2], y[3]);
         let locked = matches!(self.sub, Subphase::Swing3 { .. });
@@ -258,7 +265,6 @@ impl SwingTrial {
             Subphase::Swing3 { .. } => setup.t_end,
         };
         // piecewise between the hip path's breaks, where the hip acceleration jumps
-        let forces = SwingForces { setup, sub };
         let stops = setup
             .hip_path
             .breaks()
@@ -270,6 +276,11 @@ impl SwingTrial {
                 .as_ref()
                 .map_or((t0, y0), |o| (o.segment.t1, o.segment.y1));
             let follow = mesh.map_or(ode::Mesh::Adaptive, ode::Mesh::Aligned);
+            let forces = SwingForces {
+                setup,
+                sub,
+                piece: Some(setup.hip_path.piece(t)),
+            };
             let piece = ode::integrate_on(&forces, t, y, stop, tol, follow)?;
             let event = piece.event.is_some();
             out = Some(match out {
