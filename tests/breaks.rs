@@ -72,22 +72,35 @@ fn end_state<P: Phase<N, K>, const N: usize, const K: usize>(
 }
 
 #[test]
-fn the_stance_segment_ending_at_the_torque_switch_keeps_its_torque() {
-    let (_, _, steps) = steps(6);
+fn stance_segments_end_with_their_own_forces() {
+    let (body, _, steps) = steps(6);
     for step in [&steps[0], &steps[5]] {
         let setup = &step.stance_setup;
         let t_off = TORQUE_OFF * setup.t_step;
-        let (seg, locked) = &step.stance.segments[0];
-        assert!(!locked);
-        assert_eq!(seg.t1, t_off, "the first segment ends at the switch");
-        // t enters the forces of the first segment only through the switch (the position
-        // actuator's blend is 0 before t_step / 2): hold it just before the switch
-        let forces = StanceForces::new(setup, step.stance.tau1, step.stance.p, false);
-        let reference = end_state(&forces, t_off * (1.0 - 1e-15), 0.0, seg.y0);
-        let err = (seg.y1 - reference).amax();
-        // measured 3.5e-9 and 4.4e-9 (tolerance 1e-8); with the torque off at the last stages
-        // 2.9e-8 at step 0
-        assert!(err < 2e-8, "step {}: {err:.2e}", step.index);
+        let segments = &step.stance.segments;
+        // one segment ends at the torque's switch, one where the leg force's clamp lets go
+        // (the unloaded leg after the heel strike), both telescopic
+        let at_switch = segments.iter().position(|(s, _)| s.t1 == t_off).unwrap();
+        let forces = |locked| StanceForces::new(setup, step.stance.tau1, step.stance.p, locked);
+        let weight = body.mass * 9.81;
+        let at_clamp = segments
+            .iter()
+            .position(|(s, l)| {
+                !l && s.t1 < t_off && forces(false).leg_force(s.t1, &s.y1).abs() < 1e-6 * weight
+            })
+            .unwrap();
+        assert!(at_clamp < at_switch);
+        for (i, (seg, locked)) in segments.iter().enumerate() {
+            // t enters the forces through the switch and the position actuator's blend (0
+            // before t_step / 2, C¹ there): held just before the segment's end
+            let reference = end_state(&forces(*locked), seg.t1 * (1.0 - 1e-15), seg.t0, seg.y0);
+            let err = (seg.y1 - reference).amax();
+            // measured ≤ 4.4e-9 (tolerance 1e-8); with the torque off at the last stages 2.9e-8
+            // at step 0. The clamp's event is located after the step that crosses the kink, and
+            // that step is only as accurate as the tolerance lets it be: 3.8e-8 at step 5
+            let bound = if i == at_clamp { 1e-7 } else { 2e-8 };
+            assert!(err < bound, "step {}, segment {i}: {err:.2e}", step.index);
+        }
     }
 }
 

@@ -78,6 +78,10 @@ pub fn smoothstep(x: f64) -> f64 {
     x * x * (3.0 - 2.0 * x)
 }
 
+/// Clamp events (the leg force reaching or leaving 0) located per stance trial; after them the
+/// clamp's kink is left to the step-size control.
+const CLAMP_EVENTS: usize = 8;
+
 /// One stance trial: the unknown magnitudes (τ1, p) and the subphase.
 #[derive(Clone, Copy, Debug)]
 pub struct StanceForces<'a> {
@@ -90,6 +94,9 @@ pub struct StanceForces<'a> {
     /// The leg torque on or off whatever t ([`Self::with_torque`]); `None`: on for
     /// t < 0.4 t_step.
     torque: Option<bool>,
+    /// Which side of its clamp at 0 the leg force F_w starts on in this integration segment
+    /// ([`Self::with_loaded`]; the clamp event fires when it leaves it); `None`: no clamp event.
+    loaded: Option<bool>,
     /// sin θ1^− and sin θ1^+ of the hip reference (constants of the step).
     sin_start: f64,
     sin_end: f64,
@@ -103,6 +110,7 @@ impl<'a> StanceForces<'a> {
             p,
             locked,
             torque: None,
+            loaded: None,
             sin_start: setup.theta1_start.sin(),
             sin_end: setup.theta1_end.sin(),
         }
@@ -117,6 +125,34 @@ impl<'a> StanceForces<'a> {
         self
     }
 
+    /// The same forces in an integration segment that starts with the leg force F_w positive
+    /// (`loaded`) or clamped at 0: the clamp event (event 3) fires where F_w's unclamped value
+    /// changes sign, so that no integrator step straddles the clamp's kink (after the heel
+    /// strike the unloaded leg's servo pulls, and F_w is 0 for the first ≈ 60 ms).
+    pub fn with_loaded(mut self, loaded: bool) -> Self {
+        self.loaded = Some(loaded);
+        self
+    }
+
+    /// The leg force F_w at (t, y) before its clamp at 0 (telescopic subphase).
+    pub fn leg_force(&self, t: f64, y: &StanceState) -> f64 {
+        let (s1, c1) = sin_cos(y[1]);
+        self.leg_force_sc(t, y, s1, c1)
+    }
+
+    /// [`Self::leg_force`] with sin θ1, cos θ1 known.
+    fn leg_force_sc(&self, t: f64, y: &StanceState, s1: f64, c1: f64) -> f64 {
+        let s = self.setup;
+        let (w, wd, th1d) = (y[0], y[3], y[4]);
+        // pa = w_ref − l1 + (m2 g cos θ1 + d_w ẇ_ref)/k_w + p s(t), F_w = k_w (l1 + pa − w) − d_w ẇ ≥ 0
+        let (y_ref, dy_ref) = hip_reference_sc(s, s1, c1, self.sin_start, self.sin_end);
+        let w_ref = (y_ref - s.model.l9) / c1;
+        let dw_ref = dy_ref / c1 + (y_ref - s.model.l9) * s1 / (c1 * c1);
+        let wd_ref = dw_ref * th1d;
+        let blend = smoothstep((t - 0.5 * s.t_step) / (0.5 * s.t_step));
+        s.k_w * (w_ref - w + self.p * blend) + s.model.m2 * s.model.g * c1 + s.d_w * (wd_ref - wd)
+    }
+
     /// Generalized forces Q = (F_w, F_θ1 − F_θ2, F_θ2) at (t, y).
     pub fn generalized(&self, t: f64, y: &StanceState) -> Vector3<f64> {
         let (s1, c1) = sin_cos(y[1]);
@@ -126,7 +162,7 @@ impl<'a> StanceForces<'a> {
     /// [`Self::generalized`] with sin θ1, cos θ1 known.
     fn generalized_sc(&self, t: f64, y: &StanceState, s1: f64, c1: f64) -> Vector3<f64> {
         let s = self.setup;
-        let (w, th2, wd, th1d, th2d) = (y[0], y[2], y[3], y[4], y[5]);
+        let (th2, th2d) = (y[2], y[5]);
         let f2 = -s.k_2 * (th2 - s.theta2_ref) - s.d_2 * th2d;
         let f1 = if self.torque.unwrap_or(t < TORQUE_OFF * s.t_step) {
             self.tau1
@@ -136,16 +172,7 @@ impl<'a> StanceForces<'a> {
         let fw = if self.locked {
             0.0
         } else {
-            // pa = w_ref − l1 + (m2 g cos θ1 + d_w ẇ_ref)/k_w + p s(t), F_w = k_w (l1 + pa − w) − d_w ẇ ≥ 0
-            let (y_ref, dy_ref) = hip_reference_sc(s, s1, c1, self.sin_start, self.sin_end);
-            let w_ref = (y_ref - s.model.l9) / c1;
-            let dw_ref = dy_ref / c1 + (y_ref - s.model.l9) * s1 / (c1 * c1);
-            let wd_ref = dw_ref * th1d;
-            let blend = smoothstep((t - 0.5 * s.t_step) / (0.5 * s.t_step));
-            let f = s.k_w * (w_ref - w + self.p * blend)
-                + s.model.m2 * s.model.g * c1
-                + s.d_w * (wd_ref - wd);
-            f.max(0.0)
+            self.leg_force_sc(t, y, s1, c1).max(0.0)
         };
         Vector3::new(fw, f1 - f2, f2)
     }
@@ -166,14 +193,15 @@ impl<'a> StanceForces<'a> {
     }
 }
 
-/// Events: 0 lock / release, 1 |θ1| too large, 2 leg collapsed.
-impl Phase<6, 3> for StanceForces<'_> {
+/// Events: 0 lock / release, 1 |θ1| too large, 2 leg collapsed, 3 the leg force's clamp engages
+/// or lets go ([`StanceForces::with_loaded`]).
+impl Phase<6, 4> for StanceForces<'_> {
     fn rhs(&self, t: f64, y: &StanceState) -> StanceState {
         let a = self.accelerations(t, y);
         StanceState::from([y[3], y[4], y[5], a[0], a[1], a[2]])
     }
 
-    fn events(&self, _t: f64, y: &StanceState) -> [f64; 3] {
+    fn events(&self, t: f64, y: &StanceState) -> [f64; 4] {
         let (w, th1) = (y[0], y[1]);
         let switch = if self.locked {
             -th1 // release when the leg passes the vertical
@@ -182,7 +210,17 @@ impl Phase<6, 3> for StanceForces<'_> {
         } else {
             1.0
         };
-        [switch, THETA1_ABORT - th1.abs(), w - 0.5 * self.setup.l1]
+        let clamp = match (self.locked, self.loaded) {
+            (false, Some(true)) => self.leg_force(t, y),
+            (false, Some(false)) => -self.leg_force(t, y),
+            _ => 1.0,
+        };
+        [
+            switch,
+            THETA1_ABORT - th1.abs(),
+            w - 0.5 * self.setup.l1,
+            clamp,
+        ]
     }
 }
 
@@ -401,10 +439,22 @@ impl StanceRun {
             adapted: false,
         };
         let (mut t, mut y, mut locked) = (0.0, y0, false);
+        // the leg force's side of its clamp after a clamp event (else its sign where a segment
+        // starts), and the clamp events so far: past CLAMP_EVENTS (a force grazing 0) the kink
+        // is left to the step-size control
+        let (mut flipped, mut clamp_events) = (None, 0);
         'outer: for t_break in breaks {
             while t < t_break {
                 let forces = StanceForces::new(setup, tau1, p, locked)
                     .with_torque(t < TORQUE_OFF * setup.t_step);
+                let loaded = flipped
+                    .take()
+                    .unwrap_or_else(|| forces.leg_force(t, &y) > 0.0);
+                let forces = if clamp_events < CLAMP_EVENTS {
+                    forces.with_loaded(loaded)
+                } else {
+                    forces
+                };
                 let follow = match mesh.and_then(|m| m.segments.get(run.segments.len())) {
                     Some((seg, l)) if *l == locked && seg.t0 == t => ode::Mesh::Aligned(seg),
                     Some((seg, l)) if *l == locked => ode::Mesh::Shifted(seg),
@@ -419,6 +469,10 @@ impl StanceRun {
                 match out.event {
                     None => {}
                     Some(0) if locked => locked = false,
+                    Some(3) => {
+                        flipped = Some(!loaded);
+                        clamp_events += 1;
+                    }
                     Some(0) => {
                         // the knee locks: a plastic impulse along the leg stops ẇ
                         let q = Vector3::new(y[0], y[1], y[2]);
