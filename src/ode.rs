@@ -44,15 +44,23 @@ pub trait Phase<const N: usize, const K: usize> {
 /// The dense output of one accepted step on [t, t + h]: with θ = (t' − t)/h and θ' = 1 − θ,
 /// y(t') = r0 + θ (r1 + θ' (r2 + θ (r3 + θ' (r4 + θ (r5 + θ' (r6 + θ r7)))))): Dopri5's
 /// quartic has r5 = r6 = r7 = 0, DOP853's 7th-degree polynomial uses all eight.
+/// `ready`: r4..r7 are computed (a shooting trial's DOP853 steps leave them to
+/// [`Segment::densify`]).
 #[derive(Clone, Copy, Debug)]
 struct DenseStep<const N: usize> {
     t: f64,
     h: f64,
     r: [SVector<f64, N>; 8],
+    ready: bool,
 }
+
+/// What DOP853's dense output needs of an accepted step besides its ends: the stages k1,
+/// k6..k12 and k13 = f(t + h, y_new).
+type Stages<const N: usize> = [SVector<f64, N>; 9];
 
 impl<const N: usize> DenseStep<N> {
     fn eval(&self, t: f64) -> SVector<f64, N> {
+        assert!(self.ready, "a dense output not computed (Segment::densify)");
         let th = (t - self.t) / self.h;
         let th1 = 1.0 - th;
         let r = &self.r;
@@ -70,9 +78,34 @@ pub struct Segment<const N: usize> {
     pub y0: SVector<f64, N>,
     pub y1: SVector<f64, N>,
     steps: Vec<DenseStep<N>>,
+    /// Stages of the steps without their dense output, one per step (empty when every step
+    /// has it).
+    pending: Vec<Stages<N>>,
 }
 
 impl<const N: usize> Segment<N> {
+    /// Whether [`Self::state`] is available everywhere (else [`Self::densify`] first).
+    pub fn is_dense(&self) -> bool {
+        self.pending.is_empty()
+    }
+
+    /// Complete the dense output that [`integrate_trial`] left out: three evaluations per step
+    /// of the right-hand side `phase_at(t)` gives for the step starting at t (the phase of the
+    /// integration that made it). Returns the evaluations.
+    pub fn densify<P: Phase<N, K>, const K: usize>(&mut self, phase_at: impl Fn(f64) -> P) -> u32 {
+        let mut evaluations = 0;
+        for (step, k) in self.steps.iter_mut().zip(&self.pending) {
+            if !step.ready {
+                let tail = dop853_dense(&phase_at(step.t), step.t, step.h, &step.r[0], k);
+                step.r[4..].copy_from_slice(&tail);
+                step.ready = true;
+                evaluations += 3;
+            }
+        }
+        self.pending = Vec::new();
+        evaluations
+    }
+
     /// The accepted steps (start, end), in order, within [t0, t1]: on each, the dense output is
     /// one quartic polynomial.
     pub fn steps(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
@@ -115,6 +148,16 @@ impl<const N: usize> Outcome<N> {
     /// the evaluations added, `next`'s event.
     pub fn then(mut self, next: Outcome<N>) -> Outcome<N> {
         debug_assert!(self.segment.t1 == next.segment.t0);
+        let (a, b) = (&mut self.segment, &next.segment);
+        if !a.pending.is_empty() || !b.pending.is_empty() {
+            let zero = [SVector::<f64, N>::zeros(); 9];
+            a.pending.resize(a.steps.len(), zero);
+            if b.pending.is_empty() {
+                a.pending.resize(a.steps.len() + b.steps.len(), zero);
+            } else {
+                a.pending.extend_from_slice(&b.pending);
+            }
+        }
         self.segment.steps.extend_from_slice(&next.segment.steps);
         self.segment.t1 = next.segment.t1;
         self.segment.y1 = next.segment.y1;
@@ -459,6 +502,20 @@ pub fn integrate_on<P: Phase<N, K>, const N: usize, const K: usize>(
     integrate_by(METHOD, phase, t0, y0, t1, tol, mesh)
 }
 
+/// [`integrate_on`] for a shooting trial: DOP853's dense output is left out (the three extra
+/// evaluations of each step) except on an event's step, where the event is located; the trial
+/// the shooting keeps gets it by [`Segment::densify`], the others never need it.
+pub fn integrate_trial<P: Phase<N, K>, const N: usize, const K: usize>(
+    phase: &P,
+    t0: f64,
+    y0: SVector<f64, N>,
+    t1: f64,
+    tol: f64,
+    mesh: Mesh<'_, N>,
+) -> Result<Outcome<N>, String> {
+    run(METHOD, true, phase, t0, y0, t1, tol, mesh)
+}
+
 /// The Runge–Kutta pair of an integration.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Method {
@@ -656,19 +713,16 @@ fn dop853_attempt<P: Phase<N, K>, const N: usize, const K: usize>(
     }
 }
 
-/// The dense output of DOP853's accepted step from (t, y) to y_new, with k13 = f(t + h, y_new):
-/// three more stages.
+/// The dense output's r4..r7 of DOP853's accepted step from (t, y) with stages `k` (k1,
+/// k6..k13): three more stages.
 fn dop853_dense<P: Phase<N, K>, const N: usize, const K: usize>(
     phase: &P,
     t: f64,
     h: f64,
     y: &SVector<f64, N>,
-    a: &Attempt<N>,
-    k13: &SVector<f64, N>,
-) -> [SVector<f64, N>; 8] {
-    let k = &a.k;
-    let (k1, k6, k7, k8, k9, k10, k11, k12) = (k[0], k[5], k[6], k[7], k[8], k[9], k[10], k[11]);
-    let k13 = *k13;
+    k: &Stages<N>,
+) -> [SVector<f64, N>; 4] {
+    let [k1, k6, k7, k8, k9, k10, k11, k12, k13] = *k;
     let k14 = phase.rhs(
         t + dop853::C14 * h,
         &(y + (k1 * dop853::A14_1
@@ -705,8 +759,6 @@ fn dop853_dense<P: Phase<N, K>, const N: usize, const K: usize>(
             + k15 * dop853::A16_15)
             * h),
     );
-    let ydiff = a.y_new - y;
-    let bspl = k1 * h - ydiff;
     let d = |c: [f64; 16]| {
         (k1 * c[0]
             + k6 * c[5]
@@ -722,21 +774,27 @@ fn dop853_dense<P: Phase<N, K>, const N: usize, const K: usize>(
             + k16 * c[15])
             * h
     };
-    [
-        *y,
-        ydiff,
-        bspl,
-        ydiff - k13 * h - bspl,
-        d(dop853::D4),
-        d(dop853::D5),
-        d(dop853::D6),
-        d(dop853::D7),
-    ]
+    [d(dop853::D4), d(dop853::D5), d(dop853::D6), d(dop853::D7)]
 }
 
 /// [`integrate_on`] by `method`.
 pub fn integrate_by<P: Phase<N, K>, const N: usize, const K: usize>(
     method: Method,
+    phase: &P,
+    t0: f64,
+    y0: SVector<f64, N>,
+    t1: f64,
+    tol: f64,
+    mesh: Mesh<'_, N>,
+) -> Result<Outcome<N>, String> {
+    run(method, false, phase, t0, y0, t1, tol, mesh)
+}
+
+/// [`integrate_by`], the dense output left out when `lazy` ([`integrate_trial`]).
+#[allow(clippy::too_many_arguments)]
+fn run<P: Phase<N, K>, const N: usize, const K: usize>(
+    method: Method,
+    lazy: bool,
     phase: &P,
     t0: f64,
     y0: SVector<f64, N>,
@@ -775,6 +833,7 @@ pub fn integrate_by<P: Phase<N, K>, const N: usize, const K: usize>(
         }
     };
     let mut steps: Vec<DenseStep<N>> = Vec::with_capacity(64);
+    let mut pending: Vec<Stages<N>> = Vec::new();
     let (mut t, mut y) = (t0, y0);
     let (alpha, beta, facc1, facc2) = method.control();
     let mut fac_old = 1e-4_f64;
@@ -818,7 +877,7 @@ pub fn integrate_by<P: Phase<N, K>, const N: usize, const K: usize>(
             };
             fac_old = err.max(1e-4);
             reject = false;
-            let (y_new, k_next, r) = match method {
+            let (y_new, k_next, r, ready) = match method {
                 Method::Dopri5 => {
                     let k = &attempt.k;
                     let (k1, k3, k4, k5, k6, k7) = (k[0], k[2], k[3], k[4], k[5], k[6]);
@@ -827,16 +886,28 @@ pub fn integrate_by<P: Phase<N, K>, const N: usize, const K: usize>(
                     let r4 = (k1 * D1 + k3 * D3 + k4 * D4 + k5 * D5 + k6 * D6 + k7 * D7) * h;
                     let z = SVector::<f64, N>::zeros();
                     let r = [y, ydiff, bspl, ydiff - k7 * h - bspl, r4, z, z, z];
-                    (attempt.y_new, k7, r)
+                    (attempt.y_new, k7, r, true)
                 }
                 Method::Dop853 => {
                     let k13 = phase.rhs(t + h, &attempt.y_new);
-                    evaluations += 4;
-                    let r = dop853_dense(phase, t, h, &y, &attempt, &k13);
-                    (attempt.y_new, k13, r)
+                    evaluations += 1;
+                    let k = &attempt.k;
+                    let stages = [k[0], k[5], k[6], k[7], k[8], k[9], k[10], k[11], k13];
+                    let ydiff = attempt.y_new - y;
+                    let bspl = k[0] * h - ydiff;
+                    let z = SVector::<f64, N>::zeros();
+                    let mut r = [y, ydiff, bspl, ydiff - k13 * h - bspl, z, z, z, z];
+                    if lazy {
+                        pending.push(stages);
+                    } else {
+                        let tail = dop853_dense(phase, t, h, &y, &stages);
+                        r[4..].copy_from_slice(&tail);
+                        evaluations += 3;
+                    }
+                    (attempt.y_new, k13, r, !lazy)
                 }
             };
-            steps.push(DenseStep { t, h, r });
+            steps.push(DenseStep { t, h, r, ready });
             t = if last { t1 } else { t + h };
             y = y_new;
             k1 = k_next;
@@ -872,10 +943,19 @@ pub fn integrate_by<P: Phase<N, K>, const N: usize, const K: usize>(
         y0,
         y1: y,
         steps,
+        pending,
     };
     if let Some(k) = hit {
         // Illinois-safeguarded regula falsi on the last step's dense output
-        let step = *segment.steps.last().expect("an accepted step");
+        let last = segment.steps.len() - 1;
+        let step = &mut segment.steps[last];
+        if !step.ready {
+            let tail = dop853_dense(phase, step.t, step.h, &step.r[0], &segment.pending[last]);
+            step.r[4..].copy_from_slice(&tail);
+            step.ready = true;
+            evaluations += 3;
+        }
+        let step = *step;
         let g = |t: f64| phase.events(t, &step.eval(t))[k];
         let (mut a, mut b) = (step.t, t);
         let (mut ga, mut gb) = (g(a), g(b));
@@ -1063,8 +1143,10 @@ mod tests {
                     t: i as f64 * h,
                     h,
                     r: [zero; 8],
+                    ready: true,
                 })
                 .collect(),
+            pending: Vec::new(),
         };
         let out = integrate_by(
             method,
@@ -1142,5 +1224,50 @@ mod tests {
             let err = (out.segment.t1 - std::f64::consts::FRAC_PI_2).abs();
             assert!(err < 1e-10, "{method:?}: {err:e}");
         }
+    }
+
+    #[test]
+    fn a_trial_densified_later_has_the_same_dense_output() {
+        let y0 = exact(0.0);
+        let eager = integrate_by(
+            Method::Dop853,
+            &Exponentials,
+            0.0,
+            y0,
+            2.0,
+            1e-8,
+            Mesh::Adaptive,
+        )
+        .unwrap();
+        let mut lazy = integrate_trial(&Exponentials, 0.0, y0, 2.0, 1e-8, Mesh::Adaptive).unwrap();
+        assert!(!lazy.segment.is_dense());
+        let n = lazy.segment.steps.len() as u32;
+        assert_eq!(lazy.evaluations + 3 * n, eager.evaluations);
+        assert_eq!(lazy.segment.densify(|_| Exponentials), 3 * n);
+        assert!(lazy.segment.is_dense());
+        assert_eq!(lazy.segment.y1, eager.segment.y1);
+        for i in 0..=40 {
+            let t = 0.05 * i as f64;
+            assert_eq!(lazy.segment.state(t), eager.segment.state(t), "t {t}");
+        }
+        // an event's step gets its dense output at once: the event is located on it
+        let osc = integrate_trial(
+            &Oscillator,
+            0.0,
+            SVector::<f64, 2>::new(1.0, 0.0),
+            3.0,
+            1e-10,
+            Mesh::Adaptive,
+        )
+        .unwrap();
+        assert!((osc.segment.t1 - std::f64::consts::FRAC_PI_2).abs() < 1e-10);
+    }
+
+    #[test]
+    #[should_panic(expected = "densify")]
+    fn a_trial_without_its_dense_output_is_not_read() {
+        let out =
+            integrate_trial(&Exponentials, 0.0, exact(0.0), 2.0, 1e-8, Mesh::Adaptive).unwrap();
+        out.segment.state(1.0);
     }
 }

@@ -287,7 +287,8 @@ impl Walker {
             phase: "stance",
             reason,
         })?;
-        let stance = best.into_inner().expect("at least one trial ran");
+        let mut stance = best.into_inner().expect("at least one trial ran");
+        self.count(stance.densify(&setup));
         if !report.converged {
             return Err(Error::NotConverged {
                 step: index,
@@ -627,7 +628,9 @@ impl Walker {
         let (mem, report) = with_fallback(start, fallback, |start| {
             shooting::solve2(residual, start, &self.options).map(|(_, r, m)| (m, r))
         })?;
-        Ok((best.into_inner().ok_or("no trial ran")?, report, mem))
+        let mut trial = best.into_inner().ok_or("no trial ran")?;
+        self.count(trial.densify(sw));
+        Ok((trial, report, mem))
     }
 
     /// One swing trial of a solve: it follows the solve's mesh (or, when it had to choose its
@@ -675,7 +678,9 @@ impl Walker {
         let (mem, report) = with_fallback(start, fallback, |start| {
             shooting::solve1(residual, start, &self.options).map(|(_, r, m)| (m, r))
         })?;
-        Ok((best.into_inner().ok_or("no trial ran")?, report, mem))
+        let mut trial = best.into_inner().ok_or("no trial ran")?;
+        self.count(trial.densify(sw));
+        Ok((trial, report, mem))
     }
 }
 

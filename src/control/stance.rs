@@ -413,13 +413,16 @@ impl StanceRun {
         p: f64,
         tol: f64,
     ) -> Result<Self, String> {
-        Self::simulate_on(setup, y0, tau1, p, tol, None)
+        let mut run = Self::simulate_on(setup, y0, tau1, p, tol, None)?;
+        run.evaluations += run.densify(setup);
+        Ok(run)
     }
 
     /// [`Self::simulate_with`] on the step sequences of `mesh`, a previous trial of the same
     /// stance ([`ode::integrate_on`]): its i-th segment's steps for the i-th segment (from the
     /// same start time, or shifted when the segment starts at an event), when the subphases
-    /// agree.
+    /// agree. The dense output is left out ([`ode::integrate_trial`]): [`Self::densify`] the
+    /// trial that is kept.
     pub fn simulate_on(
         setup: &StanceSetup,
         y0: StanceState,
@@ -460,7 +463,7 @@ impl StanceRun {
                     Some((seg, l)) if *l == locked => ode::Mesh::Shifted(seg),
                     _ => ode::Mesh::Adaptive,
                 };
-                let out = ode::integrate_on(&forces, t, y, t_break, tol, follow)?;
+                let out = ode::integrate_trial(&forces, t, y, t_break, tol, follow)?;
                 run.evaluations += out.evaluations;
                 run.adapted |= out.adapted;
                 t = out.segment.t1;
@@ -490,6 +493,19 @@ impl StanceRun {
         }
         run.residual = Vector2::new(y[1] - setup.theta1_end, y[0] - setup.w_end);
         Ok(run)
+    }
+
+    /// Complete the dense output of a [`Self::simulate_on`] trial ([`ode::Segment::densify`]);
+    /// returns the right-hand-side evaluations.
+    pub fn densify(&mut self, setup: &StanceSetup) -> u32 {
+        let (tau1, p, t_off) = (self.tau1, self.p, TORQUE_OFF * setup.t_step);
+        self.segments
+            .iter_mut()
+            .map(|(seg, locked)| {
+                let forces = StanceForces::new(setup, tau1, p, *locked).with_torque(seg.t0 < t_off);
+                seg.densify(|_| forces)
+            })
+            .sum()
     }
 
     /// End time of the record (t_step unless aborted).

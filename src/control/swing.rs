@@ -246,11 +246,26 @@ impl SwingTrial {
         y0: SwingState,
         tol: f64,
     ) -> Result<Self, String> {
-        Self::simulate_on(setup, sub, t0, y0, tol, None)
+        let mut trial = Self::simulate_on(setup, sub, t0, y0, tol, None)?;
+        trial.evaluations += trial.densify(setup);
+        Ok(trial)
+    }
+
+    /// Complete the dense output of a [`Self::simulate_on`] trial ([`ode::Segment::densify`]);
+    /// returns the right-hand-side evaluations.
+    pub fn densify(&mut self, setup: &SwingSetup) -> u32 {
+        let sub = self.sub;
+        self.segment.densify(|t| SwingForces {
+            setup,
+            sub,
+            piece: Some(setup.hip_path.piece(t)),
+        })
     }
 
     /// [`Self::simulate_with`] on the step sequence of `mesh`, a previous trial of the same
     /// subphase ([`ode::integrate_on`]): the shooting's residual stays smooth in the unknowns.
+    /// The dense output is left out ([`ode::integrate_trial`]): [`Self::densify`] the trial
+    /// that is kept.
     pub fn simulate_on(
         setup: &SwingSetup,
         sub: Subphase,
@@ -281,7 +296,7 @@ impl SwingTrial {
                 sub,
                 piece: Some(setup.hip_path.piece(t)),
             };
-            let piece = ode::integrate_on(&forces, t, y, stop, tol, follow)?;
+            let piece = ode::integrate_trial(&forces, t, y, stop, tol, follow)?;
             let event = piece.event.is_some();
             out = Some(match out {
                 None => piece,
