@@ -126,9 +126,11 @@ impl<'a> StanceForces<'a> {
     }
 
     /// The same forces in an integration segment that starts with the leg force F_w positive
-    /// (`loaded`) or clamped at 0: the clamp event (event 3) fires where F_w's unclamped value
-    /// changes sign, so that no integrator step straddles the clamp's kink (after the heel
-    /// strike the unloaded leg's servo pulls, and F_w is 0 for the first ≈ 60 ms).
+    /// (`loaded`) or clamped at 0: F_w is that side's (the servo's force, or 0) throughout, and
+    /// the clamp event (event 3) fires where the servo's force changes sign, so that no
+    /// integrator step straddles the clamp's kink (after the heel strike the unloaded leg's
+    /// servo pulls, and F_w is 0 for the first ≈ 60 ms). The step in which the event fires
+    /// continues that side's force smoothly past the crossing, where the event is located.
     pub fn with_loaded(mut self, loaded: bool) -> Self {
         self.loaded = Some(loaded);
         self
@@ -169,10 +171,12 @@ impl<'a> StanceForces<'a> {
         } else {
             0.0
         };
-        let fw = if self.locked {
-            0.0
-        } else {
-            self.leg_force_sc(t, y, s1, c1).max(0.0)
+        // in a segment on one side of the clamp, that side's force continued smoothly past the
+        // crossing (the integrator's steps see no kink; the event ends the segment there)
+        let fw = match (self.locked, self.loaded) {
+            (true, _) | (false, Some(false)) => 0.0,
+            (false, Some(true)) => self.leg_force_sc(t, y, s1, c1),
+            (false, None) => self.leg_force_sc(t, y, s1, c1).max(0.0),
         };
         Vector3::new(fw, f1 - f2, f2)
     }
