@@ -1,8 +1,13 @@
-//! Integration of one (sub)phase by the Dormand–Prince 5(4) pair with its 4th-order dense
-//! output (Hairer, Nørsett & Wanner, *Solving ODEs I*, II.5: DOPRI5, the same method and step
-//! control as `ode_solvers::Dopri5`), written for fixed-size states: the stages live on the
+//! Integration of one (sub)phase by an explicit Runge–Kutta pair with dense output ([`Method`]):
+//! Hairer's DOP853, the Dormand–Prince 8(5,3) pair with its 7th-order dense output (Hairer,
+//! Nørsett & Wanner, *Solving ODEs I*, II.10), for every phase of the walk [`METHOD`], or the
+//! Dormand–Prince 5(4) pair with its 4th-order dense output (II.5: DOPRI5, the same method and
+//! step control as `ode_solvers::Dopri5`). Written for fixed-size states: the stages live on the
 //! stack, the right-hand side is called through a generic (inlined), and the only allocation
-//! is the dense record, one entry per accepted step. Accurate event location: the integration
+//! is the dense record, one entry per accepted step. (ode_solvers 0.6.2's DOP853 evaluates its
+//! 12th stage at t instead of t + h — its c12 is 0 — which is why it took tiny steps and
+//! reported stiffness in the walk's time-dependent phases; the tests here check the order on
+//! a non-autonomous problem.) Accurate event location: the integration
 //! stops after the accepted step in which an event function changes sign, and the crossing is
 //! root-found on that step's dense output to ~1e-13 s (spec §4: events are located, not rounded
 //! to the nearest solver step).
@@ -15,8 +20,12 @@ use nalgebra::SVector;
 /// 1e-12, meet the step's end conditions to ≤ 1.2e-7 over the grid (`examples/evals.rs`; 6.4e-7
 /// at 1e-7, too close to the 1e-6 promise; measured again after the swing1 knee damper and the
 /// start-up guesses: 5.1e-8 stance, 1.3e-8 swing3 at 1e-8; at 1e-7 the swing's net work also
-/// misses its energy balance, `tests/work.rs`, by 8e-4 J against the 7.9e-4 J bound);
-/// docs/engine.md has the table.
+/// misses its energy balance, `tests/work.rs`, by 8e-4 J against the 7.9e-4 J bound; with
+/// DOP853 and the segments ending at the forces' jumps and kinks: 1.0e-8 stance, 2.0e-8
+/// swing1, 1.8e-8 swing3 over the grid; with the virtual leg's stance reference 1.0e-8, 1.5e-8,
+/// 1.0e-8, and swing3's heel landing velocity 6.3e-6 m/s at one step (v 0.7 m/s, H 1.8 m, step
+/// 9; 1.1e-6 at v 2.0, H 1.5, step 8; ≤ 1e-7 elsewhere)); docs/engine.md has the table. Kept
+/// at 1e-8.
 pub const TOLERANCE: f64 = 1e-8;
 
 /// How precisely event times are located (s).
@@ -36,21 +45,32 @@ pub trait Phase<const N: usize, const K: usize> {
     }
 }
 
-/// The dense output of one accepted step on [t, t + h]:
-/// y(t + θh) = r0 + θ (r1 + (1 − θ)(r2 + θ (r3 + (1 − θ) r4))).
+/// The dense output of one accepted step on [t, t + h]: with θ = (t' − t)/h and θ' = 1 − θ,
+/// y(t') = r0 + θ (r1 + θ' (r2 + θ (r3 + θ' (r4 + θ (r5 + θ' (r6 + θ r7)))))): Dopri5's
+/// quartic has r5 = r6 = r7 = 0, DOP853's 7th-degree polynomial uses all eight.
+/// `ready`: r4..r7 are computed (a shooting trial's DOP853 steps leave them to
+/// [`Segment::densify`]).
 #[derive(Clone, Copy, Debug)]
 struct DenseStep<const N: usize> {
     t: f64,
     h: f64,
-    r: [SVector<f64, N>; 5],
+    r: [SVector<f64, N>; 8],
+    ready: bool,
 }
+
+/// What DOP853's dense output needs of an accepted step besides its ends: the stages k1,
+/// k6..k12 and k13 = f(t + h, y_new).
+type Stages<const N: usize> = [SVector<f64, N>; 9];
 
 impl<const N: usize> DenseStep<N> {
     fn eval(&self, t: f64) -> SVector<f64, N> {
+        assert!(self.ready, "a dense output not computed (Segment::densify)");
         let th = (t - self.t) / self.h;
         let th1 = 1.0 - th;
         let r = &self.r;
-        r[0] + (r[1] + (r[2] + (r[3] + r[4] * th1) * th) * th1) * th
+        r[0] + (r[1]
+            + (r[2] + (r[3] + (r[4] + (r[5] + (r[6] + r[7] * th) * th1) * th) * th1) * th) * th1)
+            * th
     }
 }
 
@@ -62,9 +82,34 @@ pub struct Segment<const N: usize> {
     pub y0: SVector<f64, N>,
     pub y1: SVector<f64, N>,
     steps: Vec<DenseStep<N>>,
+    /// Stages of the steps without their dense output, one per step (empty when every step
+    /// has it).
+    pending: Vec<Stages<N>>,
 }
 
 impl<const N: usize> Segment<N> {
+    /// Whether [`Self::state`] is available everywhere (else [`Self::densify`] first).
+    pub fn is_dense(&self) -> bool {
+        self.pending.is_empty()
+    }
+
+    /// Complete the dense output that [`integrate_trial`] left out: three evaluations per step
+    /// of the right-hand side `phase_at(t)` gives for the step starting at t (the phase of the
+    /// integration that made it). Returns the evaluations.
+    pub fn densify<P: Phase<N, K>, const K: usize>(&mut self, phase_at: impl Fn(f64) -> P) -> u32 {
+        let mut evaluations = 0;
+        for (step, k) in self.steps.iter_mut().zip(&self.pending) {
+            if !step.ready {
+                let tail = dop853_dense(&phase_at(step.t), step.t, step.h, &step.r[0], k);
+                step.r[4..].copy_from_slice(&tail);
+                step.ready = true;
+                evaluations += 3;
+            }
+        }
+        self.pending = Vec::new();
+        evaluations
+    }
+
     /// The accepted steps (start, end), in order, within [t0, t1]: on each, the dense output is
     /// one quartic polynomial.
     pub fn steps(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
@@ -107,6 +152,16 @@ impl<const N: usize> Outcome<N> {
     /// the evaluations added, `next`'s event.
     pub fn then(mut self, next: Outcome<N>) -> Outcome<N> {
         debug_assert!(self.segment.t1 == next.segment.t0);
+        let (a, b) = (&mut self.segment, &next.segment);
+        if !a.pending.is_empty() || !b.pending.is_empty() {
+            let zero = [SVector::<f64, N>::zeros(); 9];
+            a.pending.resize(a.steps.len(), zero);
+            if b.pending.is_empty() {
+                a.pending.resize(a.steps.len() + b.steps.len(), zero);
+            } else {
+                a.pending.extend_from_slice(&b.pending);
+            }
+        }
         self.segment.steps.extend_from_slice(&next.segment.steps);
         self.segment.t1 = next.segment.t1;
         self.segment.y1 = next.segment.y1;
@@ -157,6 +212,191 @@ const D5: f64 = 701980252875.0 / 199316789632.0;
 const D6: f64 = -1453857185.0 / 822651844.0;
 const D7: f64 = 69997945.0 / 29380423.0;
 
+/// Dormand–Prince 8(5,3) coefficients (Hairer, Nørsett & Wanner, *Solving ODEs I*, II.10, and
+/// Hairer's DOP853 code: the stages, the 5th- and 3rd-order error estimators, the dense output
+/// of order 7 with three more stages). The 12th stage is at t + h (c12 = 1).
+#[allow(clippy::excessive_precision, clippy::unreadable_literal)]
+mod dop853 {
+    pub const A2_1: f64 = 0.05260015195876773;
+    pub const A3_1: f64 = 0.0197250569845379;
+    pub const A3_2: f64 = 0.0591751709536137;
+    pub const A4_1: f64 = 0.02958758547680685;
+    pub const A4_3: f64 = 0.08876275643042054;
+    pub const A5_1: f64 = 0.2413651341592667;
+    pub const A5_3: f64 = -0.8845494793282861;
+    pub const A5_4: f64 = 0.924834003261792;
+    pub const A6_1: f64 = 0.037037037037037035;
+    pub const A6_4: f64 = 0.17082860872947386;
+    pub const A6_5: f64 = 0.12546768756682242;
+    pub const A7_1: f64 = 0.037109375;
+    pub const A7_4: f64 = 0.17025221101954405;
+    pub const A7_5: f64 = 0.06021653898045596;
+    pub const A7_6: f64 = -0.017578125;
+    pub const A8_1: f64 = 0.03709200011850479;
+    pub const A8_4: f64 = 0.17038392571223998;
+    pub const A8_5: f64 = 0.10726203044637328;
+    pub const A8_6: f64 = -0.015319437748624402;
+    pub const A8_7: f64 = 0.008273789163814023;
+    pub const A9_1: f64 = 0.6241109587160757;
+    pub const A9_4: f64 = -3.3608926294469414;
+    pub const A9_5: f64 = -0.868219346841726;
+    pub const A9_6: f64 = 27.59209969944671;
+    pub const A9_7: f64 = 20.154067550477894;
+    pub const A9_8: f64 = -43.48988418106996;
+    pub const A10_1: f64 = 0.47766253643826434;
+    pub const A10_4: f64 = -2.4881146199716677;
+    pub const A10_5: f64 = -0.590290826836843;
+    pub const A10_6: f64 = 21.230051448181193;
+    pub const A10_7: f64 = 15.279233632882423;
+    pub const A10_8: f64 = -33.28821096898486;
+    pub const A10_9: f64 = -0.020331201708508627;
+    pub const A11_1: f64 = -0.9371424300859873;
+    pub const A11_4: f64 = 5.186372428844064;
+    pub const A11_5: f64 = 1.0914373489967295;
+    pub const A11_6: f64 = -8.149787010746927;
+    pub const A11_7: f64 = -18.52006565999696;
+    pub const A11_8: f64 = 22.739487099350505;
+    pub const A11_9: f64 = 2.4936055526796523;
+    pub const A11_10: f64 = -3.0467644718982196;
+    pub const A12_1: f64 = 2.273310147516538;
+    pub const A12_4: f64 = -10.53449546673725;
+    pub const A12_5: f64 = -2.0008720582248625;
+    pub const A12_6: f64 = -17.9589318631188;
+    pub const A12_7: f64 = 27.94888452941996;
+    pub const A12_8: f64 = -2.8589982771350235;
+    pub const A12_9: f64 = -8.87285693353063;
+    pub const A12_10: f64 = 12.360567175794303;
+    pub const A12_11: f64 = 0.6433927460157636;
+    pub const A14_1: f64 = 0.056167502283047954;
+    pub const A14_7: f64 = 0.25350021021662483;
+    pub const A14_8: f64 = -0.2462390374708025;
+    pub const A14_9: f64 = -0.12419142326381637;
+    pub const A14_10: f64 = 0.15329179827876568;
+    pub const A14_11: f64 = 0.00820105229563469;
+    pub const A14_12: f64 = 0.007567897660545699;
+    pub const A14_13: f64 = -0.008298;
+    pub const A15_1: f64 = 0.03183464816350214;
+    pub const A15_6: f64 = 0.028300909672366776;
+    pub const A15_7: f64 = 0.053541988307438566;
+    pub const A15_8: f64 = -0.05492374857139099;
+    pub const A15_11: f64 = -0.00010834732869724932;
+    pub const A15_12: f64 = 0.0003825710908356584;
+    pub const A15_13: f64 = -0.00034046500868740456;
+    pub const A15_14: f64 = 0.1413124436746325;
+    pub const A16_1: f64 = -0.42889630158379194;
+    pub const A16_6: f64 = -4.697621415361164;
+    pub const A16_7: f64 = 7.683421196062599;
+    pub const A16_8: f64 = 4.06898981839711;
+    pub const A16_9: f64 = 0.3567271874552811;
+    pub const A16_13: f64 = -0.0013990241651590145;
+    pub const A16_14: f64 = 2.9475147891527724;
+    pub const A16_15: f64 = -9.15095847217987;
+    pub const C2: f64 = 0.05260015195876773;
+    pub const C3: f64 = 0.0789002279381516;
+    pub const C4: f64 = 0.1183503419072274;
+    pub const C5: f64 = 0.2816496580927726;
+    pub const C6: f64 = 0.3333333333333333;
+    pub const C7: f64 = 0.25;
+    pub const C8: f64 = 0.3076923076923077;
+    pub const C9: f64 = 0.6512820512820513;
+    pub const C10: f64 = 0.6;
+    pub const C11: f64 = 0.8571428571428571;
+    pub const C14: f64 = 0.1;
+    pub const C15: f64 = 0.2;
+    pub const C16: f64 = 0.7777777777777778;
+    pub const B1: f64 = 0.054293734116568765;
+    pub const B6: f64 = 4.450312892752409;
+    pub const B7: f64 = 1.8915178993145003;
+    pub const B8: f64 = -5.801203960010585;
+    pub const B9: f64 = 0.3111643669578199;
+    pub const B10: f64 = -0.1521609496625161;
+    pub const B11: f64 = 0.20136540080403034;
+    pub const B12: f64 = 0.04471061572777259;
+    pub const BHH1: f64 = 0.2440944881889764;
+    pub const BHH2: f64 = 0.7338466882816118;
+    pub const BHH3: f64 = 0.022058823529411766;
+    pub const ER1: f64 = 0.01312004499419488;
+    pub const ER6: f64 = -1.2251564463762044;
+    pub const ER7: f64 = -0.4957589496572502;
+    pub const ER8: f64 = 1.6643771824549864;
+    pub const ER9: f64 = -0.35032884874997366;
+    pub const ER10: f64 = 0.3341791187130175;
+    pub const ER11: f64 = 0.08192320648511571;
+    pub const ER12: f64 = -0.022355307863886294;
+    pub const D4: [f64; 16] = [
+        -8.428938276109013,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.5667149535193777,
+        -3.0689499459498917,
+        2.38466765651207,
+        2.117034582445028,
+        -0.871391583777973,
+        2.2404374302607883,
+        0.6315787787694688,
+        -0.08899033645133331,
+        18.148505520854727,
+        -9.194632392478356,
+        -4.436036387594894,
+    ];
+    pub const D5: [f64; 16] = [
+        10.427508642579134,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        242.28349177525817,
+        165.20045171727028,
+        -374.5467547226902,
+        -22.113666853125306,
+        7.733432668472264,
+        -30.674084731089398,
+        -9.332130526430229,
+        15.697238121770845,
+        -31.139403219565178,
+        -9.35292435884448,
+        35.81684148639408,
+    ];
+    pub const D6: [f64; 16] = [
+        19.985053242002433,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        -387.0373087493518,
+        -189.17813819516758,
+        527.8081592054236,
+        -11.57390253995963,
+        6.8812326946963,
+        -1.0006050966910838,
+        0.7777137798053443,
+        -2.778205752353508,
+        -60.19669523126412,
+        84.32040550667716,
+        11.99229113618279,
+    ];
+    pub const D7: [f64; 16] = [
+        -25.69393346270375,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        -154.18974869023643,
+        -231.5293791760455,
+        357.6391179106141,
+        93.40532418362432,
+        -37.45832313645163,
+        104.0996495089623,
+        29.8402934266605,
+        -43.53345659001114,
+        96.32455395918828,
+        -39.17726167561544,
+        -149.72683625798564,
+    ];
+}
+
 // PI step-size controller (Hairer's DOPRI5 defaults, as in ode_solvers).
 const BETA: f64 = 0.04;
 const ALPHA: f64 = 0.2 - 0.75 * BETA;
@@ -189,6 +429,7 @@ fn initial_step<P: Phase<N, K>, const N: usize, const K: usize>(
     f0: &SVector<f64, N>,
     h_max: f64,
     tol: f64,
+    order: f64,
 ) -> f64 {
     let zero = SVector::<f64, N>::zeros();
     let d0 = error_norm(y0, y0, &zero, tol);
@@ -204,7 +445,7 @@ fn initial_step<P: Phase<N, K>, const N: usize, const K: usize>(
     let h1 = if d1.max(d2) <= 1e-15 {
         1e-6_f64.max(h0 * 1e-3)
     } else {
-        (0.01 / d1.max(d2)).powf(0.2)
+        (0.01 / d1.max(d2)).powf(1.0 / order)
     };
     (100.0 * h0).min(h1).min(h_max)
 }
@@ -262,6 +503,309 @@ pub fn integrate_on<P: Phase<N, K>, const N: usize, const K: usize>(
     tol: f64,
     mesh: Mesh<'_, N>,
 ) -> Result<Outcome<N>, String> {
+    integrate_by(METHOD, phase, t0, y0, t1, tol, mesh)
+}
+
+/// [`integrate_on`] for a shooting trial: DOP853's dense output is left out (the three extra
+/// evaluations of each step) except on an event's step, where the event is located; the trial
+/// the shooting keeps gets it by [`Segment::densify`], the others never need it.
+pub fn integrate_trial<P: Phase<N, K>, const N: usize, const K: usize>(
+    phase: &P,
+    t0: f64,
+    y0: SVector<f64, N>,
+    t1: f64,
+    tol: f64,
+    mesh: Mesh<'_, N>,
+) -> Result<Outcome<N>, String> {
+    run(METHOD, true, phase, t0, y0, t1, tol, mesh)
+}
+
+/// The Runge–Kutta pair of an integration.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// Dormand–Prince 5(4): 6 evaluations a step, a 4th-order dense output from its stages.
+    Dopri5,
+    /// Dormand–Prince 8(5,3), Hairer's DOP853: 12 evaluations a step, a 7th-order dense output
+    /// for 3 more.
+    Dop853,
+}
+
+/// The method of [`integrate_on`]: at the walk's tolerance 1e-8, DOP853's steps are 3–5 times
+/// Dopri5's (stance 5–25 ms, swing2 2–7 ms), and every phase takes fewer evaluations
+/// (docs/engine.md, "Speed").
+pub const METHOD: Method = Method::Dop853;
+
+impl Method {
+    /// The order that sets the step-size control's exponent.
+    fn order(self) -> f64 {
+        match self {
+            Method::Dopri5 => 5.0,
+            Method::Dop853 => 8.0,
+        }
+    }
+
+    /// The step-size control (Hairer's defaults for each code): exponents α and β of the PI
+    /// controller, 1 / smallest and 1 / largest step factor.
+    fn control(self) -> (f64, f64, f64, f64) {
+        match self {
+            Method::Dopri5 => (ALPHA, BETA, FACC1, FACC2),
+            Method::Dop853 => (0.125, 0.0, 1.0 / 0.333, 1.0 / 6.0),
+        }
+    }
+}
+
+/// One attempted step: the new state, the error norm, the stages.
+struct Attempt<const N: usize> {
+    y_new: SVector<f64, N>,
+    err: f64,
+    k: [SVector<f64, N>; 12],
+}
+
+/// A Dopri5 step from (t, y) with k1 = f(t, y): its stages k2..k7 (k7 = f(t + h, y_new)) in
+/// `k[1..7]`.
+fn dopri5_attempt<P: Phase<N, K>, const N: usize, const K: usize>(
+    phase: &P,
+    t: f64,
+    y: &SVector<f64, N>,
+    k1: &SVector<f64, N>,
+    h: f64,
+    tol: f64,
+) -> Attempt<N> {
+    let k1 = *k1;
+    let k2 = phase.rhs(t + C2 * h, &(y + k1 * (h * A21)));
+    let k3 = phase.rhs(t + C3 * h, &(y + (k1 * A31 + k2 * A32) * h));
+    let k4 = phase.rhs(t + C4 * h, &(y + (k1 * A41 + k2 * A42 + k3 * A43) * h));
+    let k5 = phase.rhs(
+        t + C5 * h,
+        &(y + (k1 * A51 + k2 * A52 + k3 * A53 + k4 * A54) * h),
+    );
+    let k6 = phase.rhs(
+        t + h,
+        &(y + (k1 * A61 + k2 * A62 + k3 * A63 + k4 * A64 + k5 * A65) * h),
+    );
+    let y_new = y + (k1 * A71 + k3 * A73 + k4 * A74 + k5 * A75 + k6 * A76) * h;
+    let k7 = phase.rhs(t + h, &y_new);
+    let e = (k1 * E1 + k3 * E3 + k4 * E4 + k5 * E5 + k6 * E6 + k7 * E7) * h;
+    let err = error_norm(&e, y, &y_new, tol);
+    let z = SVector::<f64, N>::zeros();
+    Attempt {
+        y_new,
+        err,
+        k: [k1, k2, k3, k4, k5, k6, k7, z, z, z, z, z],
+    }
+}
+
+/// A DOP853 step from (t, y) with k1 = f(t, y): its stages k2..k12 in `k[1..12]`.
+fn dop853_attempt<P: Phase<N, K>, const N: usize, const K: usize>(
+    phase: &P,
+    t: f64,
+    y: &SVector<f64, N>,
+    k1: &SVector<f64, N>,
+    h: f64,
+    tol: f64,
+) -> Attempt<N> {
+    let k1 = *k1;
+    let k2 = phase.rhs(t + dop853::C2 * h, &(y + k1 * (h * dop853::A2_1)));
+    let k3 = phase.rhs(
+        t + dop853::C3 * h,
+        &(y + (k1 * dop853::A3_1 + k2 * dop853::A3_2) * h),
+    );
+    let k4 = phase.rhs(
+        t + dop853::C4 * h,
+        &(y + (k1 * dop853::A4_1 + k3 * dop853::A4_3) * h),
+    );
+    let k5 = phase.rhs(
+        t + dop853::C5 * h,
+        &(y + (k1 * dop853::A5_1 + k3 * dop853::A5_3 + k4 * dop853::A5_4) * h),
+    );
+    let k6 = phase.rhs(
+        t + dop853::C6 * h,
+        &(y + (k1 * dop853::A6_1 + k4 * dop853::A6_4 + k5 * dop853::A6_5) * h),
+    );
+    let k7 = phase.rhs(
+        t + dop853::C7 * h,
+        &(y + (k1 * dop853::A7_1 + k4 * dop853::A7_4 + k5 * dop853::A7_5 + k6 * dop853::A7_6) * h),
+    );
+    let k8 = phase.rhs(
+        t + dop853::C8 * h,
+        &(y + (k1 * dop853::A8_1
+            + k4 * dop853::A8_4
+            + k5 * dop853::A8_5
+            + k6 * dop853::A8_6
+            + k7 * dop853::A8_7)
+            * h),
+    );
+    let k9 = phase.rhs(
+        t + dop853::C9 * h,
+        &(y + (k1 * dop853::A9_1
+            + k4 * dop853::A9_4
+            + k5 * dop853::A9_5
+            + k6 * dop853::A9_6
+            + k7 * dop853::A9_7
+            + k8 * dop853::A9_8)
+            * h),
+    );
+    let k10 = phase.rhs(
+        t + dop853::C10 * h,
+        &(y + (k1 * dop853::A10_1
+            + k4 * dop853::A10_4
+            + k5 * dop853::A10_5
+            + k6 * dop853::A10_6
+            + k7 * dop853::A10_7
+            + k8 * dop853::A10_8
+            + k9 * dop853::A10_9)
+            * h),
+    );
+    let k11 = phase.rhs(
+        t + dop853::C11 * h,
+        &(y + (k1 * dop853::A11_1
+            + k4 * dop853::A11_4
+            + k5 * dop853::A11_5
+            + k6 * dop853::A11_6
+            + k7 * dop853::A11_7
+            + k8 * dop853::A11_8
+            + k9 * dop853::A11_9
+            + k10 * dop853::A11_10)
+            * h),
+    );
+    let k12 = phase.rhs(
+        t + h,
+        &(y + (k1 * dop853::A12_1
+            + k4 * dop853::A12_4
+            + k5 * dop853::A12_5
+            + k6 * dop853::A12_6
+            + k7 * dop853::A12_7
+            + k8 * dop853::A12_8
+            + k9 * dop853::A12_9
+            + k10 * dop853::A12_10
+            + k11 * dop853::A12_11)
+            * h),
+    );
+    let slope = k1 * dop853::B1
+        + k6 * dop853::B6
+        + k7 * dop853::B7
+        + k8 * dop853::B8
+        + k9 * dop853::B9
+        + k10 * dop853::B10
+        + k11 * dop853::B11
+        + k12 * dop853::B12;
+    let y_new = y + slope * h;
+    // the 5th-order estimate, and the 3rd-order one that keeps it from being too optimistic
+    // (Hairer's err = h e5² / √(e5² + 0.01 e3²))
+    let e5 = k1 * dop853::ER1
+        + k6 * dop853::ER6
+        + k7 * dop853::ER7
+        + k8 * dop853::ER8
+        + k9 * dop853::ER9
+        + k10 * dop853::ER10
+        + k11 * dop853::ER11
+        + k12 * dop853::ER12;
+    let e3 = slope - k1 * dop853::BHH1 - k9 * dop853::BHH2 - k12 * dop853::BHH3;
+    let (mut s5, mut s3) = (0.0, 0.0);
+    for i in 0..N {
+        let sc = tol + tol * y[i].abs().max(y_new[i].abs());
+        s5 += (e5[i] / sc).powi(2);
+        s3 += (e3[i] / sc).powi(2);
+    }
+    let deno = s5 + 0.01 * s3;
+    let deno = if deno > 0.0 { deno } else { 1.0 };
+    let err = h.abs() * s5 * (1.0 / (deno * N as f64)).sqrt();
+    Attempt {
+        y_new,
+        err,
+        k: [k1, k2, k3, k4, k5, k6, k7, k8, k9, k10, k11, k12],
+    }
+}
+
+/// The dense output's r4..r7 of DOP853's accepted step from (t, y) with stages `k` (k1,
+/// k6..k13): three more stages.
+fn dop853_dense<P: Phase<N, K>, const N: usize, const K: usize>(
+    phase: &P,
+    t: f64,
+    h: f64,
+    y: &SVector<f64, N>,
+    k: &Stages<N>,
+) -> [SVector<f64, N>; 4] {
+    let [k1, k6, k7, k8, k9, k10, k11, k12, k13] = *k;
+    let k14 = phase.rhs(
+        t + dop853::C14 * h,
+        &(y + (k1 * dop853::A14_1
+            + k7 * dop853::A14_7
+            + k8 * dop853::A14_8
+            + k9 * dop853::A14_9
+            + k10 * dop853::A14_10
+            + k11 * dop853::A14_11
+            + k12 * dop853::A14_12
+            + k13 * dop853::A14_13)
+            * h),
+    );
+    let k15 = phase.rhs(
+        t + dop853::C15 * h,
+        &(y + (k1 * dop853::A15_1
+            + k6 * dop853::A15_6
+            + k7 * dop853::A15_7
+            + k8 * dop853::A15_8
+            + k11 * dop853::A15_11
+            + k12 * dop853::A15_12
+            + k13 * dop853::A15_13
+            + k14 * dop853::A15_14)
+            * h),
+    );
+    let k16 = phase.rhs(
+        t + dop853::C16 * h,
+        &(y + (k1 * dop853::A16_1
+            + k6 * dop853::A16_6
+            + k7 * dop853::A16_7
+            + k8 * dop853::A16_8
+            + k9 * dop853::A16_9
+            + k13 * dop853::A16_13
+            + k14 * dop853::A16_14
+            + k15 * dop853::A16_15)
+            * h),
+    );
+    let d = |c: [f64; 16]| {
+        (k1 * c[0]
+            + k6 * c[5]
+            + k7 * c[6]
+            + k8 * c[7]
+            + k9 * c[8]
+            + k10 * c[9]
+            + k11 * c[10]
+            + k12 * c[11]
+            + k13 * c[12]
+            + k14 * c[13]
+            + k15 * c[14]
+            + k16 * c[15])
+            * h
+    };
+    [d(dop853::D4), d(dop853::D5), d(dop853::D6), d(dop853::D7)]
+}
+
+/// [`integrate_on`] by `method`.
+pub fn integrate_by<P: Phase<N, K>, const N: usize, const K: usize>(
+    method: Method,
+    phase: &P,
+    t0: f64,
+    y0: SVector<f64, N>,
+    t1: f64,
+    tol: f64,
+    mesh: Mesh<'_, N>,
+) -> Result<Outcome<N>, String> {
+    run(method, false, phase, t0, y0, t1, tol, mesh)
+}
+
+/// [`integrate_by`], the dense output left out when `lazy` ([`integrate_trial`]).
+#[allow(clippy::too_many_arguments)]
+fn run<P: Phase<N, K>, const N: usize, const K: usize>(
+    method: Method,
+    lazy: bool,
+    phase: &P,
+    t0: f64,
+    y0: SVector<f64, N>,
+    t1: f64,
+    tol: f64,
+    mesh: Mesh<'_, N>,
+) -> Result<Outcome<N>, String> {
     if !y0.iter().all(|v| v.is_finite()) {
         return Err(format!("non-finite state at t = {t0}"));
     }
@@ -289,11 +833,13 @@ pub fn integrate_on<P: Phase<N, K>, const N: usize, const K: usize>(
         Some(s) => s.h,
         None => {
             evaluations += 2;
-            initial_step(phase, t0, &y0, &k1, h_max, tol)
+            initial_step(phase, t0, &y0, &k1, h_max, tol, method.order())
         }
     };
     let mut steps: Vec<DenseStep<N>> = Vec::with_capacity(64);
+    let mut pending: Vec<Stages<N>> = Vec::new();
     let (mut t, mut y) = (t0, y0);
+    let (alpha, beta, facc1, facc2) = method.control();
     let mut fac_old = 1e-4_f64;
     let mut reject = false;
     let mut hit = None;
@@ -308,22 +854,15 @@ pub fn integrate_on<P: Phase<N, K>, const N: usize, const K: usize>(
         if last {
             h = t1 - t;
         }
-        let k2 = phase.rhs(t + C2 * h, &(y + k1 * (h * A21)));
-        let k3 = phase.rhs(t + C3 * h, &(y + (k1 * A31 + k2 * A32) * h));
-        let k4 = phase.rhs(t + C4 * h, &(y + (k1 * A41 + k2 * A42 + k3 * A43) * h));
-        let k5 = phase.rhs(
-            t + C5 * h,
-            &(y + (k1 * A51 + k2 * A52 + k3 * A53 + k4 * A54) * h),
-        );
-        let k6 = phase.rhs(
-            t + h,
-            &(y + (k1 * A61 + k2 * A62 + k3 * A63 + k4 * A64 + k5 * A65) * h),
-        );
-        let y_new = y + (k1 * A71 + k3 * A73 + k4 * A74 + k5 * A75 + k6 * A76) * h;
-        let k7 = phase.rhs(t + h, &y_new);
-        evaluations += 6;
-        let e = (k1 * E1 + k3 * E3 + k4 * E4 + k5 * E5 + k6 * E6 + k7 * E7) * h;
-        let err = error_norm(&e, &y, &y_new, tol);
+        let attempt = match method {
+            Method::Dopri5 => dopri5_attempt(phase, t, &y, &k1, h, tol),
+            Method::Dop853 => dop853_attempt(phase, t, &y, &k1, h, tol),
+        };
+        evaluations += match method {
+            Method::Dopri5 => 6,
+            Method::Dop853 => 11,
+        };
+        let err = attempt.err;
         if !err.is_finite() {
             return Err(format!("the state became non-finite at t = {t}"));
         }
@@ -336,23 +875,46 @@ pub fn integrate_on<P: Phase<N, K>, const N: usize, const K: usize>(
             // PI control of the next step (needed only off the mesh: two `powf`)
             let (h_acc, err_old, rejected) = (h, fac_old, reject);
             let h_new = move || {
-                let fac = (err.powf(ALPHA) / err_old.powf(BETA) / SAFETY).clamp(FACC2, FACC1);
+                let fac = (err.powf(alpha) / err_old.powf(beta) / SAFETY).clamp(facc2, facc1);
                 let h_new = (h_acc / fac).min(h_max);
                 if rejected { h_new.min(h_acc) } else { h_new }
             };
             fac_old = err.max(1e-4);
             reject = false;
-            let ydiff = y_new - y;
-            let bspl = k1 * h - ydiff;
-            let r4 = (k1 * D1 + k3 * D3 + k4 * D4 + k5 * D5 + k6 * D6 + k7 * D7) * h;
-            steps.push(DenseStep {
-                t,
-                h,
-                r: [y, ydiff, bspl, ydiff - k7 * h - bspl, r4],
-            });
+            let (y_new, k_next, r, ready) = match method {
+                Method::Dopri5 => {
+                    let k = &attempt.k;
+                    let (k1, k3, k4, k5, k6, k7) = (k[0], k[2], k[3], k[4], k[5], k[6]);
+                    let ydiff = attempt.y_new - y;
+                    let bspl = k1 * h - ydiff;
+                    let r4 = (k1 * D1 + k3 * D3 + k4 * D4 + k5 * D5 + k6 * D6 + k7 * D7) * h;
+                    let z = SVector::<f64, N>::zeros();
+                    let r = [y, ydiff, bspl, ydiff - k7 * h - bspl, r4, z, z, z];
+                    (attempt.y_new, k7, r, true)
+                }
+                Method::Dop853 => {
+                    let k13 = phase.rhs(t + h, &attempt.y_new);
+                    evaluations += 1;
+                    let k = &attempt.k;
+                    let stages = [k[0], k[5], k[6], k[7], k[8], k[9], k[10], k[11], k13];
+                    let ydiff = attempt.y_new - y;
+                    let bspl = k[0] * h - ydiff;
+                    let z = SVector::<f64, N>::zeros();
+                    let mut r = [y, ydiff, bspl, ydiff - k13 * h - bspl, z, z, z, z];
+                    if lazy {
+                        pending.push(stages);
+                    } else {
+                        let tail = dop853_dense(phase, t, h, &y, &stages);
+                        r[4..].copy_from_slice(&tail);
+                        evaluations += 3;
+                    }
+                    (attempt.y_new, k13, r, !lazy)
+                }
+            };
+            steps.push(DenseStep { t, h, r, ready });
             t = if last { t1 } else { t + h };
             y = y_new;
-            k1 = k7;
+            k1 = k_next;
             let g = phase.events(t, &y);
             if let Some(k) = (0..K).find(|&k| g_last[k] > 0.0 && g[k] <= 0.0) {
                 hit = Some(k);
@@ -375,7 +937,7 @@ pub fn integrate_on<P: Phase<N, K>, const N: usize, const K: usize>(
                 h_new()
             };
         } else {
-            h /= FACC1.min(err.powf(ALPHA) / SAFETY);
+            h /= facc1.min(err.powf(alpha) / SAFETY);
             reject = true;
         }
     }
@@ -385,10 +947,19 @@ pub fn integrate_on<P: Phase<N, K>, const N: usize, const K: usize>(
         y0,
         y1: y,
         steps,
+        pending,
     };
     if let Some(k) = hit {
         // Illinois-safeguarded regula falsi on the last step's dense output
-        let step = *segment.steps.last().expect("an accepted step");
+        let last = segment.steps.len() - 1;
+        let step = &mut segment.steps[last];
+        if !step.ready {
+            let tail = dop853_dense(phase, step.t, step.h, &step.r[0], &segment.pending[last]);
+            step.r[4..].copy_from_slice(&tail);
+            step.ready = true;
+            evaluations += 3;
+        }
+        let step = *step;
         let g = |t: f64| phase.events(t, &step.eval(t))[k];
         let (mut a, mut b) = (step.t, t);
         let (mut ga, mut gb) = (g(a), g(b));
@@ -546,5 +1117,161 @@ mod tests {
         )
         .unwrap();
         assert!(far.adapted);
+    }
+
+    /// y1' = y1 cos t, y2' = −2t y2 from (1, 1): y1 = exp(sin t), y2 = exp(−t²), a
+    /// non-autonomous system (every stage's time matters).
+    struct Exponentials;
+    impl Phase<2, 0> for Exponentials {
+        fn rhs(&self, t: f64, y: &SVector<f64, 2>) -> SVector<f64, 2> {
+            SVector::<f64, 2>::new(y[0] * t.cos(), -2.0 * t * y[1])
+        }
+    }
+
+    fn exact(t: f64) -> SVector<f64, 2> {
+        SVector::<f64, 2>::new(t.sin().exp(), (-t * t).exp())
+    }
+
+    /// `method` on `n` equal steps over [0, 2] (a frozen mesh with a tolerance it never leaves):
+    /// the end state's error and the dense output's largest error (10 points a step).
+    fn fixed_steps(method: Method, n: usize) -> (f64, f64) {
+        let h = 2.0 / n as f64;
+        let zero = SVector::<f64, 2>::zeros();
+        let mesh = Segment {
+            t0: 0.0,
+            t1: 2.0,
+            y0: zero,
+            y1: zero,
+            steps: (0..n)
+                .map(|i| DenseStep {
+                    t: i as f64 * h,
+                    h,
+                    r: [zero; 8],
+                    ready: true,
+                })
+                .collect(),
+            pending: Vec::new(),
+        };
+        let out = integrate_by(
+            method,
+            &Exponentials,
+            0.0,
+            exact(0.0),
+            2.0,
+            1.0,
+            Mesh::Aligned(&mesh),
+        )
+        .unwrap();
+        assert!(!out.adapted);
+        assert_eq!(out.segment.steps.len(), n);
+        let end = (out.segment.y1 - exact(2.0)).amax();
+        let dense = (0..=10 * n)
+            .map(|i| {
+                let t = i as f64 * h / 10.0;
+                (out.segment.state(t) - exact(t)).amax()
+            })
+            .fold(0.0, f64::max);
+        (end, dense)
+    }
+
+    #[test]
+    fn both_methods_converge_at_their_orders() {
+        // halving the step divides the error by 2^p: DOP853 p = 8 (dense output of order 7:
+        // its error per step is O(h^8) too), Dopri5 p = 5 (dense output of order 4: O(h^5))
+        for (method, n, p, dense_p) in [
+            (Method::Dop853, 8, 8.0, 7.0),
+            (Method::Dopri5, 32, 5.0, 4.0),
+        ] {
+            let (e1, d1) = fixed_steps(method, n);
+            let (e2, d2) = fixed_steps(method, 2 * n);
+            let order = (e1 / e2).log2();
+            assert!(
+                (order - p).abs() < 0.6,
+                "{method:?}: end-state order {order} ({e1:e}, {e2:e})"
+            );
+            let dense = (d1 / d2).log2();
+            assert!(
+                dense > dense_p + 0.5,
+                "{method:?}: dense order {dense} ({d1:e}, {d2:e})"
+            );
+        }
+    }
+
+    #[test]
+    fn adaptive_dop853_meets_its_tolerance_and_finds_events() {
+        // (at 1e-6 the steps are long and the dense output's error inside them reaches 1.8e-5)
+        for tol in [1e-8, 1e-10] {
+            let out = integrate_by(
+                Method::Dop853,
+                &Exponentials,
+                0.0,
+                exact(0.0),
+                2.0,
+                tol,
+                Mesh::Adaptive,
+            )
+            .unwrap();
+            let end = (out.segment.y1 - exact(2.0)).amax();
+            assert!(end < 10.0 * tol, "{tol}: {end:e}");
+            for i in 0..=200 {
+                let t = 0.01 * i as f64;
+                let e = (out.segment.state(t) - exact(t)).amax();
+                assert!(e < 10.0 * tol, "{tol}, t {t}: {e:e}");
+            }
+        }
+        // the oscillator's first zero at π/2, by both methods
+        for method in [Method::Dop853, Method::Dopri5] {
+            let y0 = SVector::<f64, 2>::new(1.0, 0.0);
+            let out =
+                integrate_by(method, &Oscillator, 0.0, y0, 3.0, 1e-10, Mesh::Adaptive).unwrap();
+            assert_eq!(out.event, Some(0));
+            let err = (out.segment.t1 - std::f64::consts::FRAC_PI_2).abs();
+            assert!(err < 1e-10, "{method:?}: {err:e}");
+        }
+    }
+
+    #[test]
+    fn a_trial_densified_later_has_the_same_dense_output() {
+        let y0 = exact(0.0);
+        let eager = integrate_by(
+            Method::Dop853,
+            &Exponentials,
+            0.0,
+            y0,
+            2.0,
+            1e-8,
+            Mesh::Adaptive,
+        )
+        .unwrap();
+        let mut lazy = integrate_trial(&Exponentials, 0.0, y0, 2.0, 1e-8, Mesh::Adaptive).unwrap();
+        assert!(!lazy.segment.is_dense());
+        let n = lazy.segment.steps.len() as u32;
+        assert_eq!(lazy.evaluations + 3 * n, eager.evaluations);
+        assert_eq!(lazy.segment.densify(|_| Exponentials), 3 * n);
+        assert!(lazy.segment.is_dense());
+        assert_eq!(lazy.segment.y1, eager.segment.y1);
+        for i in 0..=40 {
+            let t = 0.05 * i as f64;
+            assert_eq!(lazy.segment.state(t), eager.segment.state(t), "t {t}");
+        }
+        // an event's step gets its dense output at once: the event is located on it
+        let osc = integrate_trial(
+            &Oscillator,
+            0.0,
+            SVector::<f64, 2>::new(1.0, 0.0),
+            3.0,
+            1e-10,
+            Mesh::Adaptive,
+        )
+        .unwrap();
+        assert!((osc.segment.t1 - std::f64::consts::FRAC_PI_2).abs() < 1e-10);
+    }
+
+    #[test]
+    #[should_panic(expected = "densify")]
+    fn a_trial_without_its_dense_output_is_not_read() {
+        let out =
+            integrate_trial(&Exponentials, 0.0, exact(0.0), 2.0, 1e-8, Mesh::Adaptive).unwrap();
+        out.segment.state(1.0);
     }
 }

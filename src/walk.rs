@@ -300,7 +300,8 @@ impl Walker {
             phase: "stance",
             reason,
         })?;
-        let stance = best.into_inner().expect("at least one trial ran");
+        let mut stance = best.into_inner().expect("at least one trial ran");
+        self.count(stance.densify(&setup));
         if !report.converged {
             return Err(Error::NotConverged {
                 step: index,
@@ -640,7 +641,9 @@ impl Walker {
         let (mem, report) = with_fallback(start, fallback, |start| {
             shooting::solve2(residual, start, &self.options).map(|(_, r, m)| (m, r))
         })?;
-        Ok((best.into_inner().ok_or("no trial ran")?, report, mem))
+        let mut trial = best.into_inner().ok_or("no trial ran")?;
+        self.count(trial.densify(sw));
+        Ok((trial, report, mem))
     }
 
     /// One swing trial of a solve: it follows the solve's mesh (or, when it had to choose its
@@ -688,7 +691,9 @@ impl Walker {
         let (mem, report) = with_fallback(start, fallback, |start| {
             shooting::solve1(residual, start, &self.options).map(|(_, r, m)| (m, r))
         })?;
-        Ok((best.into_inner().ok_or("no trial ran")?, report, mem))
+        let mut trial = best.into_inner().ok_or("no trial ran")?;
+        self.count(trial.densify(sw));
+        Ok((trial, report, mem))
     }
 }
 
@@ -704,44 +709,44 @@ impl Walker {
 const STEP0: [[f64; 3]; 7] =
     // step 0
     [
-        [6.11203e-1, 2.64629e0, 1.28344e0], // τ1: largest residual 1.57e-1
-        [8.23789e-5, 1.35006e-2, -1.18050e-2], // p: largest residual 2.87e-3
-        [5.43150e-1, -6.44331e0, 7.57694e0], // A: largest residual 2.30e-1
-        [1.69441e-1, -2.89748e0, 2.14027e0], // B: largest residual 1.84e-1
-        [-2.21628e-1, 8.98485e-1, -5.34524e-1], // C: largest residual 3.37e-2
-        [-3.57900e0, 1.09938e1, -5.48142e0], // D0: largest residual 9.70e-1
-        [9.41434e0, -3.28989e1, 1.91651e1], // D1: largest residual 2.13e0
+        [5.94477e-1, 2.75285e0, 1.12557e0], // τ1: largest residual 1.58e-1
+        [-2.99372e-4, 1.10376e-2, 1.77189e-3], // p: largest residual 1.97e-3
+        [5.43914e-1, -6.44801e0, 7.58348e0], // A: largest residual 2.30e-1
+        [1.69408e-1, -2.89793e0, 2.14220e0], // B: largest residual 1.84e-1
+        [-2.19923e-1, 8.84428e-1, -5.10054e-1], // C: largest residual 3.44e-2
+        [-3.66406e0, 1.21026e1, -7.95248e0], // D0: largest residual 7.71e-1
+        [9.37425e0, -3.41445e1, 2.32587e1], // D1: largest residual 1.66e0
     ];
 const CHANGES: [[[f64; 3]; 7]; 2] = [
     // step 0 to 1
     [
-        [-1.83108e0, 3.85140e-1, -6.98855e-1], // τ1: largest residual 6.42e-1
-        [-8.41950e-5, -2.69062e-4, 6.70522e-4], // p: largest residual 3.14e-4
-        [-1.32525e0, 7.32271e0, -1.35366e1],   // A: largest residual 1.91e-1
-        [-1.16572e-1, 8.04859e-1, -1.71811e0], // B: largest residual 8.64e-2
-        [4.37306e-2, -2.64742e-1, 4.88364e-1], // C: largest residual 7.70e-3
-        [-8.65222e-3, -2.62998e-1, 5.54512e-2], // D0: largest residual 3.17e-2
-        [-1.74271e-1, 1.65015e0, -1.90634e0],  // D1: largest residual 8.30e-2
+        [-1.95710e0, 1.87123e0, -4.22192e0], // τ1: largest residual 4.45e-1
+        [-2.24176e-4, 6.02331e-4, -5.71620e-4], // p: largest residual 6.76e-5
+        [-1.29732e0, 7.06466e0, -1.29906e1], // A: largest residual 1.88e-1
+        [-1.31518e-1, 8.43777e-1, -1.67196e0], // B: largest residual 6.20e-2
+        [3.72783e-2, -2.21044e-1, 4.17782e-1], // C: largest residual 6.79e-3
+        [-7.93594e-3, -2.53846e-1, 1.51814e-2], // D0: largest residual 2.42e-2
+        [-1.45481e-1, 1.43134e0, -1.51461e0], // D1: largest residual 6.26e-2
     ],
     // step 1 to 2
     [
-        [1.87499e-1, 4.06380e-1, -6.46030e-1], // τ1: largest residual 7.86e-2
-        [3.02360e-5, -5.90649e-5, 2.12733e-5], // p: largest residual 9.45e-6
-        [-2.85089e-2, 3.35602e-2, -2.75358e-2], // A: largest residual 1.44e-1
-        [-1.76796e-3, -2.91932e-2, 3.61974e-2], // B: largest residual 2.77e-2
-        [-3.97363e-4, 3.72737e-3, -2.51155e-3], // C: largest residual 4.70e-3
-        [-1.24033e-2, 7.01598e-2, -6.14327e-2], // D0: largest residual 2.36e-2
-        [3.77142e-2, -2.22932e-1, 1.92094e-1], // D1: largest residual 6.15e-2
+        [2.01613e-1, 2.20566e-1, -1.86355e-1], // τ1: largest residual 7.38e-2
+        [2.72812e-5, -5.55637e-5, 3.68041e-5], // p: largest residual 7.73e-6
+        [-3.23401e-2, 7.79124e-2, -1.12006e-1], // A: largest residual 2.43e-1
+        [-1.01251e-3, -2.67600e-2, 2.26243e-2], // B: largest residual 4.40e-2
+        [1.50207e-4, -3.66019e-4, 4.16825e-3], // C: largest residual 7.44e-3
+        [-6.39472e-3, 4.39218e-2, -4.65281e-2], // D0: largest residual 2.32e-2
+        [1.65605e-2, -1.22104e-1, 1.15393e-1], // D1: largest residual 1.97e-2
     ],
 ];
 /// [ours] Cold Jacobians (`J[i][k]` = ∂rᵢ/∂xₖ, in body units): the default walk's (1.4 m/s,
 /// H = 1.8 m, M = 80 kg) at the end of its step-0 solves, so that step 0 needs no difference
 /// trials; swing2's residual slope. Generated with [`STEP0`], from walks started plainly
 /// ([`Walker::without_startup_guesses`]), so a rerun reproduces them.
-const COLD_STANCE: [[f64; 2]; 2] = [[1.38664e-1, -3.24607e-1], [4.94311e-2, 8.12852e-1]];
-const COLD_SWING1: [[f64; 2]; 2] = [[4.01558e-1, -2.98636e-1], [2.24509e-1, 4.54549e-1]];
-const COLD_SWING2_SLOPE: f64 = 3.22547e-1;
-const COLD_SWING3: [[f64; 2]; 2] = [[4.76828e-2, 1.59268e-2], [-4.90423e-1, -2.46551e-1]];
+const COLD_STANCE: [[f64; 2]; 2] = [[1.39854e-1, -3.26875e-1], [5.30547e-2, 8.05430e-1]];
+const COLD_SWING1: [[f64; 2]; 2] = [[4.01516e-1, -2.98615e-1], [2.24522e-1, 4.54508e-1]];
+const COLD_SWING2_SLOPE: f64 = 3.22758e-1;
+const COLD_SWING3: [[f64; 2]; 2] = [[4.76559e-2, 1.59202e-2], [-4.89486e-1, -2.46284e-1]];
 
 fn quadratic(c: [f64; 3], x: f64) -> f64 {
     c[0] + x * (c[1] + x * c[2])

@@ -15,11 +15,12 @@
 //! Not included: the impulses (heel strike, knee locks), which are not actuators, and the hind
 //! leg in double support, which is kinematic (no forces are modelled).
 //!
-//! Each segment is integrated by 3-point Gauss–Legendre quadrature on the integrator's accepted
-//! steps (on each, the state is one quartic polynomial and the powers are smooth functions of
-//! it), every step split into equal panels so that a segment has at least `n` of them. Where
-//! the positive part or F_w ≥ 0 switches inside a panel the rule is first-order accurate
-//! locally; the test `positive_work_converges_with_sampling` bounds that error.
+//! Each segment is integrated by 5-point Gauss–Legendre quadrature (order 10: DOP853's steps are
+//! long) on the integrator's accepted steps (on each, the state is one polynomial and the powers
+//! are smooth functions of it), every step split into equal panels so that a segment has at
+//! least `n` of them, and a panel split again where an actuator's power changes sign (seen at
+//! its ends and midpoint). Where F_w ≥ 0 switches inside a panel the rule is first-order
+//! accurate locally; the test `positive_work_converges_with_sampling` bounds that error.
 use serde::Serialize;
 
 use crate::control::stance::{StanceForces, StanceRun, StanceSetup};
@@ -64,34 +65,101 @@ pub fn simpson(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {
     (f(a) + inner + f(b)) * h / 3.0
 }
 
-/// Work of `powers` (one entry per actuator) over the segment `seg`: 3-point Gauss–Legendre on
+/// Work of `powers` (one entry per actuator) over the segment `seg`: 5-point Gauss–Legendre on
 /// its integrator steps, each split into equal panels so that there are at least `n`. The nodes
 /// are inside the panels: a force that switches where a segment ends (the leg torque at
-/// 0.4 t_step) counts with its value within the segment.
+/// 0.4 t_step) counts with its value within the segment. Where an actuator's power changes sign
+/// between a panel's ends and its midpoint, the crossing is located on the dense output and the
+/// panel is split there, so that every max(Pᵢ, 0) is smooth on each part (without it the rule is
+/// first-order accurate around the crossing, and the integrator's steps are long).
 fn integrate<const N: usize, const K: usize>(
     powers: impl Fn(f64, &SVector<f64, N>) -> [f64; K],
     seg: &Segment<N>,
     n: usize,
 ) -> Work {
-    // nodes on [0, 1] and weights: (1 ∓ √(3/5))/2, 1/2; 5/18, 8/18
-    let d = 0.5 * (0.6_f64).sqrt();
+    // nodes on [0, 1] and weights: (1 ± xᵢ)/2 and wᵢ/2 with x = 0, ⅓√(5 ∓ 2√(10/7)),
+    // w = 128/225, (322 ± 13√70)/900
+    let r = (10.0_f64 / 7.0).sqrt();
+    let (x1, x2) = ((5.0 - 2.0 * r).sqrt() / 3.0, (5.0 + 2.0 * r).sqrt() / 3.0);
+    let s70 = 70.0_f64.sqrt();
+    let (w1, w2) = ((322.0 + 13.0 * s70) / 1800.0, (322.0 - 13.0 * s70) / 1800.0);
     let gauss = [
-        (0.5 - d, 5.0 / 18.0),
-        (0.5, 8.0 / 18.0),
-        (0.5 + d, 5.0 / 18.0),
+        (0.5 * (1.0 - x2), w2),
+        (0.5 * (1.0 - x1), w1),
+        (0.5, 64.0 / 225.0),
+        (0.5 * (1.0 + x1), w1),
+        (0.5 * (1.0 + x2), w2),
     ];
+    let power = |t: f64| powers(t, &seg.state(t));
+    let rule = |a: f64, b: f64, sum: &mut Work| {
+        for (x, w) in gauss {
+            let p = power(a + x * (b - a));
+            sum.positive += w * (b - a) * p.iter().map(|p| p.max(0.0)).sum::<f64>();
+            sum.net += w * (b - a) * p.iter().sum::<f64>();
+        }
+    };
+    // the crossing of actuator k's power in [a, b] (signs differ at the ends): Illinois
+    let crossing = |k: usize, mut a: f64, mut b: f64, mut ga: f64, mut gb: f64| {
+        let tol = 1e-10 * (b - a);
+        let mut side = 0;
+        for _ in 0..60 {
+            if b - a <= tol {
+                break;
+            }
+            let mut t = (a * gb - b * ga) / (gb - ga);
+            if !(t > a && t < b) {
+                t = 0.5 * (a + b);
+            }
+            let g = power(t)[k];
+            if (g > 0.0) == (ga > 0.0) {
+                (a, ga) = (t, g);
+                if side == -1 {
+                    gb *= 0.5;
+                }
+                side = -1;
+            } else {
+                (b, gb) = (t, g);
+                if side == 1 {
+                    ga *= 0.5;
+                }
+                side = 1;
+            }
+        }
+        0.5 * (a + b)
+    };
     let split = n.div_ceil(seg.steps().count().max(1)).max(1);
     let mut sum = Work::default();
     for (a, b) in seg.steps() {
         let h = (b - a) / split as f64;
+        let mut g0 = power(a);
         for i in 0..split {
-            let t0 = a + i as f64 * h;
-            for (x, w) in gauss {
-                let t = t0 + x * h;
-                let p = powers(t, &seg.state(t));
-                sum.positive += w * h * p.iter().map(|p| p.max(0.0)).sum::<f64>();
-                sum.net += w * h * p.iter().sum::<f64>();
+            let p0 = a + i as f64 * h;
+            let p1 = if i + 1 == split { b } else { p0 + h };
+            let pm = 0.5 * (p0 + p1);
+            let (gm, g1) = (power(pm), power(p1));
+            let mut cuts = Vec::new();
+            for k in 0..K {
+                let pos = [g0[k] > 0.0, gm[k] > 0.0, g1[k] > 0.0];
+                if pos[0] != pos[1] {
+                    cuts.push(crossing(k, p0, pm, g0[k], gm[k]));
+                }
+                if pos[1] != pos[2] {
+                    cuts.push(crossing(k, pm, p1, gm[k], g1[k]));
+                }
             }
+            if cuts.is_empty() {
+                rule(p0, p1, &mut sum);
+            } else {
+                cuts.sort_by(f64::total_cmp);
+                let mut from = p0;
+                for &c in cuts.iter().chain(std::iter::once(&p1)) {
+                    if c > from {
+                        rule(from, c, &mut sum);
+                        from = c;
+                    }
+                }
+            }
+            g0 = g1;
         }
     }
     sum
@@ -115,7 +183,9 @@ pub fn stance_work(setup: &StanceSetup, run: &StanceRun, n: usize) -> Work {
     run.segments
         .iter()
         .map(|(seg, locked)| {
-            let forces = StanceForces::new(setup, run.tau1, run.p, *locked);
+            // the segment's own torque at its ends (the switch at 0.4 t_step ends a segment)
+            let on = seg.t0 < crate::control::stance::TORQUE_OFF * setup.t_step;
+            let forces = StanceForces::new(setup, run.tau1, run.p, *locked).with_torque(on);
             integrate(|t, y| stance_powers(&forces, t, y), seg, n)
         })
         .fold(Work::default(), |a, b| a + b)
@@ -136,7 +206,11 @@ pub fn swing_work(setup: &SwingSetup, subphases: &[(Subphase, &Segment<4>)], n: 
     subphases
         .iter()
         .map(|(sub, seg)| {
-            let forces = SwingForces { setup, sub: *sub };
+            let forces = SwingForces {
+                setup,
+                sub: *sub,
+                piece: None,
+            };
             integrate(|t, y| swing_powers(&forces, t, y), seg, n)
         })
         .fold(Work::default(), |a, b| a + b)
@@ -156,7 +230,7 @@ mod tests {
         assert!((v - 1.0 / 3.0).abs() < 1e-14, "{v}");
     }
 
-    /// x'' = −x from (1, 0): x = cos t, integrated by the engine's Dopri5.
+    /// x'' = −x from (1, 0): x = cos t, integrated by the engine's integrator.
     fn cosine(t1: f64) -> Segment<2> {
         struct Oscillator;
         impl crate::ode::Phase<2, 0> for Oscillator {
@@ -177,11 +251,11 @@ mod tests {
         let seg = cosine(2.0 * std::f64::consts::PI);
         for n in [1, 400] {
             let w = integrate(|_, y| [y[0]], &seg, n);
-            assert!((w.positive - 2.0).abs() < 1e-5, "{n}: {w:?}");
+            assert!((w.positive - 2.0).abs() < 1e-8, "{n}: {w:?}");
             assert!(w.net.abs() < 1e-9, "{n}: {w:?}");
             // two actuators do not cancel: +cos and −cos give positive work 4, net 0
             let w = integrate(|_, y| [y[0], -y[0]], &seg, n);
-            assert!((w.positive - 4.0).abs() < 2e-5, "{n}: {w:?}");
+            assert!((w.positive - 4.0).abs() < 2e-8, "{n}: {w:?}");
             assert!(w.net.abs() < 1e-12, "{n}: {w:?}");
         }
         // smooth powers: ∫ cos² over [0, 1] = 1/2 + sin 2 / 4, to the integration's accuracy

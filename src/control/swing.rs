@@ -149,6 +149,10 @@ impl Subphase {
 pub struct SwingForces<'a> {
     pub setup: &'a SwingSetup<'a>,
     pub sub: Subphase,
+    /// The hip path's piece the integration is on ([`HipPath::acceleration_on`]), so that its
+    /// stages at a break see the piece's acceleration, not the next one's; `None`: the piece
+    /// holding t.
+    pub piece: Option<usize>,
 }
 
 impl SwingForces<'_> {
@@ -189,7 +193,10 @@ impl SwingForces<'_> {
 impl Phase<4, 2> for SwingForces<'_> {
     fn rhs(&self, t: f64, y: &SwingState) -> SwingState {
         let s = self.setup;
-        let hip_acc = s.hip_path.acceleration(t);
+        let hip_acc = match self.piece {
+            Some(piece) => s.hip_path.acceleration_on(piece, t),
+            None => s.hip_path.acceleration(t),
+        };
         let q = Vector2::new(y[0], y[1]);
         let qd = Vector2::new(y[2], y[3]);
         let locked = matches!(self.sub, Subphase::Swing3 { .. });
@@ -239,11 +246,26 @@ impl SwingTrial {
         y0: SwingState,
         tol: f64,
     ) -> Result<Self, String> {
-        Self::simulate_on(setup, sub, t0, y0, tol, None)
+        let mut trial = Self::simulate_on(setup, sub, t0, y0, tol, None)?;
+        trial.evaluations += trial.densify(setup);
+        Ok(trial)
+    }
+
+    /// Complete the dense output of a [`Self::simulate_on`] trial ([`ode::Segment::densify`]);
+    /// returns the right-hand-side evaluations.
+    pub fn densify(&mut self, setup: &SwingSetup) -> u32 {
+        let sub = self.sub;
+        self.segment.densify(|t| SwingForces {
+            setup,
+            sub,
+            piece: Some(setup.hip_path.piece(t)),
+        })
     }
 
     /// [`Self::simulate_with`] on the step sequence of `mesh`, a previous trial of the same
     /// subphase ([`ode::integrate_on`]): the shooting's residual stays smooth in the unknowns.
+    /// The dense output is left out ([`ode::integrate_trial`]): [`Self::densify`] the trial
+    /// that is kept.
     pub fn simulate_on(
         setup: &SwingSetup,
         sub: Subphase,
@@ -258,7 +280,6 @@ impl SwingTrial {
             Subphase::Swing3 { .. } => setup.t_end,
         };
         // piecewise between the hip path's breaks, where the hip acceleration jumps
-        let forces = SwingForces { setup, sub };
         let stops = setup
             .hip_path
             .breaks()
@@ -270,7 +291,12 @@ impl SwingTrial {
                 .as_ref()
                 .map_or((t0, y0), |o| (o.segment.t1, o.segment.y1));
             let follow = mesh.map_or(ode::Mesh::Adaptive, ode::Mesh::Aligned);
-            let piece = ode::integrate_on(&forces, t, y, stop, tol, follow)?;
+            let forces = SwingForces {
+                setup,
+                sub,
+                piece: Some(setup.hip_path.piece(t)),
+            };
+            let piece = ode::integrate_trial(&forces, t, y, stop, tol, follow)?;
             let event = piece.event.is_some();
             out = Some(match out {
                 None => piece,
