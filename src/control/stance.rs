@@ -138,6 +138,17 @@ pub struct TerminalStance {
 /// y_hs just before heel strike in slow walks of tall bodies (0.6–0.8 m/s, H 1.95 m).
 pub const END_MARGIN: f64 = 1e-2;
 
+/// sin x and cos x by their Taylor polynomials to x⁵ and x⁶, for the pelvis's angles (|x| ≤ 0.2
+/// rad: errors ≤ x⁷/5040 = 2.5e-9 and x⁸/40320 = 6e-11): the reference's hip joint offsets,
+/// evaluated at every stance right-hand side, at a fifth of the cost of `sin_cos`.
+fn small_sin_cos(x: f64) -> (f64, f64) {
+    let x2 = x * x;
+    (
+        x * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0)),
+        1.0 - x2 / 2.0 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0)),
+    )
+}
+
 /// Points between heel-off and heel strike at which [`TerminalStance::new`] checks that the
 /// reference stays above its heel-strike height.
 const HEEL_RISE_CHECKS: usize = 32;
@@ -259,8 +270,8 @@ impl TerminalStance {
     fn offset(&self, u: f64) -> ([[f64; 2]; 2], [f64; 2]) {
         let (sh, ch) = sin_cos(0.5 * PI * u);
         let h = self.half_width;
-        let (sr, cr) = sin_cos(self.rotation * sh);
-        let (sl, cl) = sin_cos(self.list * ch);
+        let (sr, cr) = small_sin_cos(self.rotation * sh);
+        let (sl, cl) = small_sin_cos(self.list * ch);
         let k = 0.5 * PI;
         (
             [
@@ -884,6 +895,20 @@ mod tests {
             );
             assert!(slope.abs() < 1e-5, "v {v}: {slope}");
             assert!(t.sin_heel_off > 0.0 && t.sin_heel_off < se && t.pitch_end > 0.0);
+        }
+    }
+
+    /// The pelvis's small-angle sine and cosine against libm within their Taylor remainders.
+    #[test]
+    fn small_sin_cos_is_within_its_remainder() {
+        for k in -200..=200 {
+            let x = 0.2 * k as f64 / 200.0;
+            let (s, c) = small_sin_cos(x);
+            assert!(
+                (s - x.sin()).abs() <= x.powi(7).abs() / 5040.0 + 1e-17,
+                "{x}"
+            );
+            assert!((c - x.cos()).abs() <= x.powi(8) / 40320.0 + 1e-16, "{x}");
         }
     }
 
