@@ -6,8 +6,8 @@
 //! - knee peak swing flexion 63–67° (norm 55–65°): the swing1 knee damper (the shank pendulum
 //!   damped at ζ) brakes the knee's flexion from toe-off; at 1.35–1.5 m/s the knee, handed over
 //!   at toe-off flexing faster, still ends 0.2–2° over;
-//! - ankle peak stance dorsiflexion 20–23° (norm 8–15°) and a weak push-off plantarflexion
-//!   (−7.6…−8.8°, norm −15…−25°): the stance hip follows the virtual leg's reference from
+//! - ankle peak stance dorsiflexion 20.5–23.4° (norm 8–15°) and a weak push-off plantarflexion
+//!   (−8.7…−9.0°, norm −15…−25°): the stance hip follows the virtual leg's reference from
 //!   mid-stance (knee held near straight, heel rising about the metatarsal joint, spec §7), but
 //!   the plan's heel-strike height leaves the trailing ankle at ≥ 17–19° for any human knee
 //!   ([`the_plan_heel_strike_leaves_the_trailing_ankle_above_its_norm`], docs/realism.md).
@@ -108,7 +108,7 @@ fn default_walks_against_the_published_ranges() {
             let (kst, kst_at) = peak(&knee, 0..30, true);
             within("knee stance peak", kst, 10.0, 25.0, &at);
             within("knee stance peak at %", kst_at as f64, 10.0, 20.0, &at);
-            // terminal stance: the knee stays near straight (spec §7: ≈ 5°; measured 6.5–11°)
+            // terminal stance: the knee stays near straight (spec §7: ≈ 5°; measured 5.4–9.9°)
             within(
                 "knee max in 30–42 %",
                 peak(&knee, 30..43, true).0,
