@@ -14,7 +14,7 @@
 use klaw::export::{angle_columns, cycle_average};
 use klaw::figure::frames;
 use klaw::skeleton::clinical;
-use klaw::{Attributes, Body, GaitRequest, walk};
+use klaw::{Attributes, Body, Gait, GaitRequest, walk};
 
 struct Cycle {
     columns: Vec<String>,
@@ -31,7 +31,8 @@ impl Cycle {
     }
 }
 
-fn cycle(v: f64, h: f64) -> Cycle {
+/// The default style at v m/s for height h (M = 23 h²): body, attributes and gait.
+fn default_gait(v: f64, h: f64) -> (Body, Attributes, Gait) {
     let body = Body::standard(h, 23.0 * h * h).unwrap();
     let attrs = Attributes::default();
     let g = GaitRequest {
@@ -40,6 +41,11 @@ fn cycle(v: f64, h: f64) -> Cycle {
     }
     .complete(&body, &attrs)
     .unwrap();
+    (body, attrs, g)
+}
+
+fn cycle(v: f64, h: f64) -> Cycle {
+    let (body, attrs, g) = default_gait(v, h);
     let w = walk::simulate(body, attrs, &[g; 8]).unwrap();
     let lms: Vec<_> = frames(&w, 200.0).map(|l| l.unwrap()).collect();
     let clin: Vec<_> = lms.iter().map(|l| clinical(l, &body).unwrap()).collect();
@@ -177,14 +183,7 @@ fn the_plan_heel_strike_leaves_the_trailing_ankle_above_its_norm() {
         (1.5, 1.75),
         (1.5, 1.85),
     ] {
-        let body = Body::standard(h, 23.0 * h * h).unwrap();
-        let attrs = Attributes::default();
-        let g = GaitRequest {
-            velocity: Some(v),
-            ..Default::default()
-        }
-        .complete(&body, &attrs)
-        .unwrap();
+        let (body, attrs, g) = default_gait(v, h);
         let c = klaw::StepConstraints::new(&body, &attrs, g).unwrap();
         let (l3, l4, l9) = (body.l3, body.l4, body.l9);
         let mx = body.ankle_to_metatarsal_horizontal();

@@ -6,6 +6,7 @@ use std::f64::consts::PI;
 
 use crate::dynamics::StanceModel;
 use crate::dynamics::impact;
+use crate::kinematics::pelvis::Determinants;
 use crate::ode::{self, Phase, Segment};
 use crate::trig::sin_cos;
 
@@ -46,14 +47,12 @@ pub struct StanceSetup {
     pub terminal: TerminalStance,
 }
 
-/// The hip height reference and its derivative with respect to θ1 [ours], u = sin θ1 / sin θ1^±
-/// clipped to [−1, 1]:
-/// - up to mid-stance (θ1 < 0), spec §4: y_ref = ȳ(u) + e cos²(πu/2), ȳ blending the two
-///   heel-strike heights with a half-sine (ȳ = y_hs in a steady gait): the bounce e = ε·E gives
-///   the loading response;
-/// - from mid-stance (θ1 ≥ 0), spec §7 "replace y_ref": the height the virtual leg gives with its
-///   knee held at the mid-stance value ([`TerminalStance`]): the stance hip joint at
-///   l9 + W(θ1) cos θ1, the pelvis centre (l0/2) sin L cos(πu/2) below it (the pelvic list).
+/// The hip height reference and its derivative with respect to θ1 [ours]:
+/// - up to mid-stance (θ1 < 0), spec §4: y_ref = ȳ(u) + e cos²(πu/2), u = sin θ1 / sin θ1^−
+///   clipped to [−1, 1], ȳ blending the two heel-strike heights with a half-sine (ȳ = y_hs in a
+///   steady gait): the bounce e = ε·E gives the loading response;
+/// - from mid-stance (θ1 ≥ 0), spec §7 "replace y_ref": the pelvis centre where the virtual leg
+///   puts it with its knee held at the mid-stance value, l9 + W(θ1) cos θ1 ([`TerminalStance`]).
 pub fn hip_reference(s: &StanceSetup, theta1: f64) -> (f64, f64) {
     let (s1, c1) = sin_cos(theta1);
     hip_reference_sc(s, s1, c1, s.theta1_start.sin(), theta1 >= 0.0)
@@ -124,13 +123,8 @@ pub struct TerminalStance {
     /// sin θ_ho, sin θ1*.
     pub sin_heel_off: f64,
     pub sin_end: f64,
-    /// l0/2, pelvic rotation A and list L (rad).
-    pub half_width: f64,
-    pub rotation: f64,
-    pub list: f64,
-    /// dz at heel strike, l0/2 − b/2, and the lateral displacement D (m).
-    pub lateral_hs: f64,
-    pub lateral_shift: f64,
+    /// The determinants of gait (with the step's list), which move the hip joint.
+    pub pelvis: Determinants,
 }
 
 /// m of the margin m (1 − x)² above y_hs that the reference keeps between heel-off (x = 0) and
@@ -159,7 +153,7 @@ impl TerminalStance {
     /// height and ankle to M (foot flat); `theta5_max`: the heel-off dorsiflexion.
     pub fn new(
         y_mid: f64,
-        det: &crate::kinematics::pelvis::Determinants,
+        det: &Determinants,
         (theta1_end, w_end): (f64, f64),
         (l3, l4, l9, h12): (f64, f64, f64, f64),
         theta5_max: f64,
@@ -178,11 +172,7 @@ impl TerminalStance {
             end_rate: 0.0,
             sin_heel_off: 0.7 * sin_end,
             sin_end,
-            half_width: h,
-            rotation: det.rotation,
-            list: det.list,
-            lateral_hs,
-            lateral_shift: det.lateral,
+            pelvis: *det,
         };
         // heel-off: the flat foot's ankle–J line reaches θ5_max − δ (rising with θ1)
         let line = |s1: f64| {
@@ -269,22 +259,17 @@ impl TerminalStance {
     /// J − C = o(u) and the lateral offset dz(u), with their derivatives in u.
     fn offset(&self, u: f64) -> ([[f64; 2]; 2], [f64; 2]) {
         let (sh, ch) = sin_cos(0.5 * PI * u);
-        let h = self.half_width;
-        let (sr, cr) = small_sin_cos(self.rotation * sh);
-        let (sl, cl) = small_sin_cos(self.list * ch);
+        let d = &self.pelvis;
+        let h = d.half_width;
+        let (sr, cr) = small_sin_cos(d.rotation * sh);
+        let (sl, cl) = small_sin_cos(d.list * ch);
         let k = 0.5 * PI;
         (
             [
                 [-h * sr, h * sl],
-                [
-                    -h * cr * self.rotation * k * ch,
-                    -h * cl * self.list * k * sh,
-                ],
+                [-h * cr * d.rotation * k * ch, -h * cl * d.list * k * sh],
             ],
-            [
-                self.lateral_hs + self.lateral_shift * ch,
-                -self.lateral_shift * k * sh,
-            ],
+            [h - d.half_step_width + d.lateral * ch, -d.lateral * k * sh],
         )
     }
 
@@ -308,7 +293,12 @@ impl TerminalStance {
         } else {
             (self.pitch_end, 0.0)
         };
-        let (ankle, dankle) = self.ankle(p);
+        // flat foot: the ankle is the pivot
+        let (ankle, dankle) = if p == 0.0 {
+            ([0.0; 2], [0.0; 2])
+        } else {
+            self.ankle(p)
+        };
         let u = (s1 / self.sin_end).min(1.0);
         let du = if u < 1.0 { c1 / self.sin_end } else { 0.0 };
         let ([o, o_u], [dz, dz_u]) = self.offset(u);
@@ -940,6 +930,7 @@ mod tests {
         let s = steady_setup();
         let t = &s.terminal;
         let [mx, my] = t.meta;
+        let d = &t.pelvis;
         for f in [0.5, 0.7, 0.9, 1.0] {
             let s1 = t.sin_heel_off + f * (t.sin_end - t.sin_heel_off);
             let c1 = (1.0 - s1 * s1).sqrt();
@@ -954,10 +945,10 @@ mod tests {
             let u = s1 / t.sin_end;
             let half = 0.5 * PI * u;
             let j = [
-                w * s1 - t.half_width * (t.rotation * half.sin()).sin(),
-                w * c1 + t.half_width * (t.list * half.cos()).sin(),
+                w * s1 - d.half_width * (d.rotation * half.sin()).sin(),
+                w * c1 + d.half_width * (d.list * half.cos()).sin(),
             ];
-            let dz = t.lateral_hs + t.lateral_shift * half.cos();
+            let dz = d.half_width - d.half_step_width + d.lateral * half.cos();
             let reach = ((j[0] - a[0]).powi(2) + (j[1] - a[1]).powi(2) + dz * dz).sqrt();
             assert!(
                 (reach - t.reach).abs() < 1e-12,
