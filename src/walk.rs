@@ -662,7 +662,7 @@ impl Walker {
             sub,
             t0,
             y0,
-            crate::ode::TOLERANCE,
+            sub.tolerance(crate::ode::TOLERANCE),
             mesh.borrow().as_ref(),
         )?;
         if trial.adapted {
