@@ -851,9 +851,10 @@ pub fn swing_hip_vy_end(
 
 /// Uniform samples per interval in [`minima`].
 const COARSE_SAMPLES: usize = 32;
-/// Uniform samples of the swing foot's height: narrow dips (the toe under the ground for 1 % of
-/// the swing while the heel rests on its floor) need them dense.
-const FOOT_SAMPLES: usize = 400;
+/// Uniform samples of the swing foot's height in [`minima`]: narrow dips (the toe under the
+/// ground for 1 % of the swing while the heel rests on its floor) need them denser; each local
+/// minimum among them is then refined.
+const FOOT_SAMPLES: usize = 100;
 
 /// (x, f(x)) at `n` + 1 uniform samples x = a + (k / n) span of [a, a + span].
 fn samples(f: impl Fn(f64) -> f64, a: f64, span: f64, n: usize) -> Vec<(f64, f64)> {
@@ -891,15 +892,14 @@ fn golden(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64, tol: f64) -> (f64, f
     best
 }
 
-/// Candidates for the minima of a smooth `f` on [a, b], (x, f(x)): [`COARSE_SAMPLES`] + 1
+/// Candidates for the minima of a smooth `f` on [a, b], (x, f(x)): `n` + 1
 /// uniform samples, and a [`golden`] search down to 1e-6 (b − a) over the two intervals around
 /// every sample no larger than its neighbours (to 1e-12: rounding noise; a run of such samples
 /// is searched as one bracket), the ends included. The least candidate in a sub-interval whose
 /// ends are samples is its minimum, for minima that the samples see as local minima;
 /// `tests/walk.rs` checks it against dense sampling.
-fn minima(f: impl Fn(f64) -> f64, a: f64, b: f64) -> Vec<(f64, f64)> {
+fn minima(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> Vec<(f64, f64)> {
     const NOISE: f64 = 1e-12;
-    let n = COARSE_SAMPLES;
     let mut found = samples(&f, a, b - a, n);
     let value = |k: usize| found[k].1;
     let local = |k: usize| {
@@ -923,20 +923,6 @@ fn minima(f: impl Fn(f64) -> f64, a: f64, b: f64) -> Vec<(f64, f64)> {
         found.push(golden(&f, lo, hi, 1e-6 * (b - a)));
     }
     found
-}
-
-/// The least sample (x, value) of `samples` (in order) in [lo, hi], refined by [`golden`] over
-/// the intervals around it down to 1e-6 of the samples' span.
-fn refine_least(f: impl Fn(f64) -> f64, samples: &[(f64, f64)], lo: f64, hi: f64) -> (f64, f64) {
-    let n = samples.len() - 1;
-    let span = samples[n].0 - samples[0].0;
-    let slack = 1e-9 * span;
-    let k = (0..=n)
-        .filter(|&k| (lo - slack..=hi + slack).contains(&samples[k].0))
-        .min_by(|&i, &j| samples[i].1.total_cmp(&samples[j].1))
-        .expect("a sample in the interval");
-    let (x0, x1) = (samples[k.saturating_sub(1)].0, samples[(k + 1).min(n)].0);
-    golden(f, x0.max(lo), x1.min(hi), 1e-6 * span)
 }
 
 /// The least of `candidates` (x, value) with x in [lo, hi] (to 1e-9 of the interval): (value, x).
@@ -1299,21 +1285,24 @@ impl Step {
         let step_length = strike.foot.heel[0] + foot.l8;
         // hip: its highest and lowest points through the stance
         let hip_y = |tau: f64| self.hip(tau)[1];
-        let (y_min, _) = least_in(&minima(hip_y, 0.0, t.t_step), 0.0, t.t_step);
-        let (y_max, _) = least_in(&minima(|tau| -hip_y(tau), 0.0, t.t_step), 0.0, t.t_step);
+        let (y_min, _) = least_in(&minima(hip_y, 0.0, t.t_step, COARSE_SAMPLES), 0.0, t.t_step);
+        let (y_max, _) = least_in(
+            &minima(|tau| -hip_y(tau), 0.0, t.t_step, COARSE_SAMPLES),
+            0.0,
+            t.t_step,
+        );
         let y_max = -y_max;
         let s = &self.stance_setup;
         // swing foot: lowest point over the swing, and in mid swing; the knee's peak flexion
         let (t_off, t_swing) = (t.t_ds, t.t_swing);
         let foot_y = |tau: f64| self.swing_pose(tau, foot).foot.lowest();
+        let swing_end = t_off + t_swing;
         let (mid_lo, mid_hi) = (t_off + 0.25 * t_swing, t_off + 0.75 * t_swing);
-        let mut heights = samples(foot_y, t_off, t_swing, FOOT_SAMPLES);
-        // mid swing: the samples alone; its check (clearance > 0) sits at the rounding noise
-        // where the heel rests on its floor, and a refined search there found 0.0 where the
-        // samples had 1e-16 (a different pelvic list at 4 of the 1 000 walks of the sweep)
+        // the least over mid swing is at one of its ends or at a local minimum inside
+        let mut heights = minima(foot_y, t_off, swing_end, FOOT_SAMPLES);
+        heights.extend([(mid_lo, foot_y(mid_lo)), (mid_hi, foot_y(mid_hi))]);
         let (mid, _) = least_in(&heights, mid_lo, mid_hi);
-        heights.push(refine_least(foot_y, &heights, t_off, t_off + t_swing));
-        let (lowest, lowest_at) = least_in(&heights, t_off, t_off + t_swing);
+        let (lowest, lowest_at) = least_in(&heights, t_off, swing_end);
         let knee = |tau: f64| {
             let i = self
                 .swing
@@ -1321,9 +1310,8 @@ impl Step {
                 .min(self.swing.len() - 1);
             self.swing[i].1.state(tau)[1]
         };
-        let swing_end = t_off + t_swing;
         let (knee_peak, _) = least_in(
-            &minima(|tau| -knee(tau), t_off, swing_end),
+            &minima(|tau| -knee(tau), t_off, swing_end, COARSE_SAMPLES),
             t_off,
             swing_end,
         );

@@ -214,8 +214,9 @@ fn hip_path_interpolates_the_stance_hip() {
 /// `Step::measure` samples and refines around the sampled minima and maxima: every extreme it
 /// reports is at least as extreme as dense sampling finds (4 000 samples per phase; to 1e-12 m:
 /// where the foot rests on its floor the heights are rounding noise of 1e-16 m), on the default
-/// walk and at the grid's corners — except the mid-swing clearance, which keeps its 400 samples
-/// (every tenth of the 4 000: at least the dense minimum, and within 0.1 mm of it).
+/// walk and at the grid's corners; the mid-swing clearance as well (its least is at an end of
+/// mid swing or at a refined local minimum: 400 samples alone missed a 50 nm touch at 0.6 m/s,
+/// H 1.8 m, that the refined search finds).
 #[test]
 fn measured_extremes_are_at_least_those_of_dense_sampling() {
     use klaw::kinematics::foot::Foot;
@@ -249,7 +250,7 @@ fn measured_extremes_are_at_least_those_of_dense_sampling() {
             );
             assert!(r.hip_excursion >= y_max - sy.y_end, "{who}: hip highest");
             assert!(r.min_foot_height <= lowest + 1e-12, "{who}: foot lowest");
-            assert!(r.min_toe_clearance >= mid, "{who}: mid-swing clearance");
+            assert!(r.min_toe_clearance <= mid + 1e-12, "{who}: mid-swing clearance");
             assert!(r.peak_swing_knee_flexion >= knee, "{who}: knee peak");
             // and not beyond what the motion reaches (the dense samples' spacing bounds it)
             assert!(lowest - r.min_foot_height < 1e-4, "{who}: foot lowest");
