@@ -533,8 +533,41 @@ struct Piece {
     t0: f64,
     t1: f64,
     dt: f64,
-    /// acc[i] is the value at t0 + i dt (the ends just inside the piece), i = 0..=n, n ≥ 5.
-    acc: Vec<[f64; 2]>,
+    /// Intervals n ≥ 5 of the grid t0 + i dt, i = 0..=n (the ends just inside the piece).
+    n: usize,
+    /// For each window of six grid values a_j..a_{j+5} (j = 0..=n − 5), the Newton form of the
+    /// quintic through them: Δᵐa_j / m!, m = 0..=5 (forward differences), per component.
+    newton: Vec<[[f64; 6]; 2]>,
+}
+
+impl Piece {
+    /// The windows' forward differences of the grid values `acc`.
+    fn new(t0: f64, t1: f64, dt: f64, acc: &[[f64; 2]]) -> Self {
+        const FACTORIAL: [f64; 6] = [1.0, 1.0, 2.0, 6.0, 24.0, 120.0];
+        let n = acc.len() - 1;
+        let newton = (0..=n - 5)
+            .map(|j| {
+                let mut out = [[0.0; 6]; 2];
+                for (c, o) in out.iter_mut().enumerate() {
+                    let mut d: [f64; 6] = std::array::from_fn(|k| acc[j + k][c]);
+                    for m in 0..6 {
+                        o[m] = d[0] / FACTORIAL[m];
+                        for k in 0..5 - m {
+                            d[k] = d[k + 1] - d[k];
+                        }
+                    }
+                }
+                out
+            })
+            .collect();
+        Piece {
+            t0,
+            t1,
+            dt,
+            n,
+            newton,
+        }
+    }
 }
 
 /// Largest grid step of [`HipPath`] (s).
@@ -605,12 +638,7 @@ impl HipPath {
                     };
                     acc.push(acceleration(t));
                 }
-                Piece {
-                    t0: a,
-                    t1: b,
-                    dt,
-                    acc,
-                }
+                Piece::new(a, b, dt, &acc)
             })
             .collect();
         HipPath { pieces }
@@ -640,27 +668,17 @@ impl HipPath {
     /// stages.
     pub fn acceleration_on(&self, piece: usize, t: f64) -> [f64; 2] {
         let p = &self.pieces[piece];
-        let n = p.acc.len() - 1;
-        let x = ((t - p.t0) / p.dt).clamp(0.0, n as f64);
-        // the six grid points around t's interval (shifted inside the piece at its ends)
-        let j = (x.floor() as usize).saturating_sub(2).min(n - 5);
+        let x = ((t - p.t0) / p.dt).clamp(0.0, p.n as f64);
+        // the six grid points around t's interval (shifted inside the piece at its ends), the
+        // quintic through them in Newton's form, nested
+        let j = (x.floor() as usize).saturating_sub(2).min(p.n - 5);
         let u = x - j as f64;
-        let d = [u, u - 1.0, u - 2.0, u - 3.0, u - 4.0, u - 5.0];
-        // Lagrange weights: Π_{m≠k} (u − m) / Π_{m≠k} (k − m)
-        let (mut left, mut right) = ([1.0; 6], [1.0; 6]);
-        for k in 1..6 {
-            left[k] = left[k - 1] * d[k - 1];
-            right[5 - k] = right[6 - k] * d[6 - k];
-        }
-        const DENOM: [f64; 6] = [-120.0, 24.0, -12.0, 12.0, -24.0, 120.0];
-        let mut a = [0.0; 2];
-        for k in 0..6 {
-            let w = left[k] * right[k] / DENOM[k];
-            let v = p.acc[j + k];
-            a[0] += w * v[0];
-            a[1] += w * v[1];
-        }
-        a
+        p.newton[j].map(|d| {
+            d[0] + u
+                * (d[1]
+                    + (u - 1.0)
+                        * (d[2] + (u - 2.0) * (d[3] + (u - 3.0) * (d[4] + (u - 4.0) * d[5]))))
+        })
     }
 }
 
