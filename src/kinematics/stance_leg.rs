@@ -446,7 +446,9 @@ impl StanceLeg {
             Ok(p.pitch == 0.0 && (p.gap > 0.0 || Self::dorsiflexion(&p) >= self.theta5_max))
         };
         let t_from = t_from.max(self.t_hs + self.t_fgm);
-        const SCAN: usize = 64;
+        // a scan every ≈ 20 ms (the trigger, once on, stays on until toe-off), then bisection
+        // to 1e-9 s (the hip moves ≤ 3e-9 m): 40 % of the 64-sample scan to 1e-12 s
+        const SCAN: usize = 24;
         let mut lo = t_from;
         let mut found = None;
         for k in 1..=SCAN {
@@ -460,9 +462,9 @@ impl StanceLeg {
         let Some(mut hi) = found else {
             return Ok(());
         };
-        // world times: far into a long walk 1e-12 s is below the spacing of doubles, so the
-        // bisection also stops when the midpoint is an end
-        while hi - lo > 1e-12 {
+        // world times: far into a long walk the spacing of doubles is coarser, so the bisection
+        // also stops when the midpoint is an end
+        while hi - lo > 1e-9 {
             let m = 0.5 * (lo + hi);
             if m <= lo || m >= hi {
                 break;
