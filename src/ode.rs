@@ -23,9 +23,9 @@ use nalgebra::SVector;
 /// misses its energy balance, `tests/work.rs`, by 8e-4 J against the 7.9e-4 J bound; with
 /// DOP853 and the segments ending at the forces' jumps and kinks: 1.0e-8 stance, 2.0e-8
 /// swing1, 1.8e-8 swing3 over the grid; with the virtual leg's stance reference 1.0e-8, 1.5e-8,
-/// 1.0e-8, and swing3's heel landing velocity 6.3e-6 m/s at one step (v 0.7 m/s, H 1.8 m, step
-/// 9; 1.1e-6 at v 2.0, H 1.5, step 8; ≤ 1e-7 elsewhere)); docs/engine.md has the table. Kept
-/// at 1e-8.
+/// 1.0e-8, and swing3's heel landing velocity 6.3e-6 m/s at one step, down to 3.4e-8 once the
+/// reference no longer kinked at heel strike (`stance::PAST_END`); swing2 runs at 100 times
+/// this, `swing::SWING2_TOLERANCE_SCALE`); docs/engine.md has the table. Kept at 1e-8.
 pub const TOLERANCE: f64 = 1e-8;
 
 /// How precisely event times are located (s).
