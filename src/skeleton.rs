@@ -32,6 +32,7 @@ use glam::{DMat3, DVec3};
 use crate::body::Body;
 use crate::error::{Error, Result};
 use crate::figure::{ArmAngles, Landmarks, LegPoints};
+use crate::trig::atan2;
 
 /// Largest disagreement (m) between the landmarks and the rigid segments of the body table that
 /// the BVH export accepts: its offsets are the body's lengths, so beyond this the file could not
@@ -54,8 +55,8 @@ pub fn zxy_angles(m: &DMat3) -> [f64; 3] {
 /// [`zxy_angles`] of the matrix whose entry (i, j) is `r(i, j)` (only five are read).
 fn zxy_from(r: impl Fn(usize, usize) -> f64) -> [f64; 3] {
     let b = r(2, 1).clamp(-1.0, 1.0).asin();
-    let a = (-r(0, 1)).atan2(r(1, 1));
-    let c = (-r(2, 0)).atan2(r(2, 2));
+    let a = atan2(-r(0, 1), r(1, 1));
+    let c = atan2(-r(2, 0), r(2, 2));
     [a, b, c]
 }
 
@@ -101,8 +102,8 @@ pub fn yxz_matrix(r: f64, p: f64, q: f64) -> DMat3 {
 pub fn yxz_angles(m: &DMat3) -> [f64; 3] {
     let e = |i: usize, j: usize| m.col(j)[i];
     let p = (-e(1, 2)).clamp(-1.0, 1.0).asin();
-    let r = e(0, 2).atan2(e(2, 2));
-    let q = e(1, 0).atan2(e(1, 1));
+    let r = atan2(e(0, 2), e(2, 2));
+    let q = atan2(e(1, 0), e(1, 1));
     [r, p, q]
 }
 

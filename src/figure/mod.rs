@@ -169,7 +169,8 @@ pub fn landmarks(step: &Step, t: f64, attrs: &Attributes) -> Result<Landmarks> {
     let tilt = attrs.pelvis_tilt + theta2 - attrs.trunk_lean;
     // each arm follows the opposite thigh's sagittal angle (knee forward +), scaled so that the
     // thigh at heel strike (−θ3*) swings the arm to half the range
-    let thigh = |leg: &LegPoints| (leg.knee[0] - leg.hip[0]).atan2(leg.hip[1] - leg.knee[1]);
+    let thigh =
+        |leg: &LegPoints| crate::trig::atan2(leg.knee[0] - leg.hip[0], leg.hip[1] - leg.knee[1]);
     let reference = (-c.theta3).max(1e-3);
     let arm = |opposite: &LegPoints| {
         let flexion = 0.5 * attrs.arm_swing * thigh(opposite) / reference;
