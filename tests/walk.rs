@@ -250,7 +250,10 @@ fn measured_extremes_are_at_least_those_of_dense_sampling() {
             );
             assert!(r.hip_excursion >= y_max - sy.y_end, "{who}: hip highest");
             assert!(r.min_foot_height <= lowest + 1e-12, "{who}: foot lowest");
-            assert!(r.min_toe_clearance <= mid + 1e-12, "{who}: mid-swing clearance");
+            assert!(
+                r.min_toe_clearance <= mid + 1e-12,
+                "{who}: mid-swing clearance"
+            );
             assert!(r.peak_swing_knee_flexion >= knee, "{who}: knee peak");
             // and not beyond what the motion reaches (the dense samples' spacing bounds it)
             assert!(lowest - r.min_foot_height < 1e-4, "{who}: foot lowest");
