@@ -32,7 +32,7 @@ use glam::{DMat3, DVec3};
 use crate::body::Body;
 use crate::error::{Error, Result};
 use crate::figure::{ArmAngles, Landmarks, LegPoints};
-use crate::trig::atan2;
+use crate::trig::{atan2, sin_cos};
 
 /// Largest disagreement (m) between the landmarks and the rigid segments of the body table that
 /// the BVH export accepts: its offsets are the body's lengths, so beyond this the file could not
@@ -91,8 +91,22 @@ fn yxz_round_trip(r: f64, p: f64, q: f64) -> [f64; 3] {
 }
 
 /// `R_y(r) · R_x(p) · R_z(q)`: the order of the pelvis and lumbar angles of [`Landmarks`].
+/// Multiplied out (rows of the matrix, sₐ = sin a, cₐ = cos a):
+/// (c_r c_q + s_r s_p s_q, s_r s_p c_q − c_r s_q, s_r c_p),
+/// (c_p s_q, c_p c_q, −s_p),
+/// (c_r s_p s_q − s_r c_q, s_r s_q + c_r s_p c_q, c_r c_p),
+/// with [`sin_cos`] instead of libm's for each rotation and two matrix products (this is the
+/// pelvis frame of every exported frame).
 pub fn yxz_matrix(r: f64, p: f64, q: f64) -> DMat3 {
-    DMat3::from_rotation_y(r) * DMat3::from_rotation_x(p) * DMat3::from_rotation_z(q)
+    let (sr, cr) = sin_cos(r);
+    let (sp, cp) = sin_cos(p);
+    let (sq, cq) = sin_cos(q);
+    let (spsq, spcq) = (sp * sq, sp * cq);
+    DMat3::from_cols(
+        DVec3::new(cr * cq + sr * spsq, cp * sq, cr * spsq - sr * cq),
+        DVec3::new(sr * spcq - cr * sq, cp * cq, sr * sq + cr * spcq),
+        DVec3::new(sr * cp, -sp, cr * cp),
+    )
 }
 
 /// The angles `[r, p, q]` with `m = R_y(r) · R_x(p) · R_z(q)`, p in [−90°, 90°].
@@ -609,6 +623,27 @@ mod tests {
 
     fn close(a: DMat3, b: DMat3) -> bool {
         (a - b).to_cols_array().iter().all(|d| d.abs() < 1e-12)
+    }
+
+    /// The multiplied-out [`yxz_matrix`] against the product of glam's three rotations (its
+    /// first implementation) over angles in every quadrant.
+    #[test]
+    fn yxz_matrix_is_the_product_of_its_rotations() {
+        let mut worst: f64 = 0.0;
+        for i in 0..20 {
+            for j in 0..20 {
+                for k in 0..20 {
+                    let angle = |n: i32, scale: f64| (n as f64 - 9.7) * scale;
+                    let (r, p, q) = (angle(i, 0.33), angle(j, 0.17), angle(k, 0.31));
+                    let m = DMat3::from_rotation_y(r)
+                        * DMat3::from_rotation_x(p)
+                        * DMat3::from_rotation_z(q);
+                    let d = (yxz_matrix(r, p, q) - m).to_cols_array();
+                    worst = d.iter().fold(worst, |w, x| w.max(x.abs()));
+                }
+            }
+        }
+        assert!(worst < 1e-15, "{worst}");
     }
 
     /// Decomposition inverts composition, checked against glam's own Euler conversion (an
