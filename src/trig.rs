@@ -117,13 +117,13 @@ fn atan_positive(t: f64) -> f64 {
 /// atan2(y, x): libm's costs ≈ 120 instructions a call and was a sixth of the frames' (the
 /// clinical angles' Euler decompositions). Here fdlibm's `__ieee754_atan2` (e_atan2.c): atan of
 /// |y / x|, then the quadrant; within 1 ulp of libm (test below; the kernel's error is < 1 ulp,
-/// the division's rounding adds up to ½ ulp of the quotient). Whenever |y / x| is not a normal number — a zero, an infinity or a
-/// NaN among the arguments, or a quotient that overflows or underflows — libm's `atan2` answers,
-/// with its signed zeros and ±π/2 conventions.
+/// the division's rounding adds up to ½ ulp of the quotient). A zero quotient (y = ±0, or x
+/// infinite) takes the same path and gives libm's ±0 and ±π; only when |y / x| is not finite —
+/// x = ±0, y infinite, or a NaN — libm's `atan2` answers (its ±π/2 and NaN conventions).
 #[inline]
 pub fn atan2(y: f64, x: f64) -> f64 {
     let t = (y / x).abs();
-    if !t.is_normal() {
+    if !t.is_finite() {
         return y.atan2(x);
     }
     let z = atan_positive(t);
@@ -199,13 +199,13 @@ mod tests {
 
     /// Against libm: angles all round the circle (every quadrant and octant, next to the
     /// reduction's thresholds 7/16, 11/16, 19/16, 39/16 and their reciprocals), radii from 1e-300
-    /// to 1e300, within 1 ulp of the result; the special arguments exactly as libm.
+    /// to 1e300, within 1 ulp of the result; zeros, infinities and NaN exactly as libm.
     #[test]
     fn atan2_agrees_with_libm() {
         let mut worst: f64 = 0.0;
         let mut check = |y: f64, x: f64| {
             let (a, b) = (atan2(y, x), y.atan2(x));
-            if b == 0.0 || !b.is_finite() {
+            if b == 0.0 || !b.is_finite() || y == 0.0 || x.is_infinite() {
                 assert!(
                     a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()),
                     "{y} {x}"
@@ -241,7 +241,8 @@ mod tests {
                 check(y * r, x * r);
             }
         }
-        // zeros, infinities, NaN, quotients that overflow or underflow: libm's answers
+        // zeros, infinities, NaN, quotients that overflow or underflow: libm's answers, bit for
+        // bit where y is zero or x infinite (±0, ±π)
         let special = [
             0.0,
             -0.0,

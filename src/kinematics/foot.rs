@@ -105,7 +105,7 @@ impl Foot {
         let reach = |(r, angle): (f64, f64)| ((ankle_y - floor) / r).asin() - angle;
         let (s6, c6) = sin_cos(theta6);
         let (a, b) = (self.h12 + self.l13 * c6, self.l9 - self.l13 * s6);
-        reach(self.meta_reach).min(reach((a.hypot(b), b.atan2(a))))
+        reach(self.meta_reach).min(reach((a.hypot(b), crate::trig::atan2(b, a))))
     }
 
     /// The smallest pitch (heel up +) that keeps the heel at or above the ground, for an ankle at
