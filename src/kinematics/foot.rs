@@ -72,10 +72,16 @@ impl Foot {
     pub fn points(&self, ankle: [f64; 2], p: f64, theta6: f64) -> FootPoints {
         let sc = sin_cos(p);
         let meta = add(ankle, rotate([self.h12, -self.l9], sc));
+        // the toe's pitch p − θ6 is p itself with the toe in line (stance, most of the swing)
+        let toe_sc = if theta6 == 0.0 {
+            sc
+        } else {
+            sin_cos(p - theta6)
+        };
         FootPoints {
             heel: add(ankle, rotate([-self.l8, -self.l9], sc)),
             meta,
-            toe: add(meta, pitch([self.l13, 0.0], p - theta6)),
+            toe: add(meta, rotate([self.l13, 0.0], toe_sc)),
         }
     }
 
