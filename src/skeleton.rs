@@ -248,17 +248,21 @@ fn finite(name: &str, value: f64) -> Result<f64> {
 }
 
 /// `p` as a vector, or [`Error::NotFinite`] naming `name().axis` (the name is only built on
-/// error: this runs several times per frame).
+/// error: this runs several times per frame, so the vector's own test comes first).
 fn point(name: impl FnOnce() -> String, p: [f64; 3]) -> Result<DVec3> {
-    for (axis, v) in ["x", "y", "z"].iter().zip(p) {
-        if !v.is_finite() {
-            return Err(Error::NotFinite {
-                name: format!("{}.{axis}", name()),
-                value: v,
-            });
-        }
+    let v = DVec3::from_array(p);
+    if v.is_finite() {
+        return Ok(v);
     }
-    Ok(DVec3::from_array(p))
+    let (axis, value) = ["x", "y", "z"]
+        .into_iter()
+        .zip(p)
+        .find(|(_, v)| !v.is_finite())
+        .expect("a coordinate is not finite");
+    Err(Error::NotFinite {
+        name: format!("{}.{axis}", name()),
+        value,
+    })
 }
 
 /// [`finite`] with the name built only on error.
@@ -301,6 +305,9 @@ fn perpendicular(hint: DVec3, axis: DVec3, time: f64, what: impl Fn() -> String)
     Ok(p * n.recip())
 }
 
+/// The thigh, shank, foot and toe frames of one leg from its points (the module doc gives the
+/// axes). Inlined: the frames are built in the caller's frame, not copied out of a `Result`.
+#[inline(always)]
 fn leg_frames(leg: &LegPoints, side: Side, time: f64) -> Result<LegFrames> {
     let s = side.suffix();
     let hip = point(|| format!("{s}.hip"), leg.hip)?;
@@ -580,7 +587,9 @@ impl Trunk {
 }
 
 /// The clinical angles from the pelvis frame and its YXZ angles `[r, p, q]`, the lumbar YXZ
-/// angles, the legs' frames and the arms' joints.
+/// angles, the legs' frames and the arms' joints. (Inlined: the angles are written in place,
+/// not copied into the caller's `Result`.)
+#[inline(always)]
 fn assemble(
     time: f64,
     step: usize,
