@@ -5,6 +5,7 @@ use crate::body::Body;
 use crate::trig::sin_cos;
 
 /// Rotate a foot-frame vector (x forward, y up, foot flat) by the pitch p (heel up +).
+#[inline]
 pub fn pitch(v: [f64; 2], p: f64) -> [f64; 2] {
     rotate(v, sin_cos(p))
 }
@@ -69,6 +70,7 @@ impl Foot {
     }
 
     /// Foot points for an ankle at `ankle`, foot pitch `p` (heel up +) and toe dorsiflexion θ6.
+    #[inline]
     pub fn points(&self, ankle: [f64; 2], p: f64, theta6: f64) -> FootPoints {
         let sc = sin_cos(p);
         let meta = add(ankle, rotate([self.h12, -self.l9], sc));
