@@ -29,11 +29,12 @@
 //! forearm and hand `R_upper · R_z(elbow flexion)`.
 //!
 //! [`clinical`] runs for every exported frame: its small helpers (the checked points, unit
-//! vectors, the leg frames, the joint decompositions) are `#[inline(always)]`. Out of line each
-//! returned its value inside a `Result` through memory and passed its error closure's captures
-//! by reference, ≈ 40 instructions a call on top of the arithmetic: inlined, the happy path is
-//! the arithmetic, and the error names are still built only on error (5.1 → 4.6 M instructions
-//! for the default walk's 556 frames, landmarks included).
+//! vectors, the leg frames, the joint decompositions, the trunk and arm checks) are
+//! `#[inline(always)]`. Out of line each returned its value inside a `Result` through memory and
+//! passed its error closure's captures by reference, ≈ 40 instructions a call on top of the
+//! arithmetic: inlined, the happy path is the arithmetic, and the error names are still built
+//! only on error (5.1 → 4.5 M instructions for the default walk's 556 frames, landmarks
+//! included).
 use glam::{DMat3, DVec3};
 
 use crate::body::Body;
@@ -244,6 +245,7 @@ impl Clinical {
     }
 }
 
+#[inline(always)]
 fn finite(name: &str, value: f64) -> Result<f64> {
     if value.is_finite() {
         Ok(value)
@@ -275,6 +277,7 @@ fn point(name: impl FnOnce() -> String, p: [f64; 3]) -> Result<DVec3> {
 }
 
 /// [`finite`] with the name built only on error.
+#[inline(always)]
 fn finite_named(name: impl FnOnce() -> String, value: f64) -> Result<f64> {
     if value.is_finite() {
         Ok(value)
@@ -368,6 +371,7 @@ fn leg_frames(leg: &LegPoints, side: Side, time: f64) -> Result<LegFrames> {
 
 /// An arm's shoulder flexion, abduction and elbow flexion, or [`Error::NotFinite`] naming the
 /// first that is not finite.
+#[inline(always)]
 fn arm_angles(arm: &ArmAngles, side: Side) -> Result<[f64; 3]> {
     let s = side.suffix();
     Ok([
@@ -575,6 +579,7 @@ struct Trunk {
 
 impl Trunk {
     /// Errors: the first non-finite of time, pelvis, pelvis angles, lumbar angles.
+    #[inline(always)]
     fn new(lm: &Landmarks) -> Result<Self> {
         let time = finite("time", lm.time)?;
         let origin = point(|| "pelvis".to_string(), lm.pelvis)?;
