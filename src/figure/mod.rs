@@ -77,18 +77,18 @@ pub struct Landmarks {
     pub left_arm: ArmAngles,
 }
 
-/// Place a leg in 3-D: hip joint `hip` (world), in-plane angles θ3 and θ4 in a plane through the
-/// forward axis tilted so that the ankle lies `dz` to the inside of the hip (dz = hip z − ankle
-/// z), and the sagittal foot points (world x, y) carried with the ankle.
+/// Place a leg in 3-D: hip joint `hip` (world), in-plane angles θ3 and θ4 — given by the (sin,
+/// cos) of θ3 and of θ3 + θ4 — in a plane through the forward axis tilted so that the ankle lies
+/// `dz` to the inside of the hip (dz = hip z − ankle z), and the sagittal foot points (world x,
+/// y) carried with the ankle.
 fn place_leg(
     hip: [f64; 3],
     dz: f64,
-    (theta3, theta4): (f64, f64),
+    [thigh, shank]: [(f64, f64); 2],
     (l3, l4): (f64, f64),
     ankle2: [f64; 2],
     foot: &FootPoints,
 ) -> LegPoints {
-    let (thigh, shank) = (sin_cos(theta3), sin_cos(theta3 + theta4));
     let drop = l3 * thigh.1 + l4 * shank.1;
     let sin_phi = -dz / drop;
     let cos_phi = (1.0 - sin_phi * sin_phi).max(0.0).sqrt();
@@ -148,7 +148,10 @@ pub fn landmarks(step: &Step, t: f64, attrs: &Attributes) -> Result<Landmarks> {
     let stance_leg = place_leg(
         hip3(step.side),
         dz_stance,
-        (stance.theta3, stance.theta4),
+        [
+            sin_cos(stance.theta3),
+            sin_cos(stance.theta3 + stance.theta4),
+        ],
         (l3, l4),
         [x0 + stance.ankle[0], stance.ankle[1]],
         &shifted(&stance.foot, x0),
@@ -158,7 +161,7 @@ pub fn landmarks(step: &Step, t: f64, attrs: &Attributes) -> Result<Landmarks> {
     let swing_leg = place_leg(
         hip3(step.side.other()),
         sw.dz,
-        (sw.theta3, sw.theta4),
+        sw.sin_cos,
         (l3, l4),
         [x0 + sw.ankle[0], sw.ankle[1]],
         &shifted(&sw.foot, x0),

@@ -105,7 +105,9 @@ impl KneeCurve {
 
 /// Knee and ankle (x, world y) of a leg hanging from a hip joint at `hip` with in-plane thigh
 /// angle θ3 and knee flexion θ4, in a plane that contains the forward axis and is tilted by φ,
-/// sin φ = dz / (in-plane drop), so that the ankle sits `dz` to the side of the hip.
+/// sin φ = dz / (in-plane drop), so that the ankle sits `dz` to the side of the hip. Also
+/// returns the (sin, cos) of θ3 and of the shank's θ3 + θ4 it used (the figure places the leg
+/// in 3-D with them).
 pub fn leg_points(
     hip: [f64; 2],
     dz: f64,
@@ -113,7 +115,7 @@ pub fn leg_points(
     theta4: f64,
     l3: f64,
     l4: f64,
-) -> ([f64; 2], [f64; 2]) {
+) -> ([f64; 2], [f64; 2], [(f64, f64); 2]) {
     let shank = theta3 + theta4;
     let (s3, c3) = sin_cos(theta3);
     let (ss, cs) = sin_cos(shank);
@@ -121,7 +123,7 @@ pub fn leg_points(
     let cos_phi = (1.0 - (dz / drop).powi(2)).max(0.0).sqrt();
     let knee = [hip[0] - l3 * s3, hip[1] - l3 * c3 * cos_phi];
     let ankle = [knee[0] - l4 * ss, knee[1] - l4 * cs * cos_phi];
-    (knee, ankle)
+    (knee, ankle, [(s3, c3), (ss, cs)])
 }
 
 /// Hip–ankle distance of a leg with knee flexion κ, from cos κ.
