@@ -1035,6 +1035,8 @@ pub struct SwingPose {
     pub phase: &'static str,
     pub theta3: f64,
     pub theta4: f64,
+    /// (sin, cos) of θ3 and of θ3 + θ4, as [`leg_points`] computed them.
+    pub sin_cos: [(f64, f64); 2],
     pub hip: [f64; 2],
     pub dz: f64,
     pub knee: [f64; 2],
@@ -1191,11 +1193,12 @@ impl Step {
                     .pose([hip[0] + self.x_ankle, hip[1]], dz, self.t_start + tau)
         {
             shift_pose(&mut p, -self.x_ankle);
-            let (knee, _) = leg_points(hip, dz, p.theta3, p.theta4, l3, l4);
+            let (knee, _, sin_cos) = leg_points(hip, dz, p.theta3, p.theta4, l3, l4);
             return SwingPose {
                 phase: "double_support",
                 theta3: p.theta3,
                 theta4: p.theta4,
+                sin_cos,
                 hip,
                 dz,
                 knee,
@@ -1209,7 +1212,7 @@ impl Step {
             .min(self.swing.len() - 1);
         let (sub, seg) = &self.swing[i];
         let y = seg.state(tau);
-        let (knee, ankle) = leg_points(hip, dz, y[0], y[1], l3, l4);
+        let (knee, ankle, sin_cos) = leg_points(hip, dz, y[0], y[1], l3, l4);
         let (theta5, theta6) = self.swing_foot_angles(tau);
         // [ours] the ankle dorsiflexes beyond its rule when the rule would put the toe below a
         // floor rising from 0 at toe-off to the toe-clearance attribute at mid swing and back to
@@ -1222,6 +1225,7 @@ impl Step {
             phase: sub.name(),
             theta3: y[0],
             theta4: y[1],
+            sin_cos,
             hip,
             dz,
             knee,

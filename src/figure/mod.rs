@@ -13,6 +13,7 @@ use crate::attributes::Attributes;
 use crate::error::{Error, Result};
 use crate::kinematics::foot::{Foot, FootPoints};
 use crate::kinematics::pelvis::Side;
+use crate::trig::{atan2, sin_cos};
 use crate::walk::Step;
 
 /// One leg's joint centres and foot contact points, world frame (m).
@@ -76,30 +77,31 @@ pub struct Landmarks {
     pub left_arm: ArmAngles,
 }
 
-/// Place a leg in 3-D: hip joint `hip` (world), in-plane angles θ3 and θ4 in a plane through the
-/// forward axis tilted so that the ankle lies `dz` to the inside of the hip (dz = hip z − ankle
-/// z), and the sagittal foot points (world x, y) carried with the ankle.
+/// Place a leg in 3-D: hip joint `hip` (world), in-plane angles θ3 and θ4 — given by the (sin,
+/// cos) of θ3 and of θ3 + θ4 — in a plane through the forward axis tilted so that the ankle lies
+/// `dz` to the inside of the hip (dz = hip z − ankle z), and the sagittal foot points (world x,
+/// y) carried with the ankle.
 fn place_leg(
     hip: [f64; 3],
     dz: f64,
-    (theta3, theta4): (f64, f64),
+    [thigh, shank]: [(f64, f64); 2],
     (l3, l4): (f64, f64),
     ankle2: [f64; 2],
     foot: &FootPoints,
 ) -> LegPoints {
-    let shank = theta3 + theta4;
-    let drop = l3 * theta3.cos() + l4 * shank.cos();
+    let drop = l3 * thigh.1 + l4 * shank.1;
     let sin_phi = -dz / drop;
     let cos_phi = (1.0 - sin_phi * sin_phi).max(0.0).sqrt();
-    let down = |len: f64, angle: f64, from: [f64; 3]| {
-        let along = len * angle.cos();
+    // `len` down the segment at the angle whose (sin, cos) is `(s, c)`
+    let down = |len: f64, (s, c): (f64, f64), from: [f64; 3]| {
+        let along = len * c;
         [
-            from[0] - len * angle.sin(),
+            from[0] - len * s,
             from[1] - along * cos_phi,
             from[2] + along * sin_phi,
         ]
     };
-    let knee = down(l3, theta3, hip);
+    let knee = down(l3, thigh, hip);
     let ankle = down(l4, shank, knee);
     let carry = |p: [f64; 2]| {
         [
@@ -146,7 +148,10 @@ pub fn landmarks(step: &Step, t: f64, attrs: &Attributes) -> Result<Landmarks> {
     let stance_leg = place_leg(
         hip3(step.side),
         dz_stance,
-        (stance.theta3, stance.theta4),
+        [
+            sin_cos(stance.theta3),
+            sin_cos(stance.theta3 + stance.theta4),
+        ],
         (l3, l4),
         [x0 + stance.ankle[0], stance.ankle[1]],
         &shifted(&stance.foot, x0),
@@ -156,7 +161,7 @@ pub fn landmarks(step: &Step, t: f64, attrs: &Attributes) -> Result<Landmarks> {
     let swing_leg = place_leg(
         hip3(step.side.other()),
         sw.dz,
-        (sw.theta3, sw.theta4),
+        sw.sin_cos,
         (l3, l4),
         [x0 + sw.ankle[0], sw.ankle[1]],
         &shifted(&sw.foot, x0),
@@ -169,7 +174,7 @@ pub fn landmarks(step: &Step, t: f64, attrs: &Attributes) -> Result<Landmarks> {
     let tilt = attrs.pelvis_tilt + theta2 - attrs.trunk_lean;
     // each arm follows the opposite thigh's sagittal angle (knee forward +), scaled so that the
     // thigh at heel strike (−θ3*) swings the arm to half the range
-    let thigh = |leg: &LegPoints| (leg.knee[0] - leg.hip[0]).atan2(leg.hip[1] - leg.knee[1]);
+    let thigh = |leg: &LegPoints| atan2(leg.knee[0] - leg.hip[0], leg.hip[1] - leg.knee[1]);
     let reference = (-c.theta3).max(1e-3);
     let arm = |opposite: &LegPoints| {
         let flexion = 0.5 * attrs.arm_swing * thigh(opposite) / reference;

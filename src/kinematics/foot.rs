@@ -5,6 +5,7 @@ use crate::body::Body;
 use crate::trig::sin_cos;
 
 /// Rotate a foot-frame vector (x forward, y up, foot flat) by the pitch p (heel up +).
+#[inline]
 pub fn pitch(v: [f64; 2], p: f64) -> [f64; 2] {
     rotate(v, sin_cos(p))
 }
@@ -69,13 +70,20 @@ impl Foot {
     }
 
     /// Foot points for an ankle at `ankle`, foot pitch `p` (heel up +) and toe dorsiflexion θ6.
+    #[inline]
     pub fn points(&self, ankle: [f64; 2], p: f64, theta6: f64) -> FootPoints {
         let sc = sin_cos(p);
         let meta = add(ankle, rotate([self.h12, -self.l9], sc));
+        // the toe's pitch p − θ6 is p itself with the toe in line (stance, most of the swing)
+        let toe_sc = if theta6 == 0.0 {
+            sc
+        } else {
+            sin_cos(p - theta6)
+        };
         FootPoints {
             heel: add(ankle, rotate([-self.l8, -self.l9], sc)),
             meta,
-            toe: add(meta, pitch([self.l13, 0.0], p - theta6)),
+            toe: add(meta, rotate([self.l13, 0.0], toe_sc)),
         }
     }
 
@@ -105,7 +113,7 @@ impl Foot {
         let reach = |(r, angle): (f64, f64)| ((ankle_y - floor) / r).asin() - angle;
         let (s6, c6) = sin_cos(theta6);
         let (a, b) = (self.h12 + self.l13 * c6, self.l9 - self.l13 * s6);
-        reach(self.meta_reach).min(reach((a.hypot(b), b.atan2(a))))
+        reach(self.meta_reach).min(reach((a.hypot(b), crate::trig::atan2(b, a))))
     }
 
     /// The smallest pitch (heel up +) that keeps the heel at or above the ground, for an ankle at

@@ -19,6 +19,7 @@ use std::f64::consts::{FRAC_PI_3, TAU};
 use crate::body::Body;
 use crate::control::stance::smoothstep;
 use crate::kinematics::foot::{Foot, FootPoints, bisect};
+use crate::trig::{atan2, sin_cos};
 
 /// A leg pose: sagittal points (x forward, y up, world heights; the foot in the vertical plane of
 /// its ankle) and the in-plane angles.
@@ -104,7 +105,9 @@ impl KneeCurve {
 
 /// Knee and ankle (x, world y) of a leg hanging from a hip joint at `hip` with in-plane thigh
 /// angle θ3 and knee flexion θ4, in a plane that contains the forward axis and is tilted by φ,
-/// sin φ = dz / (in-plane drop), so that the ankle sits `dz` to the side of the hip.
+/// sin φ = dz / (in-plane drop), so that the ankle sits `dz` to the side of the hip. Also
+/// returns the (sin, cos) of θ3 and of the shank's θ3 + θ4 it used (the figure places the leg
+/// in 3-D with them).
 pub fn leg_points(
     hip: [f64; 2],
     dz: f64,
@@ -112,20 +115,20 @@ pub fn leg_points(
     theta4: f64,
     l3: f64,
     l4: f64,
-) -> ([f64; 2], [f64; 2]) {
+) -> ([f64; 2], [f64; 2], [(f64, f64); 2]) {
     let shank = theta3 + theta4;
-    let (s3, c3) = crate::trig::sin_cos(theta3);
-    let (ss, cs) = crate::trig::sin_cos(shank);
+    let (s3, c3) = sin_cos(theta3);
+    let (ss, cs) = sin_cos(shank);
     let drop = l3 * c3 + l4 * cs;
     let cos_phi = (1.0 - (dz / drop).powi(2)).max(0.0).sqrt();
     let knee = [hip[0] - l3 * s3, hip[1] - l3 * c3 * cos_phi];
     let ankle = [knee[0] - l4 * ss, knee[1] - l4 * cs * cos_phi];
-    (knee, ankle)
+    (knee, ankle, [(s3, c3), (ss, cs)])
 }
 
-/// Hip–ankle distance of a leg with knee flexion κ.
-fn reach(l3: f64, l4: f64, kappa: f64) -> f64 {
-    (l3 * l3 + l4 * l4 + 2.0 * l3 * l4 * kappa.cos()).sqrt()
+/// Hip–ankle distance of a leg with knee flexion κ, from cos κ.
+fn reach(l3: f64, l4: f64, cos_kappa: f64) -> f64 {
+    (l3 * l3 + l4 * l4 + 2.0 * l3 * l4 * cos_kappa).sqrt()
 }
 
 /// The leg chain for a hip at `hip` (with lateral offset `dz`) and an ankle at `ankle`: knee
@@ -137,15 +140,15 @@ fn chain(l3: f64, l4: f64, hip: [f64; 2], dz: f64, ankle: [f64; 2]) -> (f64, f64
     let cos_k = ((d * d - l3 * l3 - l4 * l4) / (2.0 * l3 * l4)).clamp(-1.0, 1.0);
     let kappa = cos_k.acos();
     let gap = (d - (l3 + l4)).max(0.0);
-    let a = reach(l3, l4, kappa);
+    // (κ's own sine and cosine, not cos_k: the leg's points use the κ reported)
+    let (sin_kappa, cos_kappa) = sin_cos(kappa);
+    let a = reach(l3, l4, cos_kappa);
     // thigh = hip–ankle line angle (from the downward vertical, ankle ahead −) minus β
-    let line = dx.atan2(dv);
-    let beta = (l4 * kappa.sin() / a).clamp(-1.0, 1.0).asin();
+    let line = atan2(dx, dv);
+    let beta = (l4 * sin_kappa / a).clamp(-1.0, 1.0).asin();
     let theta3 = line - beta;
-    let knee = [
-        hip[0] - l3 * theta3.sin(),
-        ankle[1] + dv - l3 * theta3.cos(),
-    ];
+    let (s3, c3) = sin_cos(theta3);
+    let knee = [hip[0] - l3 * s3, ankle[1] + dv - l3 * c3];
     (kappa, theta3, knee, gap)
 }
 
@@ -195,7 +198,7 @@ impl Arc {
         Arc {
             pivot,
             radius: v[0].hypot(v[1]),
-            phase: (-v[1]).atan2(v[0]),
+            phase: atan2(-v[1], v[0]),
         }
     }
 
@@ -211,7 +214,7 @@ impl Arc {
         let c = (d2 + self.radius * self.radius - b * b) / (2.0 * self.radius * d2.sqrt());
         // (NaN fails the test too)
         (c.abs() <= 1.0).then(|| {
-            let base = dy.atan2(-dx) - self.phase;
+            let base = atan2(dy, -dx) - self.phase;
             let half = c.acos();
             [base - half, base + half]
         })
@@ -356,7 +359,7 @@ impl StanceLeg {
     /// of in-plane radius √(a² − dz²) about the hip (the distance first falls as the heel rises,
     /// then, past a right angle, grows again).
     fn rolling_pose(&self, hip: [f64; 2], dz: f64, kappa: f64) -> Result<LegPose, String> {
-        let a = reach(self.l3, self.l4, kappa);
+        let a = reach(self.l3, self.l4, sin_cos(kappa).1);
         let (flat, _) = self.rolling(0.0);
         let f0 = ((hip[0] - flat[0]).powi(2) + (hip[1] - flat[1]).powi(2) + dz * dz).sqrt() - a;
         if f0 < 0.0 {
@@ -596,7 +599,9 @@ mod tests {
                         p.foot.toe[1].abs() < 1e-12,
                         "t {t}: the toe stays on the ground"
                     );
-                    assert!((dist(h, p.ankle, dz) - reach(b.l3, b.l4, p.theta4)).abs() < 1e-9);
+                    assert!(
+                        (dist(h, p.ankle, dz) - reach(b.l3, b.l4, p.theta4.cos())).abs() < 1e-9
+                    );
                 }
             }
         }
