@@ -1096,7 +1096,6 @@ mod tests {
                 dw_worst = dw_worst.max((w - we).abs());
                 ddw_worst = ddw_worst.max((dw - dwe).abs());
             }
-            eprintln!("v {v}: W {dw_worst:e} dW {ddw_worst:e}");
 
             assert!(
                 dw_worst < 1e-11 && ddw_worst < 1e-8,
