@@ -3,16 +3,21 @@
 //! The integrator's last stages are evaluated at the segment's end, and must see the forces of
 //! the segment (their limit from inside), not the values past the jump. Each segment's end
 //! state is compared with an independent integration (ode_solvers' Dopri5 at 1e-12) of the
-//! segment's own forces, with t held inside the segment.
+//! segment's own forces, with t held inside the segment. The engine's phases are integrated
+//! again here at 1e-8, the tolerance the bounds were measured at (the walk's own tolerance is
+//! looser, `ode::TOLERANCE`).
 use nalgebra::SVector;
 use ode_solvers::{Dopri5, OutputType, System};
 
-use klaw::control::stance::{HipPath, StanceForces, TORQUE_OFF};
+use klaw::control::stance::{HipPath, StanceForces, StanceRun, TORQUE_OFF};
 use klaw::control::swing::{Subphase, SwingForces, SwingSetup};
 use klaw::dynamics::SwingModel;
 use klaw::ode::Phase;
 use klaw::walk::{Step, Walker, swing_hip_vy_end};
 use klaw::{AttributeTable, Attributes, Body, GaitRequest};
+
+/// The integrator tolerance of the checks (the bounds below were measured at it).
+const TOLERANCE: f64 = 1e-8;
 
 fn steps(n: usize) -> (Body, Attributes, Vec<Step>) {
     let body = Body::standard(1.8, 80.0).unwrap();
@@ -77,7 +82,10 @@ fn stance_segments_end_with_their_own_forces() {
     for step in [&steps[0], &steps[5]] {
         let setup = &step.stance_setup;
         let t_off = TORQUE_OFF * setup.t_step;
-        let segments = &step.stance.segments;
+        let (tau1, p) = (step.stance.tau1, step.stance.p);
+        let y0 = step.stance.segments[0].0.y0;
+        let run = StanceRun::simulate_with(setup, y0, tau1, p, TOLERANCE).unwrap();
+        let segments = &run.segments;
         // one segment ends at the torque's switch, one where the leg force's clamp lets go
         // (the unloaded leg after the heel strike), both telescopic
         let at_switch = segments.iter().position(|(s, _)| s.t1 == t_off).unwrap();
@@ -109,7 +117,13 @@ fn swing_pieces_end_with_their_own_hip_acceleration() {
     for step in [&steps[0], &steps[5]] {
         let t = step.constraints.timing;
         let offset = |tau: f64| step.swing_offset(tau);
-        let path = HipPath::new(&step.stance, &step.stance_setup, t.t_ds, t.t_step, &offset);
+        let (tau1, p, y0) = (
+            step.stance.tau1,
+            step.stance.p,
+            step.stance.segments[0].0.y0,
+        );
+        let stance = StanceRun::simulate_with(&step.stance_setup, y0, tau1, p, TOLERANCE).unwrap();
+        let path = HipPath::new(&stance, &step.stance_setup, t.t_ds, t.t_step, &offset);
         let breaks: Vec<f64> = path.breaks().collect();
         assert!(!breaks.is_empty());
         // at a break the next piece starts; the piece before it ends with its own values
@@ -119,7 +133,7 @@ fn swing_pieces_end_with_their_own_hip_acceleration() {
             let end = path.acceleration_on(i, b);
             assert!((left[0] - end[0]).abs() + (left[1] - end[1]).abs() < 1e-6);
         }
-        let hip_vy_end = swing_hip_vy_end(&step.stance, &step.stance_setup, &offset);
+        let hip_vy_end = swing_hip_vy_end(&stance, &step.stance_setup, &offset);
         let setup = SwingSetup::new(
             SwingModel::new(&body),
             &path,
@@ -131,8 +145,10 @@ fn swing_pieces_end_with_their_own_hip_acceleration() {
         // the reference integration of that piece with t held inside it
         let (sub, seg) = &step.swing[0];
         assert!(matches!(sub, Subphase::Swing1 { .. }));
-        let trial =
-            klaw::control::swing::SwingTrial::simulate(&setup, *sub, seg.t0, seg.y0).unwrap();
+        let trial = klaw::control::swing::SwingTrial::simulate_with(
+            &setup, *sub, seg.t0, seg.y0, TOLERANCE,
+        )
+        .unwrap();
         let forces = SwingForces {
             setup: &setup,
             sub: *sub,
