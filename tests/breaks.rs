@@ -19,6 +19,19 @@ use klaw::{AttributeTable, Attributes, Body, GaitRequest};
 /// The integrator tolerance of the checks (the bounds below were measured at it).
 const TOLERANCE: f64 = 1e-8;
 
+/// The step's converged stance integrated again at [`TOLERANCE`].
+fn stance_again(step: &Step) -> StanceRun {
+    let s = &step.stance;
+    StanceRun::simulate_with(
+        &step.stance_setup,
+        s.segments[0].0.y0,
+        s.tau1,
+        s.p,
+        TOLERANCE,
+    )
+    .unwrap()
+}
+
 fn steps(n: usize) -> (Body, Attributes, Vec<Step>) {
     let body = Body::standard(1.8, 80.0).unwrap();
     let attrs = AttributeTable::builtin().defaults();
@@ -82,14 +95,12 @@ fn stance_segments_end_with_their_own_forces() {
     for step in [&steps[0], &steps[5]] {
         let setup = &step.stance_setup;
         let t_off = TORQUE_OFF * setup.t_step;
-        let (tau1, p) = (step.stance.tau1, step.stance.p);
-        let y0 = step.stance.segments[0].0.y0;
-        let run = StanceRun::simulate_with(setup, y0, tau1, p, TOLERANCE).unwrap();
+        let run = stance_again(step);
         let segments = &run.segments;
         // one segment ends at the torque's switch, one where the leg force's clamp lets go
         // (the unloaded leg after the heel strike), both telescopic
         let at_switch = segments.iter().position(|(s, _)| s.t1 == t_off).unwrap();
-        let forces = |locked| StanceForces::new(setup, step.stance.tau1, step.stance.p, locked);
+        let forces = |locked| StanceForces::new(setup, run.tau1, run.p, locked);
         let weight = body.mass * 9.81;
         let at_clamp = segments
             .iter()
@@ -117,12 +128,7 @@ fn swing_pieces_end_with_their_own_hip_acceleration() {
     for step in [&steps[0], &steps[5]] {
         let t = step.constraints.timing;
         let offset = |tau: f64| step.swing_offset(tau);
-        let (tau1, p, y0) = (
-            step.stance.tau1,
-            step.stance.p,
-            step.stance.segments[0].0.y0,
-        );
-        let stance = StanceRun::simulate_with(&step.stance_setup, y0, tau1, p, TOLERANCE).unwrap();
+        let stance = stance_again(step);
         let path = HipPath::new(&stance, &step.stance_setup, t.t_ds, t.t_step, &offset);
         let breaks: Vec<f64> = path.breaks().collect();
         assert!(!breaks.is_empty());

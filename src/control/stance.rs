@@ -1081,7 +1081,7 @@ mod tests {
 
     /// The table of W ([`TerminalStance::length`]) against the formula it tabulates, over both
     /// pieces (foot flat, heel rising) and across heel-off: W to 1e-11 m, dW/dθ1 to 1e-8 m/rad
-    /// (measured: 8.4e-13 m and 1.4e-9 m/rad at 0.6 m/s).
+    /// (measured with 20 terms: at most 1.9e-12 m and 1.9e-9 m/rad, at 2.0 m/s).
     #[test]
     fn terminal_table_meets_the_formula() {
         for v in [0.6, 1.0, 1.4, 2.0] {
@@ -1096,7 +1096,6 @@ mod tests {
                 dw_worst = dw_worst.max((w - we).abs());
                 ddw_worst = ddw_worst.max((dw - dwe).abs());
             }
-
             assert!(
                 dw_worst < 1e-11 && ddw_worst < 1e-8,
                 "v {v}: {dw_worst:e} {ddw_worst:e}"
