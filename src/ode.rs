@@ -479,7 +479,9 @@ pub fn integrate_with<P: Phase<N, K>, const N: usize, const K: usize>(
 pub enum Mesh<'a, const N: usize> {
     /// None: the step-size control chooses every step.
     Adaptive,
-    /// The steps of this segment from t0 on (one of them must start at t0, else adaptive).
+    /// The steps of this segment from t0 on: from the step that starts at t0, or from the
+    /// rest of the step that contains it (the previous step's mesh of a phase whose break times
+    /// moved a little); adaptive where the segment does not reach t0.
     Aligned(&'a Segment<N>),
     /// The step sizes of this segment in order, from t0 whatever its own start (a subphase
     /// that starts at an event, whose time moves from trial to trial).
@@ -812,19 +814,27 @@ fn run<P: Phase<N, K>, const N: usize, const K: usize>(
     if !y0.iter().all(|v| v.is_finite()) {
         return Err(format!("non-finite state at t = {t0}"));
     }
-    let follow: &[DenseStep<N>] = match mesh {
-        Mesh::Shifted(m) => &m.steps,
+    // the steps to follow, and the first one's size
+    let (follow, h_first): (&[DenseStep<N>], f64) = match mesh {
+        Mesh::Shifted(m) => (&m.steps, m.steps.first().map_or(0.0, |s| s.h)),
         Mesh::Aligned(m) => {
-            let i = m.steps.partition_point(|s| s.t < t0);
+            // the step that contains t0 (ends after it), its rest merged into the next step
+            // when under a tenth of it
+            let mut i = m.steps.partition_point(|s| s.t + s.h <= t0);
             match m.steps.get(i) {
-                Some(s) if s.t == t0 => {
+                Some(s) if s.t <= t0 => {
+                    let mut h = s.t + s.h - t0;
+                    if i + 1 < m.steps.len() && h < 0.1 * s.h {
+                        i += 1;
+                        h += m.steps[i].h;
+                    }
                     let j = i + m.steps[i..].partition_point(|s| s.t < t1);
-                    &m.steps[i..j]
+                    (&m.steps[i..j], h)
                 }
-                _ => &[],
+                _ => (&[], 0.0),
             }
         }
-        Mesh::Adaptive => &[],
+        Mesh::Adaptive => (&[], 0.0),
     };
     let mut next = 0;
     let mut adapted = follow.is_empty();
@@ -833,7 +843,7 @@ fn run<P: Phase<N, K>, const N: usize, const K: usize>(
     let mut k1 = phase.rhs(t0, &y0);
     let mut evaluations = 1u32;
     let mut h = match follow.first() {
-        Some(s) => s.h,
+        Some(_) => h_first,
         None => {
             evaluations += 2;
             initial_step(phase, t0, &y0, &k1, h_max, tol, method.order())
@@ -853,7 +863,11 @@ fn run<P: Phase<N, K>, const N: usize, const K: usize>(
         if 0.1 * h.abs() <= f64::EPSILON * t.abs() {
             return Err(format!("step size underflow at t = {t}"));
         }
-        let last = t + 1.01 * h >= t1;
+        // the last step takes up a remainder under 1 % of it (under 10 % on a mesh, whose
+        // steps end where the mesh's phase ended: a start moved back would otherwise add a
+        // sliver step each time the mesh is followed again)
+        let stretch = if next < follow.len() { 1.1 } else { 1.01 };
+        let last = t + stretch * h >= t1;
         if last {
             h = t1 - t;
         }
@@ -1120,6 +1134,53 @@ mod tests {
         )
         .unwrap();
         assert!(far.adapted);
+    }
+
+    /// The last step's mesh, as the engine follows it into the next step
+    /// (`walk::Walker::step`): entered inside one of its steps, and over a phase a sliver
+    /// longer than its own, it still needs no step-size choice and no extra step.
+    #[test]
+    fn a_mesh_is_entered_mid_step_and_not_outgrown() {
+        let y0 = SVector::<f64, 2>::new(1.0, 0.0);
+        let tol = 1e-6;
+        let first = integrate_with(&Damped(3.0), 0.0, y0, 5.0, tol).unwrap();
+        let steps: Vec<(f64, f64)> = first.segment.steps().collect();
+        let n = steps.len();
+        // from the middle of the 4th step: its rest, then the mesh's steps
+        let (a, b) = steps[3];
+        let t0 = 0.5 * (a + b);
+        let y_mid = first.segment.state(t0);
+        let mid = integrate_on(
+            &Damped(3.0),
+            t0,
+            y_mid,
+            5.0,
+            tol,
+            Mesh::Aligned(&first.segment),
+        )
+        .unwrap();
+        assert!(!mid.adapted);
+        let mid_steps: Vec<(f64, f64)> = mid.segment.steps().collect();
+        assert_eq!(mid_steps.len(), n - 3);
+        assert_eq!(mid_steps[0], (t0, b));
+        assert_eq!(mid_steps[1], steps[4]);
+        let adaptive = integrate_with(&Damped(3.0), t0, y_mid, 5.0, tol).unwrap();
+        assert!((mid.segment.y1 - adaptive.segment.y1).amax() < 1e-5);
+        // a phase 5 % of its last step longer: the last step takes up the rest
+        let (a, b) = steps[n - 2];
+        let t1 = 5.0 + 0.05 * (b - a);
+        let longer = integrate_on(
+            &Damped(3.0),
+            0.0,
+            y0,
+            t1,
+            tol,
+            Mesh::Shifted(&first.segment),
+        )
+        .unwrap();
+        assert!(!longer.adapted);
+        assert_eq!(longer.segment.steps().count(), n);
+        assert_eq!(longer.segment.t1, t1);
     }
 
     /// y1' = y1 cos t, y2' = −2t y2 from (1, 1): y1 = exp(sin t), y2 = exp(−t²), a

@@ -93,6 +93,10 @@ pub struct Walker {
     swing1_memory: Option<Memory2>,
     swing2_memory: Option<Memory1>,
     swing3_memory: Option<Memory2>,
+    /// The step sequences of the last step's kept trials (stance; swing1, swing2, swing3):
+    /// the next step's first trials follow them ([`ode::Mesh`]) instead of choosing their own.
+    stance_mesh: Option<StanceRun>,
+    swing_meshes: [Option<Segment<4>>; 3],
     t: f64,
     x_ankle: f64,
     index: usize,
@@ -139,6 +143,8 @@ impl Walker {
             swing1_memory: None,
             swing2_memory: None,
             swing3_memory: None,
+            stance_mesh: None,
+            swing_meshes: [None, None, None],
             t: 0.0,
             x_ankle: 0.0,
             index: 0,
@@ -268,8 +274,9 @@ impl Walker {
             },
         );
         let best = std::cell::RefCell::new(None::<StanceRun>);
-        // every trial follows the step sequences of the last one that chose its own steps
-        let mesh = std::cell::RefCell::new(None::<StanceRun>);
+        // every trial follows the step sequences of the last one that chose its own steps (at
+        // first, the last step's kept trial's)
+        let mesh = std::cell::RefCell::new(self.stance_mesh.take());
         let residual = |x: Vector2<f64>| {
             let run = StanceRun::simulate_on(
                 &setup,
@@ -312,6 +319,7 @@ impl Walker {
         }
         debug_assert!(stance.tau1 == x[0] && stance.p == x[1]);
         self.stance_memory = Some(memory);
+        self.stance_mesh = Some(stance.clone());
         let mut solves = vec![SolveRecord {
             phase: "stance",
             report,
@@ -446,6 +454,8 @@ impl Walker {
             }
         };
         // swing1: hip and knee magnitudes (A, B) together
+        let meshes = std::mem::take(&mut self.swing_meshes);
+        let [mesh1, mesh2, mesh3] = meshes;
         let (s1, rep1, mem1) = self
             .solve_2d(
                 &sw,
@@ -465,6 +475,7 @@ impl Walker {
                 },
                 sw.t_off,
                 y_off,
+                mesh1,
             )
             .map_err(fail("swing1"))?;
         record("swing1", rep1)?;
@@ -508,6 +519,7 @@ impl Walker {
                 },
                 sw.t1,
                 y1,
+                mesh2,
             )
             .map_err(fail("swing2"))?;
         record("swing2", rep2)?;
@@ -536,10 +548,12 @@ impl Walker {
                 },
                 sw.t2,
                 y2,
+                mesh3,
             )
             .map_err(fail("swing3"))?;
         record("swing3", rep3)?;
         self.swing3_memory = Some(mem3);
+        self.swing_meshes = [&s1, &s2, &s3].map(|s| Some(s.segment.clone()));
         let work = work::stance_work(&setup, &stance, work::SAMPLES)
             + work::swing_work(
                 &sw,
@@ -633,10 +647,12 @@ impl Walker {
         sub: impl Fn(Vector2<f64>) -> Subphase,
         t0: f64,
         y0: SwingState,
+        mesh: Option<Segment<4>>,
     ) -> std::result::Result<(SwingTrial, SolveReport, Memory2), String> {
         let best = std::cell::RefCell::new(None::<SwingTrial>);
-        // every trial follows the step sequence of the last one that chose its own steps
-        let mesh = std::cell::RefCell::new(None::<Segment<4>>);
+        // every trial follows the step sequence of the last one that chose its own steps (at
+        // first, `mesh`: the last step's)
+        let mesh = std::cell::RefCell::new(mesh);
         let residual = |x| self.swing_trial(sw, sub(x), t0, y0, &mesh, &best);
         let (mem, report) = with_fallback(start, fallback, |start| {
             shooting::solve2(residual, start, &self.options).map(|(_, r, m)| (m, r))
@@ -683,10 +699,12 @@ impl Walker {
         sub: impl Fn(f64) -> Subphase,
         t0: f64,
         y0: SwingState,
+        mesh: Option<Segment<4>>,
     ) -> std::result::Result<(SwingTrial, SolveReport, Memory1), String> {
         let best = std::cell::RefCell::new(None::<SwingTrial>);
-        // every trial follows the step sequence of the last one that chose its own steps
-        let mesh = std::cell::RefCell::new(None::<Segment<4>>);
+        // every trial follows the step sequence of the last one that chose its own steps (at
+        // first, `mesh`: the last step's)
+        let mesh = std::cell::RefCell::new(mesh);
         let residual = |x| Ok(self.swing_trial(sw, sub(x), t0, y0, &mesh, &best)?[0]);
         let (mem, report) = with_fallback(start, fallback, |start| {
             shooting::solve1(residual, start, &self.options).map(|(_, r, m)| (m, r))
