@@ -244,17 +244,24 @@ fn measured_extremes_are_at_least_those_of_dense_sampling() {
             }
             let sy = &s.stance_setup;
             let who = format!("v {v} H {h} step {}", s.index);
+            // (to round-off: a search's extreme and a dense sample can meet at the same point)
             assert!(
-                r.hip_min_margin <= y_min - sy.y_start.min(sy.y_end),
+                r.hip_min_margin <= y_min - sy.y_start.min(sy.y_end) + 1e-12,
                 "{who}: hip lowest"
             );
-            assert!(r.hip_excursion >= y_max - sy.y_end, "{who}: hip highest");
+            assert!(
+                r.hip_excursion >= y_max - sy.y_end - 1e-12,
+                "{who}: hip highest"
+            );
             assert!(r.min_foot_height <= lowest + 1e-12, "{who}: foot lowest");
             assert!(
                 r.min_toe_clearance <= mid + 1e-12,
                 "{who}: mid-swing clearance"
             );
-            assert!(r.peak_swing_knee_flexion >= knee, "{who}: knee peak");
+            assert!(
+                r.peak_swing_knee_flexion >= knee - 1e-12,
+                "{who}: knee peak"
+            );
             // and not beyond what the motion reaches (the dense samples' spacing bounds it)
             assert!(lowest - r.min_foot_height < 1e-4, "{who}: foot lowest");
             assert!(mid - r.min_toe_clearance < 1e-4, "{who}: clearance");
