@@ -91,9 +91,13 @@ fn integrate<const N: usize, const K: usize>(
         (0.5 * (1.0 + x2), w2),
     ];
     let power = |t: f64| powers(t, &seg.state(t));
-    let rule = |a: f64, b: f64, sum: &mut Work| {
-        for (x, w) in gauss {
-            let p = power(a + x * (b - a));
+    // the rule on [a, b]; its middle node's powers when already known
+    let rule = |a: f64, b: f64, mid: Option<[f64; K]>, sum: &mut Work| {
+        for (i, (x, w)) in gauss.into_iter().enumerate() {
+            let p = match mid {
+                Some(m) if i == 2 => m,
+                _ => power(a + x * (b - a)),
+            };
             sum.positive += w * (b - a) * p.iter().map(|p| p.max(0.0)).sum::<f64>();
             sum.net += w * (b - a) * p.iter().sum::<f64>();
         }
@@ -129,9 +133,10 @@ fn integrate<const N: usize, const K: usize>(
     };
     let split = n.div_ceil(seg.steps().count().max(1)).max(1);
     let mut sum = Work::default();
+    // the powers where the last panel ended (the steps are contiguous)
+    let mut g0 = power(seg.t0);
     for (a, b) in seg.steps() {
         let h = (b - a) / split as f64;
-        let mut g0 = power(a);
         for i in 0..split {
             let p0 = a + i as f64 * h;
             let p1 = if i + 1 == split { b } else { p0 + h };
@@ -148,13 +153,13 @@ fn integrate<const N: usize, const K: usize>(
                 }
             }
             if cuts.is_empty() {
-                rule(p0, p1, &mut sum);
+                rule(p0, p1, Some(gm), &mut sum);
             } else {
                 cuts.sort_by(f64::total_cmp);
                 let mut from = p0;
                 for &c in cuts.iter().chain(std::iter::once(&p1)) {
                     if c > from {
-                        rule(from, c, &mut sum);
+                        rule(from, c, None, &mut sum);
                         from = c;
                     }
                 }

@@ -164,8 +164,8 @@ fn swing_net_work_is_the_energy_balance_in_the_hip_frame() {
     }
 }
 
-/// The report's positive work converges with the number of Simpson intervals: 400 per segment
-/// (what the walk uses) is within 0.5 % of 8000.
+/// The report's positive work converges with the number of Gauss–Legendre panels: one per
+/// integrator step (`work::SAMPLES`, what the walk uses) is within 0.5 % of 8000 per segment.
 #[test]
 fn positive_work_converges_with_sampling() {
     for step in steps(1.4, 2) {
