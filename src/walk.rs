@@ -29,6 +29,13 @@ use crate::work;
 /// velocity to −0.02 m/s and one walk to +1e-8 (docs/engine.md).
 pub const SOLVE_TOLERANCE: f64 = 1e-8;
 
+/// [ours] Shooting tolerance of swing1's and swing2's end conditions (rad): 10× inside the 1e-6
+/// the walk promises. They are waypoints, not the step's end: the next subphase starts from the
+/// state they reach, and swing3 meets the heel strike's conditions at [`SOLVE_TOLERANCE`]
+/// whatever it is; swing2's error is the knee's jump where it locks. The last trial of these
+/// solves typically took the residual from 1e-7 to 1e-10.
+pub const WAYPOINT_TOLERANCE: f64 = 1e-7;
+
 /// The least mid-swing toe clearance a step may have (m): the feet's placement precision.
 pub const TOE_CLEARANCE_MIN: f64 = 1e-6;
 /// Trial integrations allowed per solve.
@@ -473,9 +480,9 @@ impl Walker {
                     hip: x[0],
                     knee: x[1],
                 },
-                sw.t_off,
-                y_off,
+                (sw.t_off, y_off),
                 mesh1,
+                WAYPOINT_TOLERANCE,
             )
             .map_err(fail("swing1"))?;
         record("swing1", rep1)?;
@@ -517,9 +524,9 @@ impl Walker {
                     knee: x,
                     knee_start: y1[1],
                 },
-                sw.t1,
-                y1,
+                (sw.t1, y1),
                 mesh2,
+                WAYPOINT_TOLERANCE,
             )
             .map_err(fail("swing2"))?;
         record("swing2", rep2)?;
@@ -546,9 +553,9 @@ impl Walker {
                     hip: x[0],
                     ramp: x[1],
                 },
-                sw.t2,
-                y2,
+                (sw.t2, y2),
                 mesh3,
+                SOLVE_TOLERANCE,
             )
             .map_err(fail("swing3"))?;
         record("swing3", rep3)?;
@@ -645,9 +652,9 @@ impl Walker {
         sw: &SwingSetup,
         (start, fallback): (Start2, Option<Start2>),
         sub: impl Fn(Vector2<f64>) -> Subphase,
-        t0: f64,
-        y0: SwingState,
+        (t0, y0): (f64, SwingState),
         mesh: Option<Segment<4>>,
+        tol: f64,
     ) -> std::result::Result<(SwingTrial, SolveReport, Memory2), String> {
         let best = std::cell::RefCell::new(None::<SwingTrial>);
         // every trial follows the step sequence of the last one that chose its own steps (at
@@ -655,7 +662,11 @@ impl Walker {
         let mesh = std::cell::RefCell::new(mesh);
         let residual = |x| self.swing_trial(sw, sub(x), t0, y0, &mesh, &best);
         let (mem, report) = with_fallback(start, fallback, |start| {
-            shooting::solve2(residual, start, &self.options).map(|(_, r, m)| (m, r))
+            let opts = Options {
+                tol,
+                ..self.options
+            };
+            shooting::solve2(residual, start, &opts).map(|(_, r, m)| (m, r))
         })?;
         let mut trial = best.into_inner().ok_or("no trial ran")?;
         self.count(trial.densify(sw));
@@ -697,9 +708,9 @@ impl Walker {
         sw: &SwingSetup,
         (start, fallback): (Start1, Option<Start1>),
         sub: impl Fn(f64) -> Subphase,
-        t0: f64,
-        y0: SwingState,
+        (t0, y0): (f64, SwingState),
         mesh: Option<Segment<4>>,
+        tol: f64,
     ) -> std::result::Result<(SwingTrial, SolveReport, Memory1), String> {
         let best = std::cell::RefCell::new(None::<SwingTrial>);
         // every trial follows the step sequence of the last one that chose its own steps (at
@@ -707,7 +718,11 @@ impl Walker {
         let mesh = std::cell::RefCell::new(mesh);
         let residual = |x| Ok(self.swing_trial(sw, sub(x), t0, y0, &mesh, &best)?[0]);
         let (mem, report) = with_fallback(start, fallback, |start| {
-            shooting::solve1(residual, start, &self.options).map(|(_, r, m)| (m, r))
+            let opts = Options {
+                tol,
+                ..self.options
+            };
+            shooting::solve1(residual, start, &opts).map(|(_, r, m)| (m, r))
         })?;
         let mut trial = best.into_inner().ok_or("no trial ran")?;
         self.count(trial.densify(sw));
