@@ -326,6 +326,25 @@ impl Walker {
         }
         debug_assert!(stance.tau1 == x[0] && stance.p == x[1]);
         self.stance_memory = Some(memory);
+        // [ours] the swings' warm starts extrapolate with the stance's step ratio: the walk
+        // approaches its limit cycle with one ratio for all seven unknowns (λ ≈ −0.04 to −0.15
+        // over the grid), which the stance's history shows from step 2 on while the swings' own
+        // start with the first step's (+0.03 to +0.4 for swing1's A at step 2)
+        if index >= 3 {
+            let ratio = shooting::step_ratio(
+                memory.x.into(),
+                [memory.earlier[0].into(), memory.earlier[1].into()],
+            );
+            for m in [&mut self.swing1_memory, &mut self.swing3_memory]
+                .into_iter()
+                .flatten()
+            {
+                m.ratio = ratio;
+            }
+            if let Some(m) = self.swing2_memory.as_mut() {
+                m.ratio = ratio;
+            }
+        }
         self.stance_mesh = Some(stance.clone());
         let mut solves = vec![SolveRecord {
             phase: "stance",
@@ -515,6 +534,7 @@ impl Walker {
                                 x: fit(&STEP0),
                                 slope: COLD_SWING2_SLOPE / torque,
                                 earlier: [f64::NAN; 2],
+                                ratio: f64::NAN,
                             }),
                             Some(plain),
                         ),
@@ -817,6 +837,7 @@ fn startup(
                 x: fit(&STEP0),
                 jacobian: nalgebra::Matrix2::from_fn(|i, k| j[i][k] * r_unit[i] / x_unit[k]),
                 earlier: [Vector2::repeat(f64::NAN); 2],
+                ratio: f64::NAN,
             };
             (Start2::Warm(guess), Some(plain))
         }

@@ -82,6 +82,8 @@ pub struct Memory1 {
     pub slope: f64,
     /// The points returned by the two solves before this one (NaN if none).
     pub earlier: [f64; 2],
+    /// The step ratio λ to extrapolate with ([`extrapolate`]; NaN: from `earlier`).
+    pub ratio: f64,
 }
 
 /// What a 2-D solve remembers: the solution and the last Broyden Jacobian.
@@ -93,22 +95,22 @@ pub struct Memory2 {
     pub jacobian: Matrix2<f64>,
     /// The points returned by the two solves before this one (NaN if none).
     pub earlier: [Vector2<f64>; 2],
+    /// The step ratio λ to extrapolate with ([`extrapolate`]; NaN: from `earlier`).
+    pub ratio: f64,
 }
 
 /// The next solution predicted from the last three of a sequence converging geometrically:
 /// x + λ (x − x₋₁), λ the ratio of the last two differences (least squares over the components,
-/// each relative to its own size), clipped to [−0.5, 0.5]; `x` itself when the history is
-/// incomplete. Successive steps of a walk approach the limit cycle with λ ≈ −0.13.
-fn extrapolate<const D: usize>(x: [f64; D], earlier: [[f64; D]; 2]) -> [f64; D] {
-    let (mut num, mut den) = (0.0, 0.0);
-    for i in 0..D {
-        let (d1, d0) = (x[i] - earlier[0][i], earlier[0][i] - earlier[1][i]);
-        let w = 1.0 / x[i].abs().max(1e-12).powi(2);
-        num += w * d1 * d0;
-        den += w * d0 * d0;
-    }
-    let lambda = num / den;
-    if !(den > 0.0 && lambda.is_finite()) {
+/// each relative to its own size) unless `ratio` gives it, clipped to [−0.5, 0.5]; `x` itself
+/// when the history is incomplete. Successive steps of a walk approach the limit cycle with one
+/// ratio for all its unknowns, λ ≈ −0.04 to −0.15 over the grid of `tests/walk.rs`.
+fn extrapolate<const D: usize>(x: [f64; D], earlier: [[f64; D]; 2], ratio: f64) -> [f64; D] {
+    let lambda = if ratio.is_finite() {
+        ratio
+    } else {
+        step_ratio(x, earlier)
+    };
+    if !(lambda.is_finite() && earlier[0].iter().all(|v| v.is_finite())) {
         return x;
     }
     let lambda = lambda.clamp(-0.5, 0.5);
@@ -117,6 +119,20 @@ fn extrapolate<const D: usize>(x: [f64; D], earlier: [[f64; D]; 2]) -> [f64; D] 
         out[i] += lambda * (x[i] - earlier[0][i]);
     }
     out
+}
+
+/// The ratio λ of the last two differences of a sequence ending x₋₂, x₋₁, x (`earlier` =
+/// [x₋₁, x₋₂]): least squares over the components, each relative to its own size; NaN when the
+/// history is incomplete or constant.
+pub fn step_ratio<const D: usize>(x: [f64; D], earlier: [[f64; D]; 2]) -> f64 {
+    let (mut num, mut den) = (0.0, 0.0);
+    for i in 0..D {
+        let (d1, d0) = (x[i] - earlier[0][i], earlier[0][i] - earlier[1][i]);
+        let w = 1.0 / x[i].abs().max(1e-12).powi(2);
+        num += w * d1 * d0;
+        den += w * d0 * d0;
+    }
+    if den > 0.0 { num / den } else { f64::NAN }
 }
 
 /// How a 1-D solve starts.
@@ -1005,7 +1021,7 @@ pub fn solve1<R: Fn(f64) -> Result<f64, String>>(
     let mut solver = match start {
         Start1::Cold { x0, dx } => BisectionSecant::cold(x0, dx, opts.tol, opts.max_iterations),
         Start1::Warm(m) => BisectionSecant::warm(
-            extrapolate([m.x], [[m.earlier[0]], [m.earlier[1]]])[0],
+            extrapolate([m.x], [[m.earlier[0]], [m.earlier[1]]], m.ratio)[0],
             m.slope,
             opts.tol,
             opts.max_iterations,
@@ -1037,6 +1053,7 @@ pub fn solve1<R: Fn(f64) -> Result<f64, String>>(
                         x,
                         slope: f64::NAN,
                         earlier,
+                        ratio: f64::NAN,
                     },
                 ))
             }
@@ -1054,6 +1071,7 @@ pub fn solve1<R: Fn(f64) -> Result<f64, String>>(
             x,
             slope: solver.slope(),
             earlier,
+            ratio: f64::NAN,
         },
     ))
 }
@@ -1072,7 +1090,11 @@ pub fn solve2<R: Fn(Vector2<f64>) -> Result<Vector2<f64>, String>>(
     let (mut solver, x0) = match start {
         Start2::Cold { x0, h } => (Broyden2::cold(x0, h, opts.tol, opts.max_iterations), x0),
         Start2::Warm(m) => {
-            let x = extrapolate(m.x.into(), [m.earlier[0].into(), m.earlier[1].into()]);
+            let x = extrapolate(
+                m.x.into(),
+                [m.earlier[0].into(), m.earlier[1].into()],
+                m.ratio,
+            );
             let x = Vector2::from(x);
             (
                 Broyden2::warm(x, m.jacobian, opts.tol, opts.max_iterations),
@@ -1103,6 +1125,7 @@ pub fn solve2<R: Fn(Vector2<f64>) -> Result<Vector2<f64>, String>>(
                         x: x0,
                         jacobian,
                         earlier,
+                        ratio: f64::NAN,
                     },
                 ))
             }
@@ -1121,6 +1144,7 @@ pub fn solve2<R: Fn(Vector2<f64>) -> Result<Vector2<f64>, String>>(
             x,
             jacobian,
             earlier,
+            ratio: f64::NAN,
         },
     ))
 }
@@ -1272,6 +1296,7 @@ mod tests {
                 x: x0.component_div(&scale),
                 jacobian: j0 * Matrix2::from_diagonal(&scale),
                 earlier: [Vector2::repeat(f64::NAN); 2],
+                ratio: f64::NAN,
             });
             let (y, rep, _) = solve2(
                 |y: Vector2<f64>| Ok(r(y.component_mul(&scale))),
@@ -1297,13 +1322,23 @@ mod tests {
             let c = (-0.13f64).powi(n);
             [3.0 + c, 5.0 - 2.0 * c]
         };
-        let p = extrapolate(x(2), [x(1), x(0)]);
+        let p = extrapolate(x(2), [x(1), x(0)], f64::NAN);
         assert!((p[0] - x(3)[0]).abs() < 1e-12 && (p[1] - x(3)[1]).abs() < 1e-12);
         // no history, or no change: the last point
-        assert_eq!(extrapolate([1.0], [[f64::NAN], [f64::NAN]]), [1.0]);
-        assert_eq!(extrapolate([1.0], [[1.0], [1.0]]), [1.0]);
+        assert_eq!(
+            extrapolate([1.0], [[f64::NAN], [f64::NAN]], f64::NAN),
+            [1.0]
+        );
+        assert_eq!(extrapolate([1.0], [[1.0], [1.0]], f64::NAN), [1.0]);
         // a ratio beyond ±0.5 is clipped
-        assert_eq!(extrapolate([4.0], [[2.0], [1.0]]), [5.0]);
+        assert_eq!(extrapolate([4.0], [[2.0], [1.0]], f64::NAN), [5.0]);
+        // a given ratio (another sequence's with the same λ) replaces a history that is not
+        // geometric yet, and needs only the last difference
+        let y = |n: i32| 7.0 - 4.0 * (-0.13f64).powi(n);
+        assert!((step_ratio(x(2), [x(1), x(0)]) + 0.13).abs() < 1e-12);
+        let p = extrapolate([y(2)], [[y(1)], [f64::NAN]], -0.13);
+        assert!((p[0] - y(3)).abs() < 1e-12);
+        assert!(step_ratio([1.0], [[1.0], [1.0]]).is_nan());
     }
 
     #[test]
@@ -1313,6 +1348,7 @@ mod tests {
             x: 2.0,
             slope: -10.0,
             earlier: [f64::NAN; 2],
+            ratio: f64::NAN,
         };
         let (x, rep, _) = solve1(cubic(5.0), Start1::Warm(mem), &opts()).unwrap();
         println!("warm, wrong slope: {rep:?}");
@@ -1322,6 +1358,7 @@ mod tests {
             x: 2.0,
             slope: f64::NAN,
             earlier: [f64::NAN; 2],
+            ratio: f64::NAN,
         };
         let (x, rep, _) = solve1(cubic(5.0), Start1::Warm(mem), &opts()).unwrap();
         assert!(rep.converged && (x - CUBIC_ROOT).abs() < 1e-9, "{rep:?}");
