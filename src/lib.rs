@@ -23,6 +23,7 @@ pub mod plot;
 pub mod plot_cycle;
 pub mod plot_sweep;
 pub mod report;
+pub mod roots;
 pub mod skeleton;
 pub mod stream;
 pub mod sweep;

@@ -967,7 +967,7 @@ fn run<P: Phase<N, K>, const N: usize, const K: usize>(
         pending,
     };
     if let Some(k) = hit {
-        // Illinois-safeguarded regula falsi on the last step's dense output
+        // the event's time on the last step's dense output (`roots::illinois`)
         let last = segment.steps.len() - 1;
         let step = &mut segment.steps[last];
         if !step.ready {
@@ -978,34 +978,8 @@ fn run<P: Phase<N, K>, const N: usize, const K: usize>(
         }
         let step = *step;
         let g = |t: f64| phase.events(t, &step.eval(t))[k];
-        let (mut a, mut b) = (step.t, t);
-        let (mut ga, mut gb) = (g(a), g(b));
-        let mut side = 0;
-        for _ in 0..100 {
-            if b - a <= EVENT_TIME_TOLERANCE {
-                break;
-            }
-            let mut tm = (a * gb - b * ga) / (gb - ga);
-            if !(tm > a && tm < b) {
-                tm = 0.5 * (a + b);
-            }
-            let gt = g(tm);
-            if gt > 0.0 {
-                a = tm;
-                ga = gt;
-                if side == -1 {
-                    gb *= 0.5;
-                }
-                side = -1;
-            } else {
-                b = tm;
-                gb = gt;
-                if side == 1 {
-                    ga *= 0.5;
-                }
-                side = 1;
-            }
-        }
+        let (a, b) = (step.t, t);
+        let (_, b) = crate::roots::illinois(g, (a, g(a)), (b, g(b)), EVENT_TIME_TOLERANCE, 100);
         segment.y1 = step.eval(b);
         segment.t1 = b;
     }

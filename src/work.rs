@@ -102,33 +102,9 @@ fn integrate<const N: usize, const K: usize>(
             sum.net += w * (b - a) * p.iter().sum::<f64>();
         }
     };
-    // the crossing of actuator k's power in [a, b] (signs differ at the ends): Illinois
-    let crossing = |k: usize, mut a: f64, mut b: f64, mut ga: f64, mut gb: f64| {
-        let tol = 1e-10 * (b - a);
-        let mut side = 0;
-        for _ in 0..60 {
-            if b - a <= tol {
-                break;
-            }
-            let mut t = (a * gb - b * ga) / (gb - ga);
-            if !(t > a && t < b) {
-                t = 0.5 * (a + b);
-            }
-            let g = power(t)[k];
-            if (g > 0.0) == (ga > 0.0) {
-                (a, ga) = (t, g);
-                if side == -1 {
-                    gb *= 0.5;
-                }
-                side = -1;
-            } else {
-                (b, gb) = (t, g);
-                if side == 1 {
-                    ga *= 0.5;
-                }
-                side = 1;
-            }
-        }
+    // the crossing of actuator k's power in [a, b] (signs differ at the ends)
+    let crossing = |k: usize, a: f64, b: f64, ga: f64, gb: f64| {
+        let (a, b) = crate::roots::illinois(|t| power(t)[k], (a, ga), (b, gb), 1e-10 * (b - a), 60);
         0.5 * (a + b)
     };
     let split = n.div_ceil(seg.steps().count().max(1)).max(1);

@@ -8,6 +8,7 @@ use crate::dynamics::StanceModel;
 use crate::dynamics::impact;
 use crate::kinematics::pelvis::Determinants;
 use crate::ode::{self, Phase, Segment};
+use crate::roots;
 use crate::trig::sin_cos;
 
 /// State (w, θ1, θ2, ẇ, θ̇1, θ̇2).
@@ -252,17 +253,17 @@ impl TerminalStance {
             let ([o, _], _) = t.offset(s1 / sin_end);
             (w * s1 + o[0]).atan2(w * (1.0 - s1 * s1).sqrt() + o[1])
         };
-        if line(t.sin_heel_off) > theta5_max - delta {
-            let (mut lo, mut hi) = (0.0, t.sin_heel_off);
-            for _ in 0..50 {
-                let m = 0.5 * (lo + hi);
-                if line(m) < theta5_max - delta {
-                    lo = m
-                } else {
-                    hi = m
-                }
-            }
-            t.sin_heel_off = 0.5 * (lo + hi);
+        let rise = |s1: f64| line(s1) - (theta5_max - delta);
+        let late = rise(t.sin_heel_off);
+        if late > 0.0 {
+            let early = rise(0.0);
+            t.sin_heel_off = if early < 0.0 {
+                let (lo, hi) =
+                    roots::illinois(rise, (0.0, early), (t.sin_heel_off, late), 1e-15, 60);
+                0.5 * (lo + hi)
+            } else {
+                0.0
+            };
         }
         // the heel rises earlier (by tenths of the way back to mid-stance) while the reference
         // would dip below its heel-strike height before heel strike: slow, short steps, where
@@ -306,17 +307,23 @@ impl TerminalStance {
     /// 0.6 m/s.
     fn fit_end(&mut self, w_end: f64) {
         let sin_end = self.sin_end;
-        let (mut lo, mut hi) = (0.0, 1.2);
-        for _ in 0..42 {
-            let m = 0.5 * (lo + hi);
-            self.pitch_end = m;
-            if self.exact_length_at(sin_end).0 < w_end {
-                lo = m
-            } else {
-                hi = m
-            }
-        }
-        self.pitch_end = 0.5 * (lo + hi);
+        let short = |p: f64| {
+            let t = TerminalStance {
+                pitch_end: p,
+                ..*self
+            };
+            t.exact_length_at(sin_end).0 - w_end
+        };
+        // on [0, 1.2] rad, its end where W stays on one side of w*
+        let (lo, hi) = (short(0.0), short(1.2));
+        self.pitch_end = if lo >= 0.0 {
+            0.0
+        } else if hi < 0.0 {
+            1.2
+        } else {
+            let (a, b) = roots::illinois(short, (0.0, lo), (1.2, hi), 1e-13, 60);
+            0.5 * (a + b)
+        };
         let slope = |c: f64| {
             let t = TerminalStance {
                 end_rate: c,
@@ -1007,7 +1014,9 @@ mod tests {
                 t.end_rate
             );
             assert!(slope.abs() < 1e-5, "v {v}: {slope}");
-            assert!(t.sin_heel_off > 0.0 && t.sin_heel_off < se && t.pitch_end > 0.0);
+            // (at 2 m/s the ankle is past θ5_max at mid-stance already: heel-off is there,
+            // sin θ_ho = 0)
+            assert!(t.sin_heel_off >= 0.0 && t.sin_heel_off < se && t.pitch_end > 0.0);
         }
     }
 
