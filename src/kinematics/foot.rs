@@ -11,7 +11,8 @@ pub fn pitch(v: [f64; 2], p: f64) -> [f64; 2] {
 }
 
 /// [`pitch`] by the pitch whose sine and cosine are (s, c).
-fn rotate(v: [f64; 2], (s, c): (f64, f64)) -> [f64; 2] {
+#[inline]
+pub(crate) fn rotate(v: [f64; 2], (s, c): (f64, f64)) -> [f64; 2] {
     [v[0] * c + v[1] * s, -v[0] * s + v[1] * c]
 }
 
@@ -65,21 +66,35 @@ impl Foot {
             h12,
             l13: body.l13,
             heel_reach: (l8.hypot(l9), l9.atan2(l8)),
-            meta_reach: (h12.hypot(l9), l9.atan2(h12)),
+            // (the crate's atan2: the rolling foot's arc about M takes its phase from here)
+            meta_reach: (h12.hypot(l9), crate::trig::atan2(l9, h12)),
         }
+    }
+
+    /// |(h12, l9)| and atan2(l9, h12): the radius and phase of the ankle's circle about the
+    /// metatarsal joint as the foot rolls over it (constants of the foot).
+    pub(crate) fn meta_reach(&self) -> (f64, f64) {
+        self.meta_reach
     }
 
     /// Foot points for an ankle at `ankle`, foot pitch `p` (heel up +) and toe dorsiflexion θ6.
     #[inline]
     pub fn points(&self, ankle: [f64; 2], p: f64, theta6: f64) -> FootPoints {
         let sc = sin_cos(p);
-        let meta = add(ankle, rotate([self.h12, -self.l9], sc));
         // the toe's pitch p − θ6 is p itself with the toe in line (stance, most of the swing)
         let toe_sc = if theta6 == 0.0 {
             sc
         } else {
             sin_cos(p - theta6)
         };
+        self.points_sc(ankle, sc, toe_sc)
+    }
+
+    /// [`Self::points`] from the (sin, cos) of the pitch p and of the toe's pitch p − θ6, for
+    /// callers that have them already.
+    #[inline]
+    pub fn points_sc(&self, ankle: [f64; 2], sc: (f64, f64), toe_sc: (f64, f64)) -> FootPoints {
+        let meta = add(ankle, rotate([self.h12, -self.l9], sc));
         FootPoints {
             heel: add(ankle, rotate([-self.l8, -self.l9], sc)),
             meta,
@@ -171,6 +186,27 @@ impl Foot {
             let toe = [meta_x + self.l13, 0.0];
             let meta = sub(toe, pitch([self.l13, 0.0], p - theta6_max));
             (sub(meta, pitch([self.h12, -self.l9], p)), theta6_max)
+        }
+    }
+
+    /// [`Self::rolling_ankle`] and the foot's [`Self::points`] there, each sine and cosine
+    /// computed once (the same numbers: the toe's pitch p − θ6 is 0 while rolling about M, and
+    /// `sin_cos(0)` is (0, 1)). Returns the ankle, θ6 and the points.
+    pub fn rolling_points(
+        &self,
+        meta_x: f64,
+        p: f64,
+        theta6_max: f64,
+    ) -> ([f64; 2], f64, FootPoints) {
+        let sc = sin_cos(p);
+        if p <= theta6_max {
+            let ankle = sub([meta_x, 0.0], rotate([self.h12, -self.l9], sc));
+            (ankle, p, self.points_sc(ankle, sc, (0.0, 1.0)))
+        } else {
+            let toe_sc = sin_cos(p - theta6_max);
+            let meta = sub([meta_x + self.l13, 0.0], rotate([self.l13, 0.0], toe_sc));
+            let ankle = sub(meta, rotate([self.h12, -self.l9], sc));
+            (ankle, theta6_max, self.points_sc(ankle, sc, toe_sc))
         }
     }
 }
@@ -387,6 +423,22 @@ mod tests {
         assert!(evaluations.get() < 10, "{}", evaluations.get());
         assert_eq!(bisect(ok, -1.0, 1.0, 0.5), plain);
         assert_eq!(bisect(ok, -1.0, 1.0, -3.0), plain);
+    }
+
+    /// [`Foot::rolling_points`] is [`Foot::rolling_ankle`] then [`Foot::points`], bit for bit,
+    /// on both rolling rules and at their switch.
+    #[test]
+    fn rolling_points_are_the_ankle_then_the_points() {
+        let f = foot();
+        let lim = 0.6;
+        for i in -10..=150 {
+            for p in [i as f64 * 0.01, i as f64 * 0.01 + 1e-13, lim] {
+                let (ankle, t6) = f.rolling_ankle(0.5, p, lim);
+                let (a, t, pts) = f.rolling_points(0.5, p, lim);
+                assert_eq!((a, t), (ankle, t6), "{p}");
+                assert_eq!(pts, f.points(ankle, p, t6), "{p}");
+            }
+        }
     }
 
     /// Rotating about the heel: the distances between the foot points are those of the body
