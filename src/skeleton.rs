@@ -245,9 +245,23 @@ impl Clinical {
     }
 }
 
+/// Whether `x` is finite: 0 · x is ±0 for a finite x and NaN for ±∞ and NaN. (One multiply and
+/// one compare; `f64::is_finite` compiles here to integer masking, ≈ 4 instructions a number,
+/// and these checks run for every number of every frame.)
+#[inline(always)]
+fn is_finite(x: f64) -> bool {
+    x * 0.0 == 0.0
+}
+
+/// [`is_finite`] of the three coordinates at once.
+#[inline(always)]
+fn is_finite3(v: DVec3) -> bool {
+    (v * 0.0).element_sum() == 0.0
+}
+
 #[inline(always)]
 fn finite(name: &str, value: f64) -> Result<f64> {
-    if value.is_finite() {
+    if is_finite(value) {
         Ok(value)
     } else {
         Err(Error::NotFinite {
@@ -262,7 +276,7 @@ fn finite(name: &str, value: f64) -> Result<f64> {
 #[inline(always)]
 fn point(name: impl FnOnce() -> String, p: [f64; 3]) -> Result<DVec3> {
     let v = DVec3::from_array(p);
-    if v.is_finite() {
+    if is_finite3(v) {
         return Ok(v);
     }
     let (axis, value) = ["x", "y", "z"]
@@ -279,7 +293,7 @@ fn point(name: impl FnOnce() -> String, p: [f64; 3]) -> Result<DVec3> {
 /// [`finite`] with the name built only on error.
 #[inline(always)]
 fn finite_named(name: impl FnOnce() -> String, value: f64) -> Result<f64> {
-    if value.is_finite() {
+    if is_finite(value) {
         Ok(value)
     } else {
         finite(&name(), value)
@@ -672,6 +686,34 @@ mod tests {
             }
         }
         assert!(worst < 1e-15, "{worst}");
+    }
+
+    /// The finiteness tests agree with `f64::is_finite` on the special values and beside them.
+    #[test]
+    fn finiteness_is_that_of_std() {
+        let values = [
+            0.0,
+            -0.0,
+            1.0,
+            -2.5e-300,
+            f64::MIN_POSITIVE,
+            5e-324,
+            f64::MAX,
+            f64::MIN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            -f64::NAN,
+        ];
+        for x in values {
+            assert_eq!(is_finite(x), x.is_finite(), "{x}");
+            for y in values {
+                for z in [0.3, f64::MAX, f64::NAN] {
+                    let v = DVec3::new(x, y, z);
+                    assert_eq!(is_finite3(v), v.is_finite(), "{v}");
+                }
+            }
+        }
     }
 
     /// Decomposition inverts composition, checked against glam's own Euler conversion (an

@@ -15,7 +15,7 @@ use crate::dynamics::{StanceModel, SwingModel};
 use crate::error::{Error, Result};
 use crate::kinematics::foot::{Foot, FootPoints};
 use crate::kinematics::pelvis::{Determinants, PelvisMotion, Side, fold_height};
-use crate::kinematics::stance_leg::{KneeCurve, LegPose, StanceLeg, leg_points};
+use crate::kinematics::stance_leg::{KneeCurve, LegPose, StanceLeg, leg_points, leg_points_sc};
 use crate::ode::Segment;
 use crate::params::Gait;
 use crate::plan::StepConstraints;
@@ -1136,7 +1136,8 @@ pub struct SwingPose {
     pub phase: &'static str,
     pub theta3: f64,
     pub theta4: f64,
-    /// (sin, cos) of θ3 and of θ3 + θ4, as [`leg_points`] computed them.
+    /// (sin, cos) of θ3 and of θ3 + θ4, as [`leg_points`] (or the hind leg's pose) computed
+    /// them.
     pub sin_cos: [(f64, f64); 2],
     pub hip: [f64; 2],
     pub dz: f64,
@@ -1294,12 +1295,12 @@ impl Step {
                     .pose([hip[0] + self.x_ankle, hip[1]], dz, self.t_start + tau)
         {
             shift_pose(&mut p, -self.x_ankle);
-            let (knee, _, sin_cos) = leg_points(hip, dz, p.theta3, p.theta4, l3, l4);
+            let (knee, _) = leg_points_sc(hip, dz, p.sin_cos, l3, l4);
             return SwingPose {
                 phase: "double_support",
                 theta3: p.theta3,
                 theta4: p.theta4,
-                sin_cos,
+                sin_cos: p.sin_cos,
                 hip,
                 dz,
                 knee,

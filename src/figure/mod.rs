@@ -13,7 +13,7 @@ use crate::attributes::Attributes;
 use crate::error::{Error, Result};
 use crate::kinematics::foot::{Foot, FootPoints};
 use crate::kinematics::pelvis::Side;
-use crate::trig::{atan2, sin_cos};
+use crate::trig::atan2;
 use crate::walk::Step;
 
 /// One leg's joint centres and foot contact points, world frame (m).
@@ -148,10 +148,7 @@ pub fn landmarks(step: &Step, t: f64, attrs: &Attributes) -> Result<Landmarks> {
     let stance_leg = place_leg(
         hip3(step.side),
         dz_stance,
-        [
-            sin_cos(stance.theta3),
-            sin_cos(stance.theta3 + stance.theta4),
-        ],
+        stance.sin_cos,
         (l3, l4),
         [x0 + stance.ankle[0], stance.ankle[1]],
         &shifted(&stance.foot, x0),

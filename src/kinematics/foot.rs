@@ -11,7 +11,8 @@ pub fn pitch(v: [f64; 2], p: f64) -> [f64; 2] {
 }
 
 /// [`pitch`] by the pitch whose sine and cosine are (s, c).
-fn rotate(v: [f64; 2], (s, c): (f64, f64)) -> [f64; 2] {
+#[inline]
+pub(crate) fn rotate(v: [f64; 2], (s, c): (f64, f64)) -> [f64; 2] {
     [v[0] * c + v[1] * s, -v[0] * s + v[1] * c]
 }
 
@@ -51,9 +52,22 @@ pub struct Foot {
     pub l13: f64,
     /// |(l8, l9)| and atan2(l9, l8) (the heel's reach in [`Self::min_pitch_closed_form`]), and
     /// |(h12, l9)| and atan2(l9, h12) (the metatarsal joint's in
-    /// [`Self::max_pitch_closed_form`]): constants of the foot, computed once.
+    /// [`Self::max_pitch_closed_form`]), and the toe tip's there with the toe in line (θ6 = 0):
+    /// constants of the foot, computed once.
     heel_reach: (f64, f64),
     meta_reach: (f64, f64),
+    toe_reach: (f64, f64),
+    /// −atan(l8 / l9): the pitch with the heel straight under the ankle, [`Self::min_pitch`]'s
+    /// lower end.
+    heel_lowest: f64,
+}
+
+/// `x.asin()`, without libm's domain-error path (its NaN for |x| > 1 costs ≈ 40 instructions
+/// more: errno and the floating-point exception): the closed forms below take the asin of
+/// ratios that are often out of range (the floor out of the foot's reach).
+#[inline]
+fn asin(x: f64) -> f64 {
+    if x.abs() <= 1.0 { x.asin() } else { f64::NAN }
 }
 
 impl Foot {
@@ -65,21 +79,45 @@ impl Foot {
             h12,
             l13: body.l13,
             heel_reach: (l8.hypot(l9), l9.atan2(l8)),
-            meta_reach: (h12.hypot(l9), l9.atan2(h12)),
+            // (the crate's atan2: the rolling foot's arc about M takes its phase from here)
+            meta_reach: (h12.hypot(l9), crate::trig::atan2(l9, h12)),
+            toe_reach: Self::toe_reach(h12, l9, body.l13, 0.0),
+            heel_lowest: -(l8 / l9).atan(),
         }
+    }
+
+    /// The toe tip's reach in [`Self::max_pitch_closed_form`] for toe angle θ6: |(a, b)| and
+    /// atan2(b, a) with (a, b) = (h12 + l13 cos θ6, l9 − l13 sin θ6).
+    fn toe_reach(h12: f64, l9: f64, l13: f64, theta6: f64) -> (f64, f64) {
+        let (s6, c6) = sin_cos(theta6);
+        let (a, b) = (h12 + l13 * c6, l9 - l13 * s6);
+        (a.hypot(b), crate::trig::atan2(b, a))
+    }
+
+    /// |(h12, l9)| and atan2(l9, h12): the radius and phase of the ankle's circle about the
+    /// metatarsal joint as the foot rolls over it (constants of the foot).
+    pub(crate) fn meta_reach(&self) -> (f64, f64) {
+        self.meta_reach
     }
 
     /// Foot points for an ankle at `ankle`, foot pitch `p` (heel up +) and toe dorsiflexion θ6.
     #[inline]
     pub fn points(&self, ankle: [f64; 2], p: f64, theta6: f64) -> FootPoints {
         let sc = sin_cos(p);
-        let meta = add(ankle, rotate([self.h12, -self.l9], sc));
         // the toe's pitch p − θ6 is p itself with the toe in line (stance, most of the swing)
         let toe_sc = if theta6 == 0.0 {
             sc
         } else {
             sin_cos(p - theta6)
         };
+        self.points_sc(ankle, sc, toe_sc)
+    }
+
+    /// [`Self::points`] from the (sin, cos) of the pitch p and of the toe's pitch p − θ6, for
+    /// callers that have them already.
+    #[inline]
+    pub fn points_sc(&self, ankle: [f64; 2], sc: (f64, f64), toe_sc: (f64, f64)) -> FootPoints {
+        let meta = add(ankle, rotate([self.h12, -self.l9], sc));
         FootPoints {
             heel: add(ankle, rotate([-self.l8, -self.l9], sc)),
             meta,
@@ -109,11 +147,16 @@ impl Foot {
     /// with (A, B) = (h12 + l13 cos θ6, l9 − l13 sin θ6), so each reaches the floor where
     /// `sin(p + atan2(b, a)) = (ankle_y − floor) / |(a, b)|`; the boundary is the lower of the
     /// two (NaN when neither reaches it).
+    /// (The toe in line, θ6 = 0, the swing's usual case, takes the toe's reach from the foot's
+    /// constants.)
     fn max_pitch_closed_form(&self, ankle_y: f64, theta6: f64, floor: f64) -> f64 {
-        let reach = |(r, angle): (f64, f64)| ((ankle_y - floor) / r).asin() - angle;
-        let (s6, c6) = sin_cos(theta6);
-        let (a, b) = (self.h12 + self.l13 * c6, self.l9 - self.l13 * s6);
-        reach(self.meta_reach).min(reach((a.hypot(b), crate::trig::atan2(b, a))))
+        let reach = |(r, angle): (f64, f64)| asin((ankle_y - floor) / r) - angle;
+        let toe = if theta6 == 0.0 {
+            self.toe_reach
+        } else {
+            Self::toe_reach(self.h12, self.l9, self.l13, theta6)
+        };
+        reach(self.meta_reach).min(reach(toe))
     }
 
     /// The smallest pitch (heel up +) that keeps the heel at or above the ground, for an ankle at
@@ -123,7 +166,7 @@ impl Foot {
     pub fn min_pitch(&self, ankle_y: f64) -> f64 {
         boundary(
             |p| ankle_y + pitch([-self.l8, -self.l9], p)[1] >= 0.0,
-            -(self.l8 / self.l9).atan(),
+            self.heel_lowest,
             false,
             self.min_pitch_closed_form(ankle_y),
         )
@@ -133,7 +176,7 @@ impl Foot {
     /// r = |(l8, l9)| and β = atan2(l9, l8), so the heel touches at p = β − asin(ankle_y / r).
     fn min_pitch_closed_form(&self, ankle_y: f64) -> f64 {
         let (r, beta) = self.heel_reach;
-        beta - (ankle_y / r).asin()
+        beta - asin(ankle_y / r)
     }
 
     /// The swing foot's pitch, and its points with the ankle at `ankle`: the rule's pitch when
@@ -171,6 +214,27 @@ impl Foot {
             let toe = [meta_x + self.l13, 0.0];
             let meta = sub(toe, pitch([self.l13, 0.0], p - theta6_max));
             (sub(meta, pitch([self.h12, -self.l9], p)), theta6_max)
+        }
+    }
+
+    /// [`Self::rolling_ankle`] and the foot's [`Self::points`] there, each sine and cosine
+    /// computed once (the same numbers: the toe's pitch p − θ6 is 0 while rolling about M, and
+    /// `sin_cos(0)` is (0, 1)). Returns the ankle, θ6 and the points.
+    pub fn rolling_points(
+        &self,
+        meta_x: f64,
+        p: f64,
+        theta6_max: f64,
+    ) -> ([f64; 2], f64, FootPoints) {
+        let sc = sin_cos(p);
+        if p <= theta6_max {
+            let ankle = sub([meta_x, 0.0], rotate([self.h12, -self.l9], sc));
+            (ankle, p, self.points_sc(ankle, sc, (0.0, 1.0)))
+        } else {
+            let toe_sc = sin_cos(p - theta6_max);
+            let meta = sub([meta_x + self.l13, 0.0], rotate([self.l13, 0.0], toe_sc));
+            let ankle = sub(meta, rotate([self.h12, -self.l9], sc));
+            (ankle, theta6_max, self.points_sc(ankle, sc, toe_sc))
         }
     }
 }
@@ -387,6 +451,41 @@ mod tests {
         assert!(evaluations.get() < 10, "{}", evaluations.get());
         assert_eq!(bisect(ok, -1.0, 1.0, 0.5), plain);
         assert_eq!(bisect(ok, -1.0, 1.0, -3.0), plain);
+    }
+
+    /// The foot's constants are their expressions, and the asin without libm's domain error is
+    /// libm's inside [−1, 1] and NaN outside.
+    #[test]
+    fn constants_and_asin_are_what_they_replace() {
+        let f = foot();
+        assert_eq!(f.heel_lowest, -(f.l8 / f.l9).atan());
+        let (a, b) = (f.h12 + f.l13, f.l9);
+        assert_eq!(f.toe_reach, (a.hypot(b), crate::trig::atan2(b, a)));
+        assert_eq!(f.toe_reach, Foot::toe_reach(f.h12, f.l9, f.l13, 0.0));
+        for i in -300..=300 {
+            let x = i as f64 / 200.0;
+            for x in [x, x.next_up(), x.next_down()] {
+                let (ours, libm) = (asin(x), x.asin());
+                assert!(ours == libm || (ours.is_nan() && libm.is_nan()), "{x}");
+            }
+        }
+        assert!(asin(f64::NAN).is_nan() && asin(f64::INFINITY).is_nan());
+    }
+
+    /// [`Foot::rolling_points`] is [`Foot::rolling_ankle`] then [`Foot::points`], bit for bit,
+    /// on both rolling rules and at their switch.
+    #[test]
+    fn rolling_points_are_the_ankle_then_the_points() {
+        let f = foot();
+        let lim = 0.6;
+        for i in -10..=150 {
+            for p in [i as f64 * 0.01, i as f64 * 0.01 + 1e-13, lim] {
+                let (ankle, t6) = f.rolling_ankle(0.5, p, lim);
+                let (a, t, pts) = f.rolling_points(0.5, p, lim);
+                assert_eq!((a, t), (ankle, t6), "{p}");
+                assert_eq!(pts, f.points(ankle, p, t6), "{p}");
+            }
+        }
     }
 
     /// Rotating about the heel: the distances between the foot points are those of the body

@@ -34,6 +34,8 @@ pub struct LegPose {
     pub theta3: f64,
     /// Knee flexion, rad.
     pub theta4: f64,
+    /// (sin, cos) of θ3 and of the shank's θ3 + θ4 (for [`leg_points_sc`] and the figure).
+    pub sin_cos: [(f64, f64); 2],
     /// Foot pitch (heel up +) and toe dorsiflexion θ6, rad.
     pub pitch: f64,
     pub theta6: f64,
@@ -116,14 +118,30 @@ pub fn leg_points(
     l3: f64,
     l4: f64,
 ) -> ([f64; 2], [f64; 2], [(f64, f64); 2]) {
-    let shank = theta3 + theta4;
-    let (s3, c3) = sin_cos(theta3);
-    let (ss, cs) = sin_cos(shank);
+    let sin_cos = [sin_cos(theta3), sin_cos(theta3 + theta4)];
+    let (knee, ankle) = leg_points_sc(hip, dz, sin_cos, l3, l4);
+    (knee, ankle, sin_cos)
+}
+
+/// [`leg_points`] from the (sin, cos) of θ3 and of θ3 + θ4 (a pose that has them already).
+pub fn leg_points_sc(
+    hip: [f64; 2],
+    dz: f64,
+    [(s3, c3), (ss, cs)]: [(f64, f64); 2],
+    l3: f64,
+    l4: f64,
+) -> ([f64; 2], [f64; 2]) {
     let drop = l3 * c3 + l4 * cs;
     let cos_phi = (1.0 - (dz / drop).powi(2)).max(0.0).sqrt();
     let knee = [hip[0] - l3 * s3, hip[1] - l3 * c3 * cos_phi];
     let ankle = [knee[0] - l4 * ss, knee[1] - l4 * cs * cos_phi];
-    (knee, ankle, [(s3, c3), (ss, cs)])
+    (knee, ankle)
+}
+
+/// The (sin, cos) of a + b from those of a and of b.
+#[inline]
+fn add_angles((sa, ca): (f64, f64), (sb, cb): (f64, f64)) -> (f64, f64) {
+    (sa * cb + ca * sb, ca * cb - sa * sb)
 }
 
 /// Hip–ankle distance of a leg with knee flexion κ, from cos κ.
@@ -133,7 +151,26 @@ fn reach(l3: f64, l4: f64, cos_kappa: f64) -> f64 {
 
 /// The leg chain for a hip at `hip` (with lateral offset `dz`) and an ankle at `ankle`: knee
 /// flexion from the distance (0 and a gap when out of reach), thigh angle in the leg's plane.
-fn chain(l3: f64, l4: f64, hip: [f64; 2], dz: f64, ankle: [f64; 2]) -> (f64, f64, [f64; 2], f64) {
+struct Chain {
+    kappa: f64,
+    theta3: f64,
+    knee: [f64; 2],
+    gap: f64,
+    /// (sin, cos) of θ3 and of κ.
+    thigh: (f64, f64),
+    knee_sc: (f64, f64),
+}
+
+impl Chain {
+    /// The pose's (sin, cos) of θ3 and of θ3 + θ4 for knee flexion θ4 with (sin, cos) `knee`.
+    fn sin_cos(&self, knee: (f64, f64)) -> [(f64, f64); 2] {
+        [self.thigh, add_angles(self.thigh, knee)]
+    }
+}
+
+/// [`Chain`] of a hip and an ankle. (The distances stay libm's `hypot`: near a straight knee κ
+/// is the acos of nearly 1, which turns a last-bit change of d into ≈ 1e-8 rad.)
+fn chain(l3: f64, l4: f64, hip: [f64; 2], dz: f64, ankle: [f64; 2]) -> Chain {
     let dx = hip[0] - ankle[0];
     let dv = (hip[1] - ankle[1]).hypot(dz);
     let d = dx.hypot(dv);
@@ -141,15 +178,22 @@ fn chain(l3: f64, l4: f64, hip: [f64; 2], dz: f64, ankle: [f64; 2]) -> (f64, f64
     let kappa = cos_k.acos();
     let gap = (d - (l3 + l4)).max(0.0);
     // (κ's own sine and cosine, not cos_k: the leg's points use the κ reported)
-    let (sin_kappa, cos_kappa) = sin_cos(kappa);
-    let a = reach(l3, l4, cos_kappa);
+    let knee_sc = sin_cos(kappa);
+    let a = reach(l3, l4, knee_sc.1);
     // thigh = hip–ankle line angle (from the downward vertical, ankle ahead −) minus β
     let line = atan2(dx, dv);
-    let beta = (l4 * sin_kappa / a).clamp(-1.0, 1.0).asin();
+    let beta = (l4 * knee_sc.0 / a).clamp(-1.0, 1.0).asin();
     let theta3 = line - beta;
     let (s3, c3) = sin_cos(theta3);
     let knee = [hip[0] - l3 * s3, ankle[1] + dv - l3 * c3];
-    (kappa, theta3, knee, gap)
+    Chain {
+        kappa,
+        theta3,
+        knee,
+        gap,
+        thigh: (s3, c3),
+        knee_sc,
+    }
 }
 
 /// The stance leg of one step, from its heel strike to its toe-off. Times are world times (s),
@@ -257,9 +301,10 @@ impl StanceLeg {
         }
     }
 
-    fn rolling(&self, p: f64) -> ([f64; 2], f64) {
+    /// The rolling foot at pitch p: ankle, θ6 and points ([`Foot::rolling_points`]).
+    fn rolling(&self, p: f64) -> ([f64; 2], f64, FootPoints) {
         self.foot
-            .rolling_ankle(self.ankle_x + self.foot.h12, p, self.theta6_max)
+            .rolling_points(self.ankle_x + self.foot.h12, p, self.theta6_max)
     }
 
     /// The prescribed knee after heel-off at time t, if the heel is off by then.
@@ -294,34 +339,49 @@ impl StanceLeg {
                 } else {
                     0.0
                 };
-                let phi = self.reach_limited_sole(hip, dz, rule);
-                // the foot turns about its heel, at (ankle_x − l8, 0)
-                let ankle = self.rocker_ankle(phi);
+                // the foot turns about its heel, at (ankle_x − l8, 0), to pitch p = −φ; the
+                // rule's ankle is also the reach test's first point
+                let mut sc = sin_cos(-rule);
+                let mut ankle = self.rocker_ankle(sc);
+                let mut phi = rule;
+                if hip[0] < self.ankle_x && self.too_far(hip, dz, ankle) {
+                    phi = self.reach_limited_sole(hip, dz, rule);
+                    sc = sin_cos(-phi);
+                    ankle = self.rocker_ankle(sc);
+                }
                 let p = -phi;
-                let (kappa, theta3, knee, gap) = chain(self.l3, self.l4, hip, dz, ankle);
+                let c = chain(self.l3, self.l4, hip, dz, ankle);
                 Ok(LegPose {
-                    knee,
+                    knee: c.knee,
                     ankle,
-                    foot: self.foot.points(ankle, p, 0.0),
-                    theta3,
-                    theta4: kappa,
+                    foot: self.foot.points_sc(ankle, sc, sc),
+                    theta3: c.theta3,
+                    theta4: c.kappa,
+                    sin_cos: c.sin_cos(c.knee_sc),
                     pitch: p,
                     theta6: 0.0,
-                    gap,
+                    gap: c.gap,
                 })
             }
         }
     }
 
-    /// Ankle of the foot turned about its heel to sole angle φ (toe up +).
-    fn rocker_ankle(&self, phi: f64) -> [f64; 2] {
+    /// Ankle of the foot turned about its heel to pitch p (heel up +; the sole angle is −p),
+    /// given (sin p, cos p).
+    fn rocker_ankle(&self, sc: (f64, f64)) -> [f64; 2] {
         let heel = [self.ankle_x - self.foot.l8, 0.0];
-        let off = crate::kinematics::foot::pitch([-self.foot.l8, -self.foot.l9], -phi);
+        let off = crate::kinematics::foot::rotate([-self.foot.l8, -self.foot.l9], sc);
         [heel[0] - off[0], heel[1] - off[1]]
     }
 
-    /// The heel rocker's sole angle: the rule's, or, while the hip is still behind the ankle and
-    /// the straight leg cannot reach it with that sole angle, the smallest angle at which it
+    /// Whether the straight leg falls short of the hip from an ankle at `ankle`.
+    fn too_far(&self, hip: [f64; 2], dz: f64, ankle: [f64; 2]) -> bool {
+        let l1 = self.l3 + self.l4;
+        ((hip[0] - ankle[0]).powi(2) + (hip[1] - ankle[1]).powi(2) + dz * dz).sqrt() > l1
+    }
+
+    /// The heel rocker's sole angle when the straight leg cannot reach the hip with the rule's
+    /// (the caller tests that, the hip being behind the ankle): the smallest angle at which it
     /// can [ours]: the telescopic leg is longer than the anatomical one just after heel strike
     /// (w* > l1 at most speeds, spec §7 "known geometric tension"), so the foot comes down as
     /// the hip passes over it. Bisection to 1e-12 rad (the knee is acos of the leg's extension
@@ -330,13 +390,7 @@ impl StanceLeg {
     /// meets the one of in-plane radius √(l1² − dz²) about the hip.
     fn reach_limited_sole(&self, hip: [f64; 2], dz: f64, rule: f64) -> f64 {
         let l1 = self.l3 + self.l4;
-        let too_far = |phi: f64| {
-            let a = self.rocker_ankle(phi);
-            ((hip[0] - a[0]).powi(2) + (hip[1] - a[1]).powi(2) + dz * dz).sqrt() > l1
-        };
-        if hip[0] >= self.ankle_x || !too_far(rule) {
-            return rule;
-        }
+        let too_far = |phi: f64| self.too_far(hip, dz, self.rocker_ankle(sin_cos(-phi)));
         if too_far(FRAC_PI_3) {
             return FRAC_PI_3;
         }
@@ -359,20 +413,25 @@ impl StanceLeg {
     /// of in-plane radius √(a² − dz²) about the hip (the distance first falls as the heel rises,
     /// then, past a right angle, grows again).
     fn rolling_pose(&self, hip: [f64; 2], dz: f64, kappa: f64) -> Result<LegPose, String> {
-        let a = reach(self.l3, self.l4, sin_cos(kappa).1);
-        let (flat, _) = self.rolling(0.0);
+        let knee_sc = sin_cos(kappa);
+        let a = reach(self.l3, self.l4, knee_sc.1);
+        let Foot { h12, l9, l13, .. } = self.foot;
+        let meta_x = self.ankle_x + h12;
+        // the flat foot's ankle, [`Self::rolling`] at p = 0 without its sin_cos(0) = (0, 1)
+        let flat = [meta_x - h12, l9];
         let f0 = ((hip[0] - flat[0]).powi(2) + (hip[1] - flat[1]).powi(2) + dz * dz).sqrt() - a;
         if f0 < 0.0 {
             // the hip is nearer than a(κ) even with the foot flat: the foot stays flat and the
             // knee flexes by the distance [ours] (the prescribed curve resumes where it meets it)
             let ankle = [self.ankle_x, self.foot.l9];
-            let (kappa, theta3, knee, _) = chain(self.l3, self.l4, hip, dz, ankle);
+            let c = chain(self.l3, self.l4, hip, dz, ankle);
             return Ok(LegPose {
-                knee,
+                knee: c.knee,
                 ankle,
                 foot: self.foot.points(ankle, 0.0, 0.0),
-                theta3,
-                theta4: kappa,
+                theta3: c.theta3,
+                theta4: c.kappa,
+                sin_cos: c.sin_cos(c.knee_sc),
                 pitch: 0.0,
                 theta6: 0.0,
                 gap: 0.0,
@@ -381,10 +440,16 @@ impl StanceLeg {
         let p = if f0.abs() < 1e-13 {
             0.0
         } else {
-            let Foot { h12, l9, l13, .. } = self.foot;
             let t6 = self.theta6_max;
-            let meta_x = self.ankle_x + h12;
-            let about_meta = || Arc::new([meta_x, 0.0], [h12, -l9]);
+            // Arc::new([meta_x, 0], [h12, −l9]) with the foot's constants
+            let about_meta = || {
+                let (radius, phase) = self.foot.meta_reach();
+                Arc {
+                    pivot: [meta_x, 0.0],
+                    radius,
+                    phase,
+                }
+            };
             let about_toe = || {
                 // pitch([l13, 0], p − θ6_max) = pitch(pitch([l13, 0], −θ6_max), p)
                 let (s6, c6) = t6.sin_cos();
@@ -409,14 +474,15 @@ impl StanceLeg {
                     )
                 })?
         };
-        let (ankle, theta6) = self.rolling(p);
-        let (_, theta3, knee, _) = chain(self.l3, self.l4, hip, dz, ankle);
+        let (ankle, theta6, foot) = self.rolling(p);
+        let c = chain(self.l3, self.l4, hip, dz, ankle);
         Ok(LegPose {
-            knee,
+            knee: c.knee,
             ankle,
-            foot: self.foot.points(ankle, p, theta6),
-            theta3,
+            foot,
+            theta3: c.theta3,
             theta4: kappa,
+            sin_cos: c.sin_cos(knee_sc),
             pitch: p,
             theta6,
             gap: 0.0,
@@ -606,6 +672,79 @@ mod tests {
             }
         }
         assert_eq!(phases.len(), 3, "every rule was exercised: {phases:?}");
+    }
+
+    /// The chain against its first form (the shank's sine and cosine from sin_cos(θ3 + κ), and
+    /// libm's sin and cos) over hips near and out of reach, with and without a lateral offset:
+    /// the same angles and knee to round-off.
+    #[test]
+    fn chain_agrees_with_hypot_and_the_shank_angle() {
+        let (b, _) = leg();
+        let (l3, l4) = (b.l3, b.l4);
+        let old = |hip: [f64; 2], dz: f64, ankle: [f64; 2]| {
+            let dx = hip[0] - ankle[0];
+            let dv = (hip[1] - ankle[1]).hypot(dz);
+            let d = dx.hypot(dv);
+            let cos_k = ((d * d - l3 * l3 - l4 * l4) / (2.0 * l3 * l4)).clamp(-1.0, 1.0);
+            let kappa = cos_k.acos();
+            let a = reach(l3, l4, kappa.cos());
+            let theta3 = dx.atan2(dv) - (l4 * kappa.sin() / a).clamp(-1.0, 1.0).asin();
+            let knee = [
+                hip[0] - l3 * theta3.sin(),
+                ankle[1] + dv - l3 * theta3.cos(),
+            ];
+            (kappa, theta3, knee, (d - (l3 + l4)).max(0.0))
+        };
+        let mut worst: f64 = 0.0;
+        for i in 0..=40 {
+            for j in 0..=40 {
+                for dz in [0.0, 0.03, -0.08] {
+                    let hip = [-0.5 + 0.025 * i as f64, 0.55 + 0.01 * j as f64];
+                    let ankle = [0.05, 0.08];
+                    let c = chain(l3, l4, hip, dz, ankle);
+                    let (kappa, theta3, knee, gap) = old(hip, dz, ankle);
+                    let [(s3, c3), (ss, cs)] = c.sin_cos(c.knee_sc);
+                    let (s, co) = (theta3 + kappa).sin_cos();
+                    for e in [
+                        c.kappa - kappa,
+                        c.theta3 - theta3,
+                        c.knee[0] - knee[0],
+                        c.knee[1] - knee[1],
+                        c.gap - gap,
+                        s3 - theta3.sin(),
+                        c3 - theta3.cos(),
+                        ss - s,
+                        cs - co,
+                    ] {
+                        worst = worst.max(e.abs());
+                    }
+                }
+            }
+        }
+        assert!(worst < 1e-14, "{worst}");
+    }
+
+    /// Every pose carries the (sin, cos) of its θ3 and θ3 + θ4, and the rolling foot's arc
+    /// about M from the foot's constants is the one built from its vector.
+    #[test]
+    fn poses_carry_their_angles_sines_and_cosines() {
+        let (_, mut l) = leg();
+        let hip = |t: f64| ([-0.35 + 1.4 * t, 0.88 + 0.03 * (3.0 * t).sin()], 0.03);
+        l.find_heel_off(hip, 0.0, 0.55, 0.68, 0.7).unwrap();
+        for i in 0..=68 {
+            let t = 0.01 * i as f64;
+            let (h, dz) = hip(t);
+            let p = l.pose(h, dz, t).unwrap();
+            let [(s3, c3), (ss, cs)] = p.sin_cos;
+            let (s, c) = (p.theta3 + p.theta4).sin_cos();
+            for e in [s3 - p.theta3.sin(), c3 - p.theta3.cos(), ss - s, cs - c] {
+                assert!(e.abs() < 1e-15, "t {t}: {e}");
+            }
+        }
+        let f = l.foot;
+        let arc = Arc::new([0.3, 0.0], [f.h12, -f.l9]);
+        let (radius, phase) = f.meta_reach();
+        assert_eq!((arc.radius, arc.phase), (radius, phase));
     }
 
     /// The heel rocker ends flat (sole angle → 0 with zero rate) and starts at φ_hs.
