@@ -789,7 +789,8 @@ impl HipPath {
         let x = ((t - p.t0) / p.dt).clamp(0.0, p.n as f64);
         // the six grid points around t's interval (shifted inside the piece at its ends), the
         // quintic through them in Newton's form, nested
-        let j = (x.floor() as usize).saturating_sub(2).min(p.n - 5);
+        // (x ≥ 0: the cast truncates, a floor without libm's floor, which baseline x86-64 calls)
+        let j = (x as usize).saturating_sub(2).min(p.n - 5);
         let u = x - j as f64;
         p.newton[j].map(|d| {
             d[0] + u
