@@ -53,6 +53,18 @@ pub fn illinois(
     (a, b)
 }
 
+/// `f` counting its calls in `calls`: the searches' tests compare evaluation counts.
+#[cfg(test)]
+pub(crate) fn counted(
+    calls: &std::cell::Cell<usize>,
+    f: fn(f64) -> f64,
+) -> impl Fn(f64) -> f64 + '_ {
+    move |x| {
+        calls.set(calls.get() + 1);
+        f(x)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -64,12 +76,7 @@ mod tests {
     #[test]
     fn finds_analytic_roots_within_a_kept_bracket() {
         let calls = &Cell::new(0);
-        let counted = |f: fn(f64) -> f64| {
-            move |x: f64| {
-                calls.set(calls.get() + 1);
-                f(x)
-            }
-        };
+        let counted = |f| counted(calls, f);
         let (a, b) = illinois(
             counted(f64::cos),
             (1.0, 1.0_f64.cos()),

@@ -1498,12 +1498,7 @@ mod tests {
     #[test]
     fn brent_finds_analytic_minima_quickly() {
         let calls = &Cell::new(0);
-        let counted = |f: fn(f64) -> f64| {
-            move |x: f64| {
-                calls.set(calls.get() + 1);
-                f(x)
-            }
-        };
+        let counted = |f| crate::roots::counted(calls, f);
         let golden_steps = (0.04_f64 / 1e-7).ln() / 1.618_033_988_749_895_f64.ln();
         // cos has its minimum −1 at π; seeded from a sample near it
         let (x, f) = brent(
