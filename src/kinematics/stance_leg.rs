@@ -510,37 +510,59 @@ impl StanceLeg {
             let (h, dz) = hip(t);
             self.pose(h, dz, t)
         };
-        let trigger = |t: f64| -> Result<bool, String> {
+        // the trigger as a sign: how far past θ5_max the flat foot's ankle is, or how far the
+        // leg falls short of the hip where it does (positive: heel-off); −1 while the foot is
+        // not flat
+        let past = |t: f64| -> Result<f64, String> {
             let p = flat(t)?;
-            Ok(p.pitch == 0.0 && (p.gap > 0.0 || Self::dorsiflexion(&p) >= self.theta5_max))
+            Ok(if p.pitch != 0.0 {
+                -1.0
+            } else if p.gap > 0.0 {
+                p.gap
+            } else {
+                Self::dorsiflexion(&p) - self.theta5_max
+            })
         };
         let t_from = t_from.max(self.t_hs + self.t_fgm);
-        // a scan every ≈ 20 ms (the trigger, once on, stays on until toe-off), then bisection
-        // to 1e-9 s (the hip moves ≤ 3e-9 m): 40 % of the 64-sample scan to 1e-12 s
+        // a scan every ≈ 20 ms (the trigger, once on, stays on until toe-off), then the Illinois
+        // method to 1e-9 s (the hip moves ≤ 3e-9 m; bisection took 25 poses, this ≈ 6)
         const SCAN: usize = 24;
-        let mut lo = t_from;
+        let (mut lo, mut g_lo) = (t_from, None);
         let mut found = None;
         for k in 1..=SCAN {
             let t = t_from + (t_to - t_from) * k as f64 / SCAN as f64;
-            if trigger(t)? {
-                found = Some(t);
+            let g = past(t)?;
+            if g >= 0.0 {
+                found = Some((t, g));
                 break;
             }
-            lo = t;
+            (lo, g_lo) = (t, Some(g));
         }
-        let Some(mut hi) = found else {
+        let Some(hi) = found else {
             return Ok(());
         };
-        // world times: far into a long walk the spacing of doubles is coarser, so the bisection
-        // also stops when the midpoint is an end
-        while hi - lo > 1e-9 {
-            let m = 0.5 * (lo + hi);
-            if m <= lo || m >= hi {
-                break;
+        let g_lo = match g_lo {
+            Some(g) => g,
+            None => past(lo)?,
+        };
+        // on at foot flat already: heel-off there (else the last time it is off; far into a long
+        // walk the spacing of doubles can stop the search short of 1e-9 s, at its budget)
+        let t0 = if g_lo >= 0.0 {
+            lo
+        } else {
+            let error = std::cell::RefCell::new(None);
+            let sign = |t: f64| {
+                past(t).unwrap_or_else(|e| {
+                    error.borrow_mut().get_or_insert(e);
+                    f64::NAN
+                })
+            };
+            let (t0, _) = crate::roots::illinois(sign, (lo, g_lo), hi, 1e-9, 60);
+            if let Some(e) = error.into_inner() {
+                return Err(e);
             }
-            if trigger(m)? { hi = m } else { lo = m }
-        }
-        let t0 = lo;
+            t0
+        };
         let h = 1e-6;
         let k0 = flat(t0)?.theta4;
         let rate = (k0 - flat(t0 - h)?.theta4) / h;
