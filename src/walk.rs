@@ -480,8 +480,7 @@ impl Walker {
             }
         };
         // swing1: hip and knee magnitudes (A, B) together
-        let meshes = std::mem::take(&mut self.swing_meshes);
-        let [mesh1, mesh2, mesh3] = meshes;
+        let [mesh1, mesh2, mesh3] = std::mem::take(&mut self.swing_meshes);
         let (s1, rep1, mem1) = self
             .solve_2d(
                 &sw,
