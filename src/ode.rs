@@ -850,7 +850,9 @@ fn run<P: Phase<N, K>, const N: usize, const K: usize>(
         }
     };
     let mut steps: Vec<DenseStep<N>> = Vec::with_capacity(64);
-    let mut pending: Vec<Stages<N>> = Vec::new();
+    // (as large as `steps` when lazy: grown by doubling it was reallocated and copied 4 times
+    // in a typical trial)
+    let mut pending: Vec<Stages<N>> = Vec::with_capacity(if lazy { 64 } else { 0 });
     let (mut t, mut y) = (t0, y0);
     let (alpha, beta, facc1, facc2) = method.control();
     let mut fac_old = 1e-4_f64;

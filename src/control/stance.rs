@@ -842,7 +842,8 @@ impl StanceRun {
         let mut run = StanceRun {
             tau1,
             p,
-            segments: Vec::with_capacity(4),
+            // (five in a typical stance: the clamp, the torque's end, the blend, mid-stance)
+            segments: Vec::with_capacity(8),
             aborted: false,
             residual: Vector2::zeros(),
             evaluations: 0,
