@@ -172,20 +172,14 @@ impl Chebyshev {
             }
         }
         c[0] *= 0.5;
-        // Σ c_j T_j as powers of y: T_j's coefficients by T_{j+1} = 2y T_j − T_{j−1}
+        // Σ c_j T_j as powers of y: the coefficients of T_j and T_{j+1}, by the same recurrence
         let mut a = [0.0; N];
         let (mut t0, mut t1) = ([0.0; N], [0.0; N]);
         (t0[0], t1[1]) = (1.0, 1.0);
-        for (j, &cj) in c.iter().enumerate() {
-            let t = if j == 0 { &t0 } else { &t1 };
-            a.iter_mut().zip(t).for_each(|(ak, tk)| *ak += cj * tk);
-            if j >= 1 {
-                let mut next = [0.0; N];
-                for k in 0..N {
-                    next[k] = if k > 0 { 2.0 * t1[k - 1] } else { 0.0 } - t0[k];
-                }
-                (t0, t1) = (t1, next);
-            }
+        for &cj in &c {
+            a.iter_mut().zip(&t0).for_each(|(ak, tk)| *ak += cj * tk);
+            let next = std::array::from_fn(|k| if k > 0 { 2.0 * t1[k - 1] } else { 0.0 } - t0[k]);
+            (t0, t1) = (t1, next);
         }
         Chebyshev { lo, hi, a }
     }
