@@ -110,7 +110,7 @@ impl StanceModel {
 
     /// [`Self::accelerations`] with sin θ1 and cos θ1 already known (the stance right-hand side
     /// needs them for its forces too). M is solved by its structure — M[0][1] = 0 — with the
-    /// Schur complement of the θ2 row: three divisions, no factorization, no allocation.
+    /// Schur complement of the θ2 row: three reciprocals, no factorization, no allocation.
     pub(crate) fn accelerations_with(
         &self,
         s1: f64,
@@ -127,20 +127,23 @@ impl StanceModel {
         let (m02, m12) = (m2a * tr.s12, m2a * w * tr.c12);
         let m11 = self.j1 + self.m2 * w * w;
         let j2 = self.trunk_inertia();
+        // the reciprocals depend on q alone, so they are ready before the forces: one division
+        // waits for them (the unlocked t2dd), where three did in a chain
         if locked {
             // rows θ1, θ2 of M (Cramer's rule)
-            let det = m11 * j2 - m12 * m12;
+            let inv_det = 1.0 / (m11 * j2 - m12 * m12);
             Vector3::new(
                 0.0,
-                (r[1] * j2 - m12 * r[2]) / det,
-                (m11 * r[2] - m12 * r[1]) / det,
+                (r[1] * j2 - m12 * r[2]) * inv_det,
+                (m11 * r[2] - m12 * r[1]) * inv_det,
             )
         } else {
-            let (e0, e1) = (m02 / self.m2, m12 / m11);
+            let (inv_m2, inv_m11) = (1.0 / self.m2, 1.0 / m11);
+            let (e0, e1) = (m02 * inv_m2, m12 * inv_m11);
             let t2dd = (r[2] - e0 * r[0] - e1 * r[1]) / (j2 - e0 * m02 - e1 * m12);
             Vector3::new(
-                (r[0] - m02 * t2dd) / self.m2,
-                (r[1] - m12 * t2dd) / m11,
+                (r[0] - m02 * t2dd) * inv_m2,
+                (r[1] - m12 * t2dd) * inv_m11,
                 t2dd,
             )
         }
@@ -237,11 +240,12 @@ pub(crate) fn solve3(m: &Matrix3<f64>, rhs: &Vector3<f64>) -> Vector3<f64> {
     }
 }
 
-/// Solve a 2×2 system by Cramer's rule.
+/// Solve a 2×2 system by Cramer's rule (the determinant's reciprocal needs only `m`, so in a
+/// right-hand side it is ready before `rhs`).
 pub(crate) fn solve2(m: &Matrix2<f64>, rhs: &Vector2<f64>) -> Vector2<f64> {
-    let det = m[(0, 0)] * m[(1, 1)] - m[(0, 1)] * m[(1, 0)];
+    let inv_det = 1.0 / (m[(0, 0)] * m[(1, 1)] - m[(0, 1)] * m[(1, 0)]);
     Vector2::new(
-        (rhs[0] * m[(1, 1)] - m[(0, 1)] * rhs[1]) / det,
-        (m[(0, 0)] * rhs[1] - m[(1, 0)] * rhs[0]) / det,
+        (rhs[0] * m[(1, 1)] - m[(0, 1)] * rhs[1]) * inv_det,
+        (m[(0, 0)] * rhs[1] - m[(1, 0)] * rhs[0]) * inv_det,
     )
 }

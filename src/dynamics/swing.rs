@@ -97,7 +97,8 @@ impl SwingModel {
         let m = self.mass_matrix_c4(tr.c4);
         let rhs = torque - self.bias_with(&tr, qd, hip_acc);
         if locked {
-            Vector2::new(rhs[0] / m[(0, 0)], 0.0)
+            // the reciprocal depends on q alone: ready before the torques
+            Vector2::new(rhs[0] * (1.0 / m[(0, 0)]), 0.0)
         } else {
             solve2(&m, &rhs)
         }
