@@ -613,81 +613,80 @@ fn dop853_attempt<P: Phase<N, K>, const N: usize, const K: usize>(
     tol: f64,
 ) -> Attempt<N> {
     let k1 = *k1;
+    // each stage's argument sums y and its older stages first and the newest, k_{i−1}, last,
+    // with the coefficients scaled by h: one multiply and one add stand between the right-hand
+    // side that produced k_{i−1} and the next (the stages are a chain: its latency is the step's)
     let k2 = phase.rhs(t + dop853::C2 * h, &(y + k1 * (h * dop853::A2_1)));
     let k3 = phase.rhs(
         t + dop853::C3 * h,
-        &(y + (k1 * dop853::A3_1 + k2 * dop853::A3_2) * h),
+        &((y + k1 * (h * dop853::A3_1)) + k2 * (h * dop853::A3_2)),
     );
     let k4 = phase.rhs(
         t + dop853::C4 * h,
-        &(y + (k1 * dop853::A4_1 + k3 * dop853::A4_3) * h),
+        &((y + k1 * (h * dop853::A4_1)) + k3 * (h * dop853::A4_3)),
     );
     let k5 = phase.rhs(
         t + dop853::C5 * h,
-        &(y + (k1 * dop853::A5_1 + k3 * dop853::A5_3 + k4 * dop853::A5_4) * h),
+        &((y + k1 * (h * dop853::A5_1) + k3 * (h * dop853::A5_3)) + k4 * (h * dop853::A5_4)),
     );
     let k6 = phase.rhs(
         t + dop853::C6 * h,
-        &(y + (k1 * dop853::A6_1 + k4 * dop853::A6_4 + k5 * dop853::A6_5) * h),
+        &((y + k1 * (h * dop853::A6_1) + k4 * (h * dop853::A6_4)) + k5 * (h * dop853::A6_5)),
     );
     let k7 = phase.rhs(
         t + dop853::C7 * h,
-        &(y + (k1 * dop853::A7_1 + k4 * dop853::A7_4 + k5 * dop853::A7_5 + k6 * dop853::A7_6) * h),
+        &((y + k1 * (h * dop853::A7_1) + k4 * (h * dop853::A7_4) + k5 * (h * dop853::A7_5))
+            + k6 * (h * dop853::A7_6)),
     );
     let k8 = phase.rhs(
         t + dop853::C8 * h,
-        &(y + (k1 * dop853::A8_1
-            + k4 * dop853::A8_4
-            + k5 * dop853::A8_5
-            + k6 * dop853::A8_6
-            + k7 * dop853::A8_7)
-            * h),
+        &((y + k1 * (h * dop853::A8_1)
+            + k4 * (h * dop853::A8_4)
+            + k5 * (h * dop853::A8_5)
+            + k6 * (h * dop853::A8_6))
+            + k7 * (h * dop853::A8_7)),
     );
     let k9 = phase.rhs(
         t + dop853::C9 * h,
-        &(y + (k1 * dop853::A9_1
-            + k4 * dop853::A9_4
-            + k5 * dop853::A9_5
-            + k6 * dop853::A9_6
-            + k7 * dop853::A9_7
-            + k8 * dop853::A9_8)
-            * h),
+        &((y + k1 * (h * dop853::A9_1)
+            + k4 * (h * dop853::A9_4)
+            + k5 * (h * dop853::A9_5)
+            + k6 * (h * dop853::A9_6)
+            + k7 * (h * dop853::A9_7))
+            + k8 * (h * dop853::A9_8)),
     );
     let k10 = phase.rhs(
         t + dop853::C10 * h,
-        &(y + (k1 * dop853::A10_1
-            + k4 * dop853::A10_4
-            + k5 * dop853::A10_5
-            + k6 * dop853::A10_6
-            + k7 * dop853::A10_7
-            + k8 * dop853::A10_8
-            + k9 * dop853::A10_9)
-            * h),
+        &((y + k1 * (h * dop853::A10_1)
+            + k4 * (h * dop853::A10_4)
+            + k5 * (h * dop853::A10_5)
+            + k6 * (h * dop853::A10_6)
+            + k7 * (h * dop853::A10_7)
+            + k8 * (h * dop853::A10_8))
+            + k9 * (h * dop853::A10_9)),
     );
     let k11 = phase.rhs(
         t + dop853::C11 * h,
-        &(y + (k1 * dop853::A11_1
-            + k4 * dop853::A11_4
-            + k5 * dop853::A11_5
-            + k6 * dop853::A11_6
-            + k7 * dop853::A11_7
-            + k8 * dop853::A11_8
-            + k9 * dop853::A11_9
-            + k10 * dop853::A11_10)
-            * h),
+        &((y + k1 * (h * dop853::A11_1)
+            + k4 * (h * dop853::A11_4)
+            + k5 * (h * dop853::A11_5)
+            + k6 * (h * dop853::A11_6)
+            + k7 * (h * dop853::A11_7)
+            + k8 * (h * dop853::A11_8)
+            + k9 * (h * dop853::A11_9))
+            + k10 * (h * dop853::A11_10)),
     );
     let k12 = phase.rhs(
         t + h,
-        &(y + (k1 * dop853::A12_1
-            + k4 * dop853::A12_4
-            + k5 * dop853::A12_5
-            + k6 * dop853::A12_6
-            + k7 * dop853::A12_7
-            + k8 * dop853::A12_8
-            + k9 * dop853::A12_9
-            + k10 * dop853::A12_10
-            + k11 * dop853::A12_11)
-            * h),
+        &((y + k1 * (h * dop853::A12_1)
+            + k4 * (h * dop853::A12_4)
+            + k5 * (h * dop853::A12_5)
+            + k6 * (h * dop853::A12_6)
+            + k7 * (h * dop853::A12_7)
+            + k8 * (h * dop853::A12_8)
+            + k9 * (h * dop853::A12_9)
+            + k10 * (h * dop853::A12_10))
+            + k11 * (h * dop853::A12_11)),
     );
     let slope = k1 * dop853::B1
         + k6 * dop853::B6
