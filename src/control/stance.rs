@@ -148,6 +148,10 @@ const TABLE_TERMS: usize = 20;
 struct Chebyshev {
     lo: f64,
     hi: f64,
+    /// y = (x − mid) · scale: the interval's midpoint and 2 / (hi − lo), kept so that an
+    /// evaluation divides nothing.
+    mid: f64,
+    scale: f64,
     a: [f64; TABLE_TERMS],
     /// The derivative's coefficients (in y), (k + 1) a_{k+1}; the last is 0.
     da: [f64; TABLE_TERMS],
@@ -172,6 +176,8 @@ impl Chebyshev {
     const ZERO: Chebyshev = Chebyshev {
         lo: 0.0,
         hi: 1.0,
+        mid: 0.5,
+        scale: 2.0,
         a: [0.0; TABLE_TERMS],
         da: [0.0; TABLE_TERMS],
     };
@@ -208,15 +214,21 @@ impl Chebyshev {
                 0.0
             }
         });
-        Chebyshev { lo, hi, a, da }
+        Chebyshev {
+            lo,
+            hi,
+            mid,
+            scale: 1.0 / half,
+            a,
+            da,
+        }
     }
 
     /// f(x) and f′(x) ([`estrin`]).
     #[inline]
     fn eval(&self, x: f64) -> (f64, f64) {
-        let scale = 2.0 / (self.hi - self.lo);
-        let y = (x - 0.5 * (self.lo + self.hi)) * scale;
-        (estrin(&self.a, y), estrin(&self.da, y) * scale)
+        let y = (x - self.mid) * self.scale;
+        (estrin(&self.a, y), estrin(&self.da, y) * self.scale)
     }
 }
 
