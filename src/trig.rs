@@ -32,13 +32,37 @@ const C6: f64 = -1.135_964_755_778_819_482_65e-11;
 /// (sin x, cos x).
 #[inline]
 pub fn sin_cos(x: f64) -> (f64, f64) {
+    // |x| < π/4 (the stance leg, the trunk, the thigh): the reduction's n is 0 and r is x
+    // itself, so the kernels alone give the same bits, without the reduction's five dependent
+    // operations in front of them (a right-hand side waits for its sines)
+    if x.abs() < std::f64::consts::FRAC_PI_4 {
+        kernels(x)
+    } else {
+        reduced(x)
+    }
+}
+
+/// [`sin_cos`] by Cody–Waite reduction by π/2 (libm beyond [`REDUCTION_LIMIT`] and for NaN).
+#[inline]
+fn reduced(x: f64) -> (f64, f64) {
     if x.is_nan() || x.abs() >= REDUCTION_LIMIT {
         return x.sin_cos();
     }
     let k = x * FRAC_2_PI + ROUND;
     let quadrant = k.to_bits() & 3;
     let n = k - ROUND;
-    let r = (x - n * PIO2_1) - n * PIO2_1T;
+    let (s, c) = kernels((x - n * PIO2_1) - n * PIO2_1T);
+    match quadrant {
+        0 => (s, c),
+        1 => (c, -s),
+        2 => (-s, -c),
+        _ => (-c, s),
+    }
+}
+
+/// fdlibm's `__kernel_sin(r, 0, 0)` and `__kernel_cos(r, 0)`, |r| ≤ π/4.
+#[inline(always)]
+fn kernels(r: f64) -> (f64, f64) {
     let z = r * r;
     // __kernel_sin(r, 0, 0)
     let v = z * r;
@@ -48,12 +72,7 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     let hz = 0.5 * z;
     let w = 1.0 - hz;
     let c = w + (((1.0 - w) - hz) + z * p);
-    match quadrant {
-        0 => (s, c),
-        1 => (c, -s),
-        2 => (-s, -c),
-        _ => (-c, s),
-    }
+    (s, c)
 }
 
 /// fdlibm's `atan` (s_atan.c): atan(0.5), atan(1) = π/4, atan(1.5), atan(∞) = π/2 as high and
@@ -166,6 +185,20 @@ mod tests {
         assert!(worst <= 1.0, "worst error {worst} ulp");
         assert!(sin_cos(f64::NAN).0.is_nan());
     }
+    /// Below π/4 the kernels alone give the reduction's bits (n = 0, r = x).
+    #[test]
+    fn small_angles_skip_the_reduction_bit_for_bit() {
+        let bits = |(s, c): (f64, f64)| (s.to_bits(), c.to_bits());
+        for i in -100_000..=100_000 {
+            let x = i as f64 * 7.853e-6 + 1.1e-11;
+            assert_eq!(bits(sin_cos(x)), bits(reduced(x)), "{x}");
+        }
+        let below = std::f64::consts::FRAC_PI_4.next_down();
+        for x in [below, -below, 0.0, -0.0, 1e-310] {
+            assert_eq!(bits(sin_cos(x)), bits(reduced(x)), "{x}");
+        }
+    }
+
     /// The constants are fdlibm's doubles (its comments give their hex words).
     #[test]
     fn atan_constants_are_fdlibms() {
