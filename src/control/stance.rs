@@ -64,6 +64,7 @@ pub fn hip_reference(s: &StanceSetup, theta1: f64) -> (f64, f64) {
 /// θ1 = 0, so that an integration segment ending there sees its own side's reference): one
 /// `sin_cos` of πu/2 for the bounce, since 1 + cos πu = 2 cos²(πu/2) and
 /// sin πu = 2 sin(πu/2) cos(πu/2).
+#[inline(always)]
 fn hip_reference_sc(
     s: &StanceSetup,
     s1: f64,
@@ -544,6 +545,7 @@ impl<'a> StanceForces<'a> {
     }
 
     /// [`Self::leg_force`] with sin θ1, cos θ1 known.
+    #[inline(always)]
     fn leg_force_sc(&self, t: f64, y: &StanceState, s1: f64, c1: f64) -> f64 {
         let s = self.setup;
         let (w, wd, th1d) = (y[0], y[3], y[4]);
@@ -566,6 +568,7 @@ impl<'a> StanceForces<'a> {
     }
 
     /// [`Self::generalized`] with sin θ1, cos θ1 known.
+    #[inline(always)]
     fn generalized_sc(&self, t: f64, y: &StanceState, s1: f64, c1: f64) -> Vector3<f64> {
         let s = self.setup;
         let (th2, th2d) = (y[2], y[5]);
