@@ -185,6 +185,7 @@ mod tests {
         assert!(worst <= 1.0, "worst error {worst} ulp");
         assert!(sin_cos(f64::NAN).0.is_nan());
     }
+
     /// Below π/4 the kernels alone give the reduction's bits (n = 0, r = x).
     #[test]
     fn small_angles_skip_the_reduction_bit_for_bit() {

@@ -60,8 +60,9 @@ pub fn hip_reference(s: &StanceSetup, theta1: f64) -> (f64, f64) {
 }
 
 /// [`hip_reference`] from sin θ1, cos θ1 and the reciprocal of the bounce's denominator
-/// sin θ1^− (start), on the side of mid-stance `terminal` says (each side's formula continues smoothly past
-/// θ1 = 0, so that an integration segment ending there sees its own side's reference): one
+/// sin θ1^− (start), on the side of mid-stance `terminal` says (each side's formula continues
+/// smoothly past θ1 = 0, so that an integration segment ending there sees its own side's
+/// reference): one
 /// `sin_cos` of πu/2 for the bounce, since 1 + cos πu = 2 cos²(πu/2) and
 /// sin πu = 2 sin(πu/2) cos(πu/2).
 #[inline(always)]
@@ -142,9 +143,9 @@ const TABLE_TERMS: usize = 20;
 /// one multiply-add a term like Horner's rule, where Clenshaw's recurrence on the series and its
 /// derivative's takes three a term for each, but in a tree five multiply-adds deep instead of a
 /// chain of twenty: the stance right-hand side waits for W, and with Horner's chain the hip
-/// reference took 9.3 % of the default walk's time (`perf record` of `klaw bench --frames`). The power form is accurate here because the coefficients
-/// fall fast (to 1e-12 of W by the 20th): the large coefficients of T_j's high powers multiply
-/// small c_j.
+/// reference took 9.3 % of the default walk's time (`perf record` of `klaw bench --frames`).
+/// The power form is accurate here because the coefficients fall fast (to 1e-12 of W by the
+/// 20th): the large coefficients of T_j's high powers multiply small c_j.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Chebyshev {
     lo: f64,
