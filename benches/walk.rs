@@ -13,7 +13,7 @@
 use std::hint::black_box;
 use std::time::Duration;
 
-use criterion::{Criterion, criterion_group, criterion_main};
+use criterion::{Criterion, criterion_group};
 use klaw::walk::simulate;
 use klaw::{AttributeTable, Attributes, Body, Gait, GaitRequest};
 use rayon::prelude::*;
@@ -113,4 +113,11 @@ criterion_group! {
         .measurement_time(Duration::from_secs(30));
     targets = sweep
 }
-criterion_main!(walks, sweeps);
+/// `criterion_main!(walks, sweeps)` with the CLI's memory policy first
+/// ([`klaw::memory::keep_freed_memory`]), so the benches measure what `klaw bench` does.
+fn main() {
+    klaw::memory::keep_freed_memory();
+    walks();
+    sweeps();
+    Criterion::default().configure_from_args().final_summary();
+}

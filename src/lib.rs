@@ -6,6 +6,7 @@ pub mod body;
 pub mod control;
 pub mod error;
 pub mod kinematics;
+pub mod memory;
 pub mod ode;
 
 pub use attributes::{AttributeTable, Attributes};

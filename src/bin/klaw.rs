@@ -528,25 +528,8 @@ struct BenchArgs {
     csv: bool,
 }
 
-/// Keep up to 64 MiB of freed memory at the top of glibc's heaps instead of handing it back to
-/// the kernel at every `free` past 128 KiB (glibc's `M_TRIM_THRESHOLD` default): a walk allocates
-/// and frees its steps' records (≈ 1 MB), so with the default every walk of a bench, a sweep or a
-/// long streamed walk faulted its pages in again — 36 700 page faults and ≈ 9 % of the time in
-/// the kernel for `klaw bench --repeat 300 --frames`, 530 with this (`perf stat -e page-faults`).
-/// Peak memory is unchanged; large buffers (≥ 128 KiB) are still mapped and unmapped on their own.
-#[cfg(all(target_os = "linux", target_env = "gnu"))]
-fn keep_freed_memory() {
-    // SAFETY: mallopt only sets an allocator parameter; it is called before any thread starts.
-    unsafe {
-        libc::mallopt(libc::M_TRIM_THRESHOLD, 64 << 20);
-    }
-}
-
-#[cfg(not(all(target_os = "linux", target_env = "gnu")))]
-fn keep_freed_memory() {}
-
 fn main() -> ExitCode {
-    keep_freed_memory();
+    klaw::memory::keep_freed_memory();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Walk(args) => walk(&args),
