@@ -19,7 +19,7 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{Criterion, criterion_group};
-use klaw::walk::simulate;
+use klaw::engine::walker::simulate;
 use klaw::{AttributeTable, Attributes, Body, Gait, GaitRequest};
 use rayon::prelude::*;
 

@@ -4,6 +4,7 @@
 //! residual noise of the stance shooting (the deviation of r(τ1 + δ) from its secant line).
 //! `cargo run --release --example evals`
 use klaw::control::stance::StanceRun;
+use klaw::engine::walker as walk;
 use klaw::*;
 
 fn gait(body: &Body, v: f64) -> Gait {

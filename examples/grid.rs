@@ -1,3 +1,4 @@
+use klaw::engine::walker as walk;
 use klaw::*;
 fn main() {
     let attrs = Attributes::default();

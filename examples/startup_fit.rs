@@ -10,12 +10,12 @@
 //!
 //! `cargo run --release --example startup_fit`
 use klaw::control::swing::Subphase;
-use klaw::plan::GRAVITY;
-use klaw::walk::Walker;
+use klaw::engine::walker::Walker;
+use klaw::model::GRAVITY;
 use klaw::{Attributes, Body, GaitRequest};
 use nalgebra::{Matrix3, Vector3};
 
-fn unknowns(step: &klaw::walk::Step, body: &Body) -> [f64; 7] {
+fn unknowns(step: &klaw::engine::walker::Step, body: &Body) -> [f64; 7] {
     let torque = body.mass * body.l1;
     let mut out = [
         step.stance.tau1 / torque,

@@ -8,10 +8,10 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use serde::Deserialize;
 
-use crate::attributes;
+use crate::engine::report::{Frame, Report};
 use crate::error::{Error, Result};
-use crate::params::GaitRequest;
-use crate::report::{Frame, Report};
+use crate::model::attributes;
+use crate::plan::gait::GaitRequest;
 
 /// The columns (CSV) and keys (TOML) a schedule row may name.
 pub const SCHEDULE_FIELDS: [&str; 3] = ["velocity", "step_length", "step_frequency"];
@@ -164,7 +164,7 @@ pub fn write_frames_csv(path: &Path, frames: &[Frame]) -> Result<()> {
 }
 
 /// Write gait events as CSV: `time_s, side, event, step`, one row per event.
-pub fn write_events_csv(path: &Path, events: &[crate::figure::events::Event]) -> Result<()> {
+pub fn write_events_csv(path: &Path, events: &[crate::analysis::events::Event]) -> Result<()> {
     write_atomic(path, |out| {
         let mut w = csv::Writer::from_writer(out);
         if events.is_empty() {

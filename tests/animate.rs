@@ -6,9 +6,9 @@ use std::fs;
 use std::path::Path;
 
 use image::{AnimationDecoder, RgbaImage};
-use klaw::animate::{Options, animate_walk, check_path, parse_size, write_gif};
+use klaw::engine::walker::{Walk, simulate};
 use klaw::figure::Landmarks;
-use klaw::walk::{Walk, simulate};
+use klaw::plot::animation::{Options, animate_walk, check_path, parse_size, write_gif};
 use klaw::{AttributeTable, Body, Error, GaitRequest};
 
 fn default_walk(steps: usize) -> Walk {

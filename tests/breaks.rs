@@ -12,8 +12,8 @@ use ode_solvers::{Dopri5, OutputType, System};
 use klaw::control::stance::{HipPath, StanceForces, StanceRun, TORQUE_OFF};
 use klaw::control::swing::{Subphase, SwingForces, SwingSetup};
 use klaw::dynamics::SwingModel;
-use klaw::ode::Phase;
-use klaw::walk::{Step, Walker, swing_hip_vy_end};
+use klaw::engine::walker::{Step, Walker, swing_hip_vy_end};
+use klaw::numerics::ode::Phase;
 use klaw::{AttributeTable, Attributes, Body, GaitRequest};
 
 /// The integrator tolerance of the checks (the bounds below were measured at it).

@@ -1,5 +1,5 @@
 //! Export checks (issue items 7 and 8) on synthetic figures built here from chosen angles by this
-//! file's own forward kinematics, independent of the engine and of `klaw::skeleton`:
+//! file's own forward kinematics, independent of the engine and of `klaw::figure::skeleton`:
 //! - the clinical angles point the anatomical way (geometric checks on the points alone);
 //! - landmarks → clinical angles returns the chosen angles (property test);
 //! - BVH written, parsed back and run through forward kinematics reproduces every joint and
@@ -13,11 +13,11 @@ use std::fs;
 use std::path::Path;
 
 use glam::{DMat3, DVec3};
-use klaw::body::Body;
 use klaw::error::Error;
 use klaw::export::{self, Format, OpenSimModel, Options, bvh};
+use klaw::figure::skeleton::{self, Clinical};
 use klaw::figure::{ArmAngles, Landmarks, LegPoints};
-use klaw::skeleton::{self, Clinical};
+use klaw::model::body::Body;
 use proptest::prelude::*;
 
 fn rx(a: f64) -> DMat3 {
@@ -1060,7 +1060,7 @@ fn bvh_of_a_real_walk_reproduces_the_engine() {
     }
     .complete(&b, &attrs)
     .unwrap();
-    let walk = klaw::walk::simulate(b, attrs, &[gait; 4]).unwrap();
+    let walk = klaw::engine::walker::simulate(b, attrs, &[gait; 4]).unwrap();
     let lms: Vec<Landmarks> = klaw::figure::frames(&walk, 50.0)
         .collect::<klaw::Result<_>>()
         .unwrap();

@@ -1,8 +1,9 @@
 //! The whole figure (spec §7) checked by geometry that does not depend on how it is built: rigid
 //! segments, feet on (never under) the ground, stance contacts that do not slide, heels that
 //! land where the step constraints put them, and no joint angle jumping at a phase boundary.
+use klaw::engine::walker as walk;
 use klaw::figure::{Landmarks, LegPoints, landmarks};
-use klaw::{Attributes, Body, GaitRequest, walk};
+use klaw::{Attributes, Body, GaitRequest};
 
 fn d(a: [f64; 3], b: [f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
@@ -172,7 +173,7 @@ fn nothing_jumps_at_a_phase_boundary() {
 #[test]
 fn events_match_the_figure() {
     let (_, attrs, w) = walk_of(1.4, 1.8);
-    let events = klaw::figure::events::events(&w);
+    let events = klaw::analysis::events::events(&w);
     let e = 1e-6;
     let foot = |t: f64, side: &str| {
         let f = figure_at(&w, &attrs, t);
@@ -401,9 +402,9 @@ fn closed_form_foot_pitches_match_the_numeric_solvers() {
 /// returns them, and fails with the same error on the same non-finite field.
 #[test]
 fn clinical_angles_match_the_decomposed_frames() {
-    use klaw::skeleton::{Clinical, Skeleton, clinical};
+    use klaw::figure::skeleton::{Clinical, Skeleton, clinical};
     let flat = |c: &Clinical| {
-        let j = |j: &klaw::skeleton::Joint3| [j.flexion, j.adduction, j.rotation];
+        let j = |j: &klaw::figure::skeleton::Joint3| [j.flexion, j.adduction, j.rotation];
         let mut v = vec![
             c.time,
             c.pelvis_tilt,

@@ -5,12 +5,12 @@ use std::f64::consts::PI;
 use std::fs;
 use std::path::Path;
 
-use klaw::plot_cycle::{
+use klaw::engine::walker::simulate;
+use klaw::figure::skeleton::{Clinical, Side};
+use klaw::plot::cycle::{
     BAND_COLOR, CYCLE_FIGURE_SIZE, Curve, EXCURSION_BAND_COLOR, GaitCycle, Measure, NormTable,
     Panel, check, write_cycle_figure,
 };
-use klaw::skeleton::{Clinical, Side};
-use klaw::walk::simulate;
 use klaw::{AttributeTable, Body, Error, GaitRequest};
 
 /// A cycle whose curves are given functions of the cycle % (101 samples).
@@ -48,7 +48,7 @@ fn flat() -> GaitCycle {
     })
 }
 
-fn norm<'a>(t: &'a NormTable, name: &str) -> &'a klaw::plot_cycle::Norm {
+fn norm<'a>(t: &'a NormTable, name: &str) -> &'a klaw::plot::cycle::Norm {
     t.norms
         .iter()
         .find(|n| n.name == name)
@@ -346,7 +346,7 @@ fn norm_bands_are_drawn_over_their_windows_only() {
     assert_ne!(img.get_pixel(x as u32, y as u32).0, exc);
 }
 
-fn default_walk(steps: usize) -> klaw::walk::Walk {
+fn default_walk(steps: usize) -> klaw::engine::walker::Walk {
     let body = Body::standard(1.8, 80.0).unwrap();
     let attrs = AttributeTable::builtin().defaults();
     let gait = GaitRequest {

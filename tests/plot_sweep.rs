@@ -5,7 +5,7 @@ use std::path::Path;
 use std::process::Command;
 
 use klaw::Error;
-use klaw::plot_sweep::{FAILED_COLOR, HEAT_MAP_SIZE, HeatMap, heat_map};
+use klaw::plot::heat_map::{FAILED_COLOR, HEAT_MAP_SIZE, HeatMap, heat_map};
 
 /// 3 velocities × 2 heights; (1.2, 1.8) failed; mean_iterations 4..8 with the minimum at
 /// (1.0, 1.6) and the maximum at (1.4, 1.8).

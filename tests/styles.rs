@@ -1,8 +1,9 @@
 //! Style presets (models/styles/): each converges over its speed range and body heights, and
 //! the styles differ measurably from the normal walk in what they claim to change.
-use klaw::attributes::{AttributeTable, STYLES, style};
+use klaw::engine::walker as walk;
 use klaw::figure::landmarks;
-use klaw::{Attributes, Body, GaitRequest, walk};
+use klaw::model::attributes::{AttributeTable, STYLES, style};
+use klaw::{Attributes, Body, GaitRequest};
 
 fn attrs_of(name: &str) -> Attributes {
     AttributeTable::builtin()

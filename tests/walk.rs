@@ -1,6 +1,7 @@
 //! The walking engine's bounds (issue: walking engine), checked on whole walks.
-use klaw::report::StepReport;
-use klaw::{Attributes, Body, GaitRequest, walk};
+use klaw::engine::report::StepReport;
+use klaw::engine::walker as walk;
+use klaw::{Attributes, Body, GaitRequest};
 
 fn gait(body: &Body, v: f64) -> klaw::Gait {
     GaitRequest {
@@ -58,7 +59,7 @@ fn check_step(s: &StepReport, label: &str) {
         -s.min_foot_height
     );
     assert!(
-        s.min_toe_clearance > klaw::walk::TOE_CLEARANCE_MIN,
+        s.min_toe_clearance > klaw::engine::walker::TOE_CLEARANCE_MIN,
         "{who}: no toe clearance in mid swing"
     );
     assert!(

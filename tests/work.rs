@@ -8,8 +8,8 @@ use nalgebra::{Vector2, Vector3};
 use klaw::control::stance::HipPath;
 use klaw::control::swing::{Subphase, SwingSetup, SwingState, SwingTrial};
 use klaw::dynamics::SwingModel;
-use klaw::walk::{Step, Walker, simulate};
-use klaw::work::{self, simpson};
+use klaw::engine::walker::{Step, Walker, simulate};
+use klaw::engine::work::{self, simpson};
 use klaw::{AttributeTable, Attributes, Body, GaitRequest};
 
 fn steps(v: f64, n: usize) -> Vec<Step> {
@@ -64,7 +64,11 @@ fn stance_net_work_is_the_energy_change_of_each_segment() {
 
 /// The inertial-frame correction of the swing leg: with S = Σ mᵢ rᵢ (centres of mass relative
 /// to the hip), d/dt (T_rel + V_rel) = Q·q̇ − a_hip·Ṡ, so ∫ Q·q̇ = Δ(T_rel + V_rel) + ∫ a_hip·Ṡ.
-fn swing_energy_balance(model: &SwingModel, hip: &HipPath, seg: &klaw::ode::Segment<4>) -> f64 {
+fn swing_energy_balance(
+    model: &SwingModel,
+    hip: &HipPath,
+    seg: &klaw::numerics::ode::Segment<4>,
+) -> f64 {
     let e = |y: &SwingState| {
         let q = Vector2::new(y[0], y[1]);
         let qd = Vector2::new(y[2], y[3]);

@@ -7,9 +7,9 @@ use std::f64::consts::PI;
 use crate::dynamics::StanceModel;
 use crate::dynamics::impact;
 use crate::kinematics::pelvis::Determinants;
-use crate::ode::{self, Phase, Segment};
-use crate::roots;
-use crate::trig::sin_cos;
+use crate::numerics::ode::{self, Phase, Segment};
+use crate::numerics::roots;
+use crate::numerics::trig::sin_cos;
 
 /// State (w, θ1, θ2, ẇ, θ̇1, θ̇2).
 pub type StanceState = SVector<f64, 6>;
@@ -1019,7 +1019,7 @@ impl StanceRun {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::walk::Walker;
+    use crate::engine::walker::Walker;
     use crate::{Attributes, Body, GaitRequest};
 
     /// The stance setup of a steady step (step 5) at `v` m/s for the default body.

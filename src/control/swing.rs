@@ -24,10 +24,10 @@
 //!   still swings forward at contact at slow speeds and the heel scrapes up from below].
 use nalgebra::{SVector, Vector2};
 
-use crate::attributes::Attributes;
 use crate::control::stance::HipPath;
 use crate::dynamics::SwingModel;
-use crate::ode::{self, Phase, Segment};
+use crate::model::attributes::Attributes;
+use crate::numerics::ode::{self, Phase, Segment};
 use crate::plan::StepConstraints;
 
 /// State (θ3, θ4, θ̇3, θ̇4).
@@ -354,7 +354,7 @@ impl SwingTrial {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::body::Body;
+    use crate::model::body::Body;
 
     /// The damper gives the shank, swinging about the knee under the thigh held still, the
     /// damping ratio ζ: a22 θ̈4 + d₁ θ̇4 + k θ4 = 0 with k the knee's gravity stiffness, taken

@@ -15,9 +15,9 @@
 //!   b3 = 2 m2 a c12 ẇ θ̇1 − m2 a w s12 θ̇1² − m2 g a s2.
 use nalgebra::{Matrix2, Matrix3, Vector2, Vector3};
 
-use crate::body::Body;
-use crate::plan::GRAVITY;
-use crate::trig::sin_cos;
+use crate::model::GRAVITY;
+use crate::model::body::Body;
+use crate::numerics::trig::sin_cos;
 
 /// Inertial parameters of the stance model.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -14,10 +14,10 @@
 //! the left-hand side, plus the shank's share.
 use nalgebra::{Matrix2, Vector2};
 
-use crate::body::Body;
 use crate::dynamics::stance::solve2;
-use crate::plan::GRAVITY;
-use crate::trig::sin_cos;
+use crate::model::GRAVITY;
+use crate::model::body::Body;
+use crate::numerics::trig::sin_cos;
 
 /// Inertial parameters of the swing leg.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -2,7 +2,7 @@
 //!
 //! File axes: Y up, +Z forward (the walking direction), +X to the figure's left, metres; a klaw
 //! world vector (x forward, y up, z right) is written as (−z, y, x). The rest pose is the
-//! anatomical zero of [`crate::skeleton`] (legs vertical, soles flat, arms hanging), so every
+//! anatomical zero of [`crate::figure::skeleton`] (legs vertical, soles flat, arms hanging), so every
 //! joint channel is ± a clinical angle (`docs/export.md` has the table).
 //!
 //! Hierarchy: `Hips` (root, the pelvis centre) → `Spine` (the lumbar joint, at the pelvis centre)
@@ -25,9 +25,9 @@ use std::path::Path;
 use glam::{DMat3, DVec3};
 
 use super::{FrameData, RowError, RowWriter};
-use crate::body::Body;
 use crate::error::{Error, Result};
-use crate::skeleton::{LENGTH_TOLERANCE, Side, Skeleton, yxz_angles, zxy_angles};
+use crate::figure::skeleton::{LENGTH_TOLERANCE, Side, Skeleton, yxz_angles, zxy_angles};
+use crate::model::body::Body;
 
 /// A klaw world vector (x forward, y up, z right) in BVH axes (X left, Y up, Z forward).
 pub fn to_bvh(v: DVec3) -> DVec3 {

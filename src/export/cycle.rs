@@ -12,7 +12,7 @@ use std::path::Path;
 
 use super::angle_columns;
 use crate::error::{Error, Result};
-use crate::skeleton::Clinical;
+use crate::figure::skeleton::Clinical;
 
 /// Cycle-normalized curves: 101 rows (0…100 %) of the column values.
 #[derive(Clone, Debug, PartialEq)]

@@ -19,10 +19,10 @@ use std::sync::atomic::{AtomicU64, Ordering};
 pub use cycle::{CycleCurves, average_cycles, cycle_average, write_cycle_csv};
 pub use opensim::OpenSimModel;
 
-use crate::body::Body;
 use crate::error::{Error, Result};
 use crate::figure::Landmarks;
-use crate::skeleton::{Clinical, Side, Skeleton};
+use crate::figure::skeleton::{Clinical, Side, Skeleton};
+use crate::model::body::Body;
 
 /// The export file formats, chosen by the file extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

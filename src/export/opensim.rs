@@ -32,8 +32,8 @@ use std::io::{self, Write};
 use glam::DVec3;
 
 use super::{FrameData, RowError, RowWriter};
-use crate::body::Body;
-use crate::skeleton::{Clinical, Side, Skeleton, zxy_angles};
+use crate::figure::skeleton::{Clinical, Side, Skeleton, zxy_angles};
+use crate::model::body::Body;
 
 /// The OpenSim model whose coordinates a `.mot` / `.sto` file holds.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -1,8 +1,8 @@
 //! The foot as a rigid hind/mid-foot with a toe segment at the 1st metatarsal joint (Table B-1:
 //! l8, l9, l12, l13), and its two rolling rules (spec §7): about the metatarsal joint M while the
 //! pitch is below the metatarsal limit θ6_max, then about the toe tip T.
-use crate::body::Body;
-use crate::trig::sin_cos;
+use crate::model::body::Body;
+use crate::numerics::trig::sin_cos;
 
 /// Rotate a foot-frame vector (x forward, y up, foot flat) by the pitch p (heel up +).
 #[inline]
@@ -80,7 +80,7 @@ impl Foot {
             l13: body.l13,
             heel_reach: (l8.hypot(l9), l9.atan2(l8)),
             // (the crate's atan2: the rolling foot's arc about M takes its phase from here)
-            meta_reach: (h12.hypot(l9), crate::trig::atan2(l9, h12)),
+            meta_reach: (h12.hypot(l9), crate::numerics::trig::atan2(l9, h12)),
             toe_reach: Self::toe_reach(h12, l9, body.l13, 0.0),
             heel_lowest: -(l8 / l9).atan(),
         }
@@ -91,7 +91,7 @@ impl Foot {
     fn toe_reach(h12: f64, l9: f64, l13: f64, theta6: f64) -> (f64, f64) {
         let (s6, c6) = sin_cos(theta6);
         let (a, b) = (h12 + l13 * c6, l9 - l13 * s6);
-        (a.hypot(b), crate::trig::atan2(b, a))
+        (a.hypot(b), crate::numerics::trig::atan2(b, a))
     }
 
     /// |(h12, l9)| and atan2(l9, h12): the radius and phase of the ankle's circle about the
@@ -470,7 +470,10 @@ mod tests {
         let f = foot();
         assert_eq!(f.heel_lowest, -(f.l8 / f.l9).atan());
         let (a, b) = (f.h12 + f.l13, f.l9);
-        assert_eq!(f.toe_reach, (a.hypot(b), crate::trig::atan2(b, a)));
+        assert_eq!(
+            f.toe_reach,
+            (a.hypot(b), crate::numerics::trig::atan2(b, a))
+        );
         assert_eq!(f.toe_reach, Foot::toe_reach(f.h12, f.l9, f.l13, 0.0));
         for i in -300..=300 {
             let x = i as f64 / 200.0;

@@ -10,7 +10,7 @@
 //! C¹ across a heel strike where the stance side changes (s = τ / t_step).
 use std::f64::consts::PI;
 
-use crate::attributes::Attributes;
+use crate::model::attributes::Attributes;
 
 /// A side of the body: +1 right, −1 left (the sign of its world z).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -105,7 +105,7 @@ impl Determinants {
         // differences there see the true derivatives
         let s = tau / t_step;
         let w = PI / t_step;
-        let (sn, cs) = crate::trig::sin_cos(PI * s);
+        let (sn, cs) = crate::numerics::trig::sin_cos(PI * s);
         PelvisMotion {
             rotation: sign * self.rotation * cs,
             list: sign * self.list * sn,
@@ -121,8 +121,8 @@ impl Determinants {
     /// R_y(rot) R_x(−list) (0, 0, ±l0/2).
     pub fn hip_offset(&self, side: Side, p: &PelvisMotion) -> [f64; 3] {
         let h = side.sign() * self.half_width;
-        let (sl, cl) = crate::trig::sin_cos(p.list);
-        let (sr, cr) = crate::trig::sin_cos(p.rotation);
+        let (sl, cl) = crate::numerics::trig::sin_cos(p.list);
+        let (sr, cr) = crate::numerics::trig::sin_cos(p.rotation);
         [h * cl * sr, h * sl, h * cl * cr]
     }
 
@@ -154,7 +154,7 @@ impl Determinants {
         let sign = stance.sign();
         let h = leg.sign() * self.half_width;
         let w = PI / t_step;
-        let (sn, cs) = crate::trig::sin_cos(PI * tau / t_step);
+        let (sn, cs) = crate::numerics::trig::sin_cos(PI * tau / t_step);
         let w2 = w * w;
         // list L, rotation R, lateral displacement D and their rates
         let l = sign * self.list * sn;
@@ -165,8 +165,8 @@ impl Determinants {
         let r2 = -w2 * r;
         let d1 = sign * self.lateral * w * cs;
         let d2 = -w2 * sign * self.lateral * sn;
-        let (sl, cl) = crate::trig::sin_cos(l);
-        let (sr, cr) = crate::trig::sin_cos(r);
+        let (sl, cl) = crate::numerics::trig::sin_cos(l);
+        let (sr, cr) = crate::numerics::trig::sin_cos(r);
         // x: h cos L sin R
         let ax = h
             * (-cl * sr * (l1 * l1 + r1 * r1) - sl * l2 * sr - 2.0 * sl * l1 * cr * r1

@@ -16,10 +16,10 @@
 //! the forward axis, so the in-plane drop from hip to ankle is √(Δy² + dz²).
 use std::f64::consts::{FRAC_PI_3, TAU};
 
-use crate::body::Body;
 use crate::control::stance::smoothstep;
 use crate::kinematics::foot::{Foot, FootPoints, bisect};
-use crate::trig::{atan2, sin_cos};
+use crate::model::body::Body;
+use crate::numerics::trig::{atan2, sin_cos};
 
 /// A leg pose: sagittal points (x forward, y up, world heights; the foot in the vertical plane of
 /// its ankle) and the in-plane angles.
@@ -557,7 +557,7 @@ impl StanceLeg {
                     f64::NAN
                 })
             };
-            let (t0, _) = crate::roots::illinois(sign, (lo, g_lo), hi, 1e-9, 60);
+            let (t0, _) = crate::numerics::roots::illinois(sign, (lo, g_lo), hi, 1e-9, 60);
             if let Some(e) = error.into_inner() {
                 return Err(e);
             }

@@ -3,9 +3,9 @@
 //! the anatomical limits checked before anything is simulated.
 use serde::{Deserialize, Serialize};
 
-use crate::attributes::Attributes;
-use crate::body::Body;
 use crate::error::{Error, Result};
+use crate::model::attributes::Attributes;
+use crate::model::body::Body;
 
 /// Normalizing constant of eq. 1: metres of step per (step/min · m of body height).
 pub const NORMALIZING_CONSTANT: f64 = 0.004;

@@ -6,7 +6,7 @@ use std::path::Path;
 use crate::error::{Error, Result};
 
 /// The table bundled with klaw: Winter's (Dempster's) data as printed in Table B-1.
-pub const BUILTIN_TABLE: &str = include_str!("../models/body-winter.toml");
+pub const BUILTIN_TABLE: &str = include_str!("../../models/body-winter.toml");
 
 /// A segment row of the body table (fractions of H and M).
 #[derive(Clone, Debug, Deserialize)]

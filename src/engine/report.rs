@@ -2,7 +2,7 @@
 //! report (targets, achievements, shooting statistics). Plain data, serialized by `io`.
 use serde::Serialize;
 
-use crate::walk::SolveRecord;
+use crate::engine::walker::SolveRecord;
 
 /// One output frame. Field names are the CSV header; positions are world coordinates (x forward
 /// from the first stance ankle, y up from the ground), angles in degrees.

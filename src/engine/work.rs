@@ -27,7 +27,7 @@ use crate::control::stance::{StanceForces, StanceRun, StanceSetup};
 use crate::control::swing::{Subphase, SwingForces, SwingSetup};
 use nalgebra::SVector;
 
-use crate::ode::Segment;
+use crate::numerics::ode::Segment;
 
 /// Least Gauss–Legendre panels per integration segment in the walk's report: one per
 /// integrator step (≈ 140 in a stance, ≈ 200 in a swing).
@@ -104,7 +104,13 @@ fn integrate<const N: usize, const K: usize>(
     };
     // the crossing of actuator k's power in [a, b] (signs differ at the ends)
     let crossing = |k: usize, a: f64, b: f64, ga: f64, gb: f64| {
-        let (a, b) = crate::roots::illinois(|t| power(t)[k], (a, ga), (b, gb), 1e-10 * (b - a), 60);
+        let (a, b) = crate::numerics::roots::illinois(
+            |t| power(t)[k],
+            (a, ga),
+            (b, gb),
+            1e-10 * (b - a),
+            60,
+        );
         0.5 * (a + b)
     };
     let split = n.div_ceil(seg.steps().count().max(1)).max(1);
@@ -214,13 +220,13 @@ mod tests {
     /// x'' = −x from (1, 0): x = cos t, integrated by the engine's integrator.
     fn cosine(t1: f64) -> Segment<2> {
         struct Oscillator;
-        impl crate::ode::Phase<2, 0> for Oscillator {
+        impl crate::numerics::ode::Phase<2, 0> for Oscillator {
             fn rhs(&self, _t: f64, y: &SVector<f64, 2>) -> SVector<f64, 2> {
                 SVector::<f64, 2>::new(y[1], -y[0])
             }
         }
         let y0 = SVector::<f64, 2>::new(1.0, 0.0);
-        crate::ode::integrate_with(&Oscillator, 0.0, y0, t1, 1e-10)
+        crate::numerics::ode::integrate_with(&Oscillator, 0.0, y0, t1, 1e-10)
             .unwrap()
             .segment
     }

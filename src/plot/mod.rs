@@ -5,6 +5,10 @@
 //! atomically through `io::write_atomic`. Text needs a TrueType font: it is read at run time from
 //! the file named by `KLAW_FONT` or else from the usual DejaVu Sans locations; without one the
 //! figure is drawn without any text (no titles, tick labels or legends) rather than failing.
+pub mod animation;
+pub mod cycle;
+pub mod heat_map;
+
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
@@ -16,9 +20,9 @@ use plotters::style::{FontStyle, register_font};
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::{ColorType, ImageEncoder, ImageError};
 
+use crate::engine::report::Frame;
 use crate::error::{Error, Result};
 use crate::io;
-use crate::report::Frame;
 
 /// Figure size in pixels (width, height).
 pub const FIGURE_SIZE: (u32, u32) = (1600, 1000);

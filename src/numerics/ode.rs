@@ -983,7 +983,8 @@ fn run<P: Phase<N, K>, const N: usize, const K: usize>(
         let step = *step;
         let g = |t: f64| phase.events(t, &step.eval(t))[k];
         let (a, b) = (step.t, t);
-        let (_, b) = crate::roots::illinois(g, (a, g(a)), (b, g(b)), EVENT_TIME_TOLERANCE, 100);
+        let (_, b) =
+            crate::numerics::roots::illinois(g, (a, g(a)), (b, g(b)), EVENT_TIME_TOLERANCE, 100);
         segment.y1 = step.eval(b);
         segment.t1 = b;
     }

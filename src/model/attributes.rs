@@ -8,17 +8,17 @@ use std::path::Path;
 use crate::error::{Error, Result};
 
 /// The bundled attribute table.
-pub const BUILTIN_TABLE: &str = include_str!("../models/attributes.toml");
+pub const BUILTIN_TABLE: &str = include_str!("../../models/attributes.toml");
 
 /// The bundled style presets (`--style NAME`): attribute files in `models/styles/`.
 pub const STYLES: &[(&str, &str)] = &[
-    ("normal", include_str!("../models/styles/normal.toml")),
-    ("brisk", include_str!("../models/styles/brisk.toml")),
-    ("elderly", include_str!("../models/styles/elderly.toml")),
-    ("march", include_str!("../models/styles/march.toml")),
+    ("normal", include_str!("../../models/styles/normal.toml")),
+    ("brisk", include_str!("../../models/styles/brisk.toml")),
+    ("elderly", include_str!("../../models/styles/elderly.toml")),
+    ("march", include_str!("../../models/styles/march.toml")),
     (
         "long-stride",
-        include_str!("../models/styles/long-stride.toml"),
+        include_str!("../../models/styles/long-stride.toml"),
     ),
 ];
 

@@ -14,8 +14,8 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
-use crate::attributes::AttributeTable;
 use crate::error::{Error, Result};
+use crate::model::attributes::AttributeTable;
 use crate::plot::{self, Drawn, FONT, FigureFormat, TITLE_SIZE, msg};
 use crate::sweep::Format;
 

@@ -18,16 +18,16 @@ use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use serde::Deserialize;
 
-use crate::body::Body;
+use crate::engine::walker::Walk;
 use crate::error::{Error, Result};
 use crate::export::{CycleCurves, average_cycles, cycle_average};
-use crate::params::Gait;
+use crate::figure::skeleton::{self, Clinical, Side};
+use crate::model::body::Body;
+use crate::plan::gait::Gait;
 use crate::plot::{self, Drawn, FONT, FigureFormat, TITLE_SIZE, msg};
-use crate::skeleton::{self, Clinical, Side};
-use crate::walk::Walk;
 
 /// The bundled norm table (`models/gait-norms.toml`).
-pub const NORMS_TABLE: &str = include_str!("../models/gait-norms.toml");
+pub const NORMS_TABLE: &str = include_str!("../../models/gait-norms.toml");
 /// Figure size in pixels (width, height).
 pub const CYCLE_FIGURE_SIZE: (u32, u32) = (1500, 1000);
 /// Frame rate at which the walk is sampled before the cycles are averaged (frames/s of walk
@@ -332,7 +332,7 @@ impl GaitCycle {
         let (right, left) = (strikes(0), strikes(1));
         let mut cycle = Self::from_clinical(&frames, &right, &left, CYCLE_SKIP)?;
         let last = frames.last().map_or(f64::NEG_INFINITY, |f| f.time);
-        let events = crate::figure::events::events(walk);
+        let events = crate::analysis::events::events(walk);
         for (k, (strikes, side)) in [(&right, "right"), (&left, "left")].into_iter().enumerate() {
             let pcts: Vec<f64> = strikes
                 .windows(2)

@@ -37,10 +37,10 @@
 //! included).
 use glam::{DMat3, DVec3};
 
-use crate::body::Body;
 use crate::error::{Error, Result};
 use crate::figure::{ArmAngles, Landmarks, LegPoints};
-use crate::trig::{atan2, sin_cos};
+use crate::model::body::Body;
+use crate::numerics::trig::{atan2, sin_cos};
 
 /// Largest disagreement (m) between the landmarks and the rigid segments of the body table that
 /// the BVH export accepts: its offsets are the body's lengths, so beyond this the file could not

@@ -3,13 +3,12 @@
 //! Figures 4–5, made precise in the spec §3).
 use serde::Serialize;
 
-use crate::attributes::Attributes;
-use crate::body::Body;
 use crate::error::{Error, Result};
-use crate::params::Gait;
+use crate::model::attributes::Attributes;
+use crate::model::body::Body;
+use crate::plan::gait::Gait;
 
-/// Standard gravity (m/s²).
-pub const GRAVITY: f64 = 9.81;
+use crate::model::GRAVITY;
 
 /// State-phase timings of one step (s), KLAW 1989 eq. 2.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -156,7 +155,7 @@ impl StepConstraints {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::params::GaitRequest;
+    use crate::plan::gait::GaitRequest;
 
     /// The spec's worked examples have no determinants: no pelvic rotation, and a step width
     /// equal to the pelvis width (no lateral offset).

@@ -5,22 +5,22 @@ use nalgebra::{Vector2, Vector3};
 use serde::Serialize;
 use std::f64::consts::PI;
 
-use crate::attributes::Attributes;
-use crate::body::Body;
 use crate::control::shooting::{self, Memory1, Memory2, Options, SolveReport, Start1, Start2};
 use crate::control::stance::{HipPath, StanceRun, StanceSetup, StanceState, TerminalStance};
 use crate::control::swing::{self, Subphase, SwingSetup, SwingState, SwingTrial};
 use crate::dynamics::impact::{self, ImpactReport};
 use crate::dynamics::{StanceModel, SwingModel};
+use crate::engine::report::{Achieved, Frame, Report, StepReport, Target};
+use crate::engine::work;
 use crate::error::{Error, Result};
 use crate::kinematics::foot::{Foot, FootPoints};
 use crate::kinematics::pelvis::{Determinants, PelvisMotion, Side, fold_height};
 use crate::kinematics::stance_leg::{KneeCurve, LegPose, StanceLeg, leg_points, leg_points_sc};
-use crate::ode::Segment;
-use crate::params::Gait;
+use crate::model::attributes::Attributes;
+use crate::model::body::Body;
+use crate::numerics::ode::Segment;
 use crate::plan::StepConstraints;
-use crate::report::{Achieved, Frame, Report, StepReport, Target};
-use crate::work;
+use crate::plan::gait::Gait;
 
 /// Shooting tolerance on every end condition (rad or m): 100× inside the 1e-6 the walk promises.
 /// The residuals are smooth (frozen mesh, `ode::integrate_on`), so no noise floor sets it; the
@@ -260,7 +260,7 @@ impl Walker {
         let setup = self.stance_setup(&prev_c, &c, list);
 
         let (torque, l1) = (self.body.mass * self.body.l1, self.body.l1);
-        let froude = gait.velocity / (crate::plan::GRAVITY * l1).sqrt();
+        let froude = gait.velocity / (crate::model::GRAVITY * l1).sqrt();
         let guesses = self.startup_guesses;
         let startup =
             |memory: Option<Memory2>, unknowns, x_unit, cold, plain| match (guesses, memory) {
@@ -290,7 +290,7 @@ impl Walker {
                 y0,
                 x[0],
                 x[1],
-                crate::ode::TOLERANCE,
+                crate::numerics::ode::TOLERANCE,
                 mesh.borrow().as_ref(),
             )?;
             if run.adapted {
@@ -708,7 +708,7 @@ impl Walker {
             sub,
             t0,
             y0,
-            sub.tolerance(crate::ode::TOLERANCE),
+            sub.tolerance(crate::numerics::ode::TOLERANCE),
             mesh.borrow().as_ref(),
         )?;
         if trial.adapted {
@@ -1266,7 +1266,7 @@ impl Step {
             let s = ((tau - t.t_ds) / (ANKLE_NEUTRAL * (t1 - t.t_ds))).clamp(0.0, 1.0);
             (
                 self.theta5_off * (1.0 - s),
-                self.theta6_off * 0.5 * (1.0 + crate::trig::sin_cos(PI * s).1),
+                self.theta6_off * 0.5 * (1.0 + crate::numerics::trig::sin_cos(PI * s).1),
             )
         } else {
             let s = ((tau - t1) / (t.t_step - t1)).clamp(0.0, 1.0);
@@ -1320,7 +1320,7 @@ impl Step {
         // 0 at heel strike: the foot's mass is in the shank, so this is kinematic only
         let t = self.constraints.timing;
         let s = ((tau - t.t_ds) / t.t_swing).clamp(0.0, 1.0);
-        let floor = self.toe_clearance * crate::trig::sin_cos(PI * s).0.powi(2);
+        let floor = self.toe_clearance * crate::numerics::trig::sin_cos(PI * s).0.powi(2);
         let (_, foot_points) = foot.clear_pitch(y[0] + y[1] - theta5, ankle, theta6, floor);
         SwingPose {
             phase: sub.name(),
@@ -1497,7 +1497,7 @@ mod tests {
     #[test]
     fn brent_finds_analytic_minima_quickly() {
         let calls = &Cell::new(0);
-        let counted = |f| crate::roots::counted(calls, f);
+        let counted = |f| crate::numerics::roots::counted(calls, f);
         let golden_steps = (0.04_f64 / 1e-7).ln() / 1.618_033_988_749_895_f64.ln();
         // cos has its minimum −1 at π; seeded from a sample near it
         let (x, f) = brent(

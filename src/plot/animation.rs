@@ -8,7 +8,7 @@
 //! Both views have one scale (px per m) on both axes. The figure: each leg hip–knee–ankle–heel–
 //! metatarsal joint–toe tip (and ankle–metatarsal joint, closing the foot), the pelvis line
 //! between the hip joints, the spine from the pelvis centre to the shoulder line, neck and head,
-//! the arms shoulder–elbow–wrist–hand tip (segment frames from [`crate::skeleton::Skeleton`],
+//! the arms shoulder–elbow–wrist–hand tip (segment frames from [`crate::figure::skeleton::Skeleton`],
 //! dimensions from [`Body::figure`]). The right side is blue, the left red, the trunk grey; in
 //! the side view the far (left) limbs are drawn first and paler. Every foot point (heel,
 //! metatarsal joint, toe tip) within [`CONTACT_TOLERANCE_M`] of the ground gets a black dot in
@@ -24,12 +24,12 @@ use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
-use crate::body::Body;
+use crate::engine::walker::Walk;
 use crate::error::{Error, Result};
+use crate::figure::skeleton::Skeleton;
 use crate::figure::{Landmarks, LegPoints};
+use crate::model::body::Body;
 use crate::plot::{self, FONT, msg};
-use crate::skeleton::Skeleton;
-use crate::walk::Walk;
 
 /// A foot point this close to the ground (m) is drawn as a contact.
 pub const CONTACT_TOLERANCE_M: f64 = 1e-3;
@@ -172,7 +172,7 @@ pub struct Summary {
 }
 
 /// Animate `walk`: its figure at `options.fps` ([`crate::figure::frames`]), then [`write_gif`].
-/// `title` names the walk (e.g. [`crate::plot_cycle::parameters_title`]).
+/// `title` names the walk (e.g. [`crate::plot::cycle::parameters_title`]).
 pub fn animate_walk(walk: &Walk, title: &str, path: &Path, options: &Options) -> Result<Summary> {
     check_path(path)?;
     let expected = walk.duration() * options.fps + 1.0;
@@ -301,7 +301,7 @@ fn segments(lm: &Landmarks, sk: &Skeleton, body: &Body) -> Vec<(Limb, Vec<[f64; 
     };
     let f = &body.figure;
     let t = |u: [f64; 3]| sk.thorax.point(glam::DVec3::from_array(u)).to_array();
-    let arm = |a: &crate::skeleton::ArmFrames| {
+    let arm = |a: &crate::figure::skeleton::ArmFrames| {
         vec![
             a.upper_arm.origin.to_array(),
             a.forearm.origin.to_array(),

@@ -8,11 +8,11 @@ use std::time::Instant;
 
 use clap::{Args, Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
-use klaw::report::Report;
-use klaw::stream::{Gather, WalkStream};
+use klaw::engine::report::Report;
+use klaw::engine::stream::{Gather, WalkStream};
+use klaw::engine::walker::simulate;
+use klaw::sweep::output as swio;
 use klaw::sweep::{self as sw, Axis};
-use klaw::sweep_io as swio;
-use klaw::walk::simulate;
 use klaw::{AttributeTable, Attributes, Body, Error, Gait, GaitRequest, Result, export, io, plot};
 
 const DEFAULT_HEIGHT: f64 = 1.8;
@@ -166,7 +166,7 @@ enum Command {
 
 impl GaitArgs {
     /// Simulate the walk; also the title line of its parameters.
-    fn simulate(&self) -> Result<(klaw::walk::Walk, String)> {
+    fn simulate(&self) -> Result<(klaw::engine::walker::Walk, String)> {
         let body = Body::standard(self.height, self.mass)?;
         let attrs = load_attributes(self.style.as_deref(), self.attributes.as_deref())?;
         let gaits = gaits(self, &body, &attrs)?;
@@ -176,7 +176,7 @@ impl GaitArgs {
             (None, Some(a)) => a.display().to_string(),
             (None, None) => "default".to_string(),
         };
-        let title = klaw::plot_cycle::parameters_title(&gaits, &body, &style);
+        let title = klaw::plot::cycle::parameters_title(&gaits, &body, &style);
         Ok((simulate(body, attrs, &gaits)?, title))
     }
 }
@@ -620,7 +620,7 @@ fn gaits(args: &GaitArgs, body: &Body, attrs: &Attributes) -> Result<Vec<Gait>> 
 fn load_attributes(style: Option<&str>, path: Option<&Path>) -> Result<Attributes> {
     let table = AttributeTable::builtin();
     let mut overrides = match style {
-        Some(name) => klaw::attributes::style(name)?,
+        Some(name) => klaw::model::attributes::style(name)?,
         None => Default::default(),
     };
     let mut source = style.map_or(String::new(), |s| format!("style {s}"));
@@ -794,7 +794,7 @@ fn bench(args: &BenchArgs) -> Result<()> {
             let start = Instant::now();
             for lm in klaw::figure::frames(&walk, fps) {
                 let lm = lm?;
-                std::hint::black_box(klaw::skeleton::clinical(&lm, &body)?);
+                std::hint::black_box(klaw::figure::skeleton::clinical(&lm, &body)?);
                 frame_count += 1;
             }
             frames_wall += start.elapsed().as_secs_f64();
@@ -991,7 +991,8 @@ fn merge(args: &MergeArgs) -> Result<()> {
 fn plot_sweep(args: &PlotSweepArgs) -> Result<()> {
     plot::figure_format(&args.out)?;
     check_output_dir(&args.out)?;
-    let map = klaw::plot_sweep::heat_map(&args.input, &args.x, &args.y, &args.column, &args.out)?;
+    let map =
+        klaw::plot::heat_map::heat_map(&args.input, &args.x, &args.y, &args.column, &args.out)?;
     let failed = map.cells.iter().filter(|c| c.failed()).count();
     let note = if plot::text_available() {
         ""
@@ -1025,9 +1026,9 @@ fn plot_cycle(args: &PlotArgs) -> Result<()> {
     plot::figure_format(&args.out)?;
     check_output_dir(&args.out)?;
     let (walk, title) = args.walk.simulate()?;
-    let cycle = klaw::plot_cycle::GaitCycle::from_walk(&walk)?;
-    let norms = klaw::plot_cycle::NormTable::builtin();
-    let figure = klaw::plot_cycle::write_cycle_figure(&cycle, &norms, &title, &args.out)?;
+    let cycle = klaw::plot::cycle::GaitCycle::from_walk(&walk)?;
+    let norms = klaw::plot::cycle::NormTable::builtin();
+    let figure = klaw::plot::cycle::write_cycle_figure(&cycle, &norms, &title, &args.out)?;
     let mut out = std::io::stdout().lock();
     let _ = writeln!(
         out,
@@ -1042,11 +1043,14 @@ fn plot_cycle(args: &PlotArgs) -> Result<()> {
 }
 
 fn animate(args: &AnimateArgs) -> Result<()> {
-    let options = klaw::animate::Options::new(args.fps, klaw::animate::parse_size(&args.size)?)?;
-    klaw::animate::check_path(&args.out)?;
+    let options = klaw::plot::animation::Options::new(
+        args.fps,
+        klaw::plot::animation::parse_size(&args.size)?,
+    )?;
+    klaw::plot::animation::check_path(&args.out)?;
     check_output_dir(&args.out)?;
     let (walk, title) = args.walk.simulate()?;
-    let summary = klaw::animate::animate_walk(&walk, &title, &args.out, &options)?;
+    let summary = klaw::plot::animation::animate_walk(&walk, &title, &args.out, &options)?;
     let mut out = std::io::stdout().lock();
     let _ = writeln!(
         out,

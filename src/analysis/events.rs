@@ -4,8 +4,8 @@
 //! θ6_max and the foot rolls on over the toe tip) and toe-off (TO: heel strike + t_stance).
 use serde::Serialize;
 
+use crate::engine::walker::{Step, Walk};
 use crate::kinematics::pelvis::Side;
-use crate::walk::{Step, Walk};
 
 /// One event.
 #[derive(Clone, Debug, PartialEq, Serialize)]

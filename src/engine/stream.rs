@@ -3,15 +3,15 @@
 //! the finished one are found: they need the new step's double support). Per-step
 //! reports, events, the engine's state frames and the clinical angles for cycle averaging are
 //! gathered on the side, each only when asked for.
-use crate::attributes::Attributes;
-use crate::body::Body;
+use crate::analysis::events::{Event, step_events};
+use crate::engine::report::{Frame, StepReport};
+use crate::engine::walker::{Step, Walker};
 use crate::error::Result;
-use crate::figure::events::{Event, step_events};
+use crate::figure::skeleton::{Clinical, clinical};
 use crate::figure::{Landmarks, landmarks};
-use crate::params::Gait;
-use crate::report::{Frame, StepReport};
-use crate::skeleton::{Clinical, clinical};
-use crate::walk::{Step, Walker};
+use crate::model::attributes::Attributes;
+use crate::model::body::Body;
+use crate::plan::gait::Gait;
 
 /// What to gather besides the figure frames.
 #[derive(Clone, Copy, Debug, Default)]

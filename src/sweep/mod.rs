@@ -4,18 +4,20 @@
 //! deterministic, so the output is byte-identical for any `RAYON_NUM_THREADS`.
 //!
 //! Points are numbered 0.. in product order (the `point` column); a shard `K/N` is the points
-//! with `point mod N = K − 1`. Writing, resuming and merging the output files is `sweep_io`.
+//! with `point mod N = K − 1`. Writing, resuming and merging the output files is [`output`].
+pub mod output;
+
 use std::collections::BTreeMap;
 use std::path::Path;
 
 use rayon::prelude::*;
 
-use crate::attributes::{AttributeTable, STYLES};
-use crate::body::Body;
+use crate::engine::walker::simulate;
 use crate::error::{Error, Result};
-use crate::params::GaitRequest;
+use crate::model::attributes::{AttributeTable, STYLES};
+use crate::model::body::Body;
 use crate::plan::Timing;
-use crate::walk::simulate;
+use crate::plan::gait::GaitRequest;
 
 /// Largest number of values one flag may expand to.
 pub const MAX_VALUES: usize = 1_000_000;
@@ -662,7 +664,7 @@ pub fn run_walk(inputs: &Inputs, table: &AttributeTable) -> Result<Summary> {
     }
     let body = Body::standard(inputs.height, inputs.mass)?;
     let mut overrides: BTreeMap<String, f64> = match inputs.style {
-        Some(i) => crate::attributes::style(STYLES[i].0)?,
+        Some(i) => crate::model::attributes::style(STYLES[i].0)?,
         None => BTreeMap::new(),
     };
     overrides.extend(inputs.attributes.iter().cloned());
@@ -688,8 +690,9 @@ pub fn run_walk(inputs: &Inputs, table: &AttributeTable) -> Result<Summary> {
         });
     }
     let n = report.steps.len().max(1) as f64;
-    let mean =
-        |f: &dyn Fn(&crate::report::StepReport) -> f64| report.steps.iter().map(f).sum::<f64>() / n;
+    let mean = |f: &dyn Fn(&crate::engine::report::StepReport) -> f64| {
+        report.steps.iter().map(f).sum::<f64>() / n
+    };
     let distance: f64 = report.steps.iter().map(|s| s.achieved.step_length).sum();
     let work: f64 = report.steps.iter().map(|s| s.positive_work).sum();
     Ok(Summary {

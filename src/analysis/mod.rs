@@ -1,0 +1,2 @@
+//! Analysis of a walk's motion: gait events.
+pub mod events;

@@ -1,0 +1,7 @@
+//! The model's data: the body (anthropometric tables in `models/`), the locomotion attributes
+//! (defaults, units and ranges in `models/attributes.toml`, style presets) and physical constants.
+pub mod attributes;
+pub mod body;
+
+/// Standard gravity (m/s²).
+pub const GRAVITY: f64 = 9.81;
