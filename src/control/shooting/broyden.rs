@@ -32,8 +32,9 @@ enum Phase {
 /// by Broyden's rank-1 formula in unknowns scaled by the Jacobian's column norms [ours],
 /// `J += (dr - J dx) (W dx)^T / (dx^T W dx)`, `W = diag(|J e_k|²)`, invariant under rescaling
 /// the unknowns. A failed trial (non-finite or `Err`) counts as a rejection (a failed difference
-/// trial is retried with the opposite, then halved step). Converged when `max |r_i| <= tol` at any trial; that point is returned.
-/// Each iteration evaluates the residual exactly once; `init` once.
+/// trial is retried with the opposite, then halved step). Converged when `max |r_i| <= tol` at
+/// any trial; that point is returned. Each iteration evaluates the residual exactly once; `init`
+/// once.
 #[derive(Clone, Debug)]
 pub struct Broyden2 {
     /// Absolute tolerance on `max |r_i|`.

@@ -23,8 +23,7 @@ pub fn hip_reference(s: &StanceSetup, theta1: f64) -> (f64, f64) {
 /// [`hip_reference`] from sin θ1, cos θ1 and the reciprocal of the bounce's denominator
 /// sin θ1^− (start), on the side of mid-stance `terminal` says (each side's formula continues
 /// smoothly past θ1 = 0, so that an integration segment ending there sees its own side's
-/// reference): one
-/// `sin_cos` of πu/2 for the bounce, since 1 + cos πu = 2 cos²(πu/2) and
+/// reference): one `sin_cos` of πu/2 for the bounce, since 1 + cos πu = 2 cos²(πu/2) and
 /// sin πu = 2 sin(πu/2) cos(πu/2).
 #[inline(always)]
 pub(super) fn hip_reference_sc(
