@@ -3,21 +3,21 @@
 //!
 //! - swing1 [0, ½ t_swing]: hip torque A (1 − 1.5 s) and knee torque B s² − d₁ θ̇4, s the
 //!   fraction of swing1 [ours]; end conditions θ3 = θ3*, tibia vertical (θ3 + θ4 = 0, i.e.
-//!   x_ankle = x_knee). Measured over the grid (examples/grid.rs): constant torques whip the
-//!   shank forward late and put the toe 1–3 cm under the ground; a hip push that turns into a
-//!   brake and a knee extension that grows late keep the knee flexed while the foot passes under
-//!   the hip. The knee damper d₁ = 2ζ √(a22 m4 g r4) damps the shank's own pendulum at the servo
-//!   damping ratio ζ (the rectus femoris braking the knee's flexion in initial swing): without
-//!   it the knee, handed over at toe-off flexing at ≈ 6 rad/s, folds freely to 80–84° (norm
-//!   55–65°; docs/realism.md).
-//! - swing2 [½, 0.85 t_swing]: hip servo F_θ3 = −k_h (θ3 − θ3*) − d_h θ̇3; the knee follows a
-//!   linear reference from its swing1-end angle to κ_hs at t2 through a servo
+//!   x_ankle = x_knee). Constant torques whip the shank forward late and put the toe under the
+//!   ground (over the grid of examples/grid.rs); a hip push that turns into a brake and a knee
+//!   extension that grows late keep the knee flexed while the foot passes under the hip. The
+//!   knee damper d₁ = 2ζ √(a22 m4 g r4) damps the shank's own pendulum at the servo damping
+//!   ratio ζ (the rectus femoris braking the knee's flexion in initial swing): without it the
+//!   knee, handed over at toe-off flexing fast, folds freely far past the norm (docs/realism.md).
+//! - swing2 [½, 0.85 t_swing]: hip servo F_θ3 = −k_h (θ3 − θ3*) − d_h θ̇3; the knee follows the
+//!   quadratic reference θ4_ref = θ4(t1) + (κ_hs − θ4(t1)) u², u = (t − t1)/(t2 − t1), from its
+//!   swing1-end angle (at rate 0) to κ_hs at t2, through a servo
 //!   −k_k (θ4 − θ4_ref) − d_k (θ̇4 − θ̇4_ref), plus the unknown constant knee torque C found so
 //!   that θ4 first reaches κ_hs at t2 [ours]; then the knee locks. The knee is still extending at
-//!   t2 (the reference's rate), so the crossing is transversal and the residual monotone in C.
-//!   Measured: a constant or a decaying knee torque alone leaves no such root at slow speeds —
-//!   the knee, handed over extending at ≈ 10 rad/s, either crosses early or turns back before
-//!   t2 (the residual jumps at the tangency).
+//!   t2 (the reference's rate 2 (κ_hs − θ4(t1))/(t2 − t1)), so the crossing is transversal and
+//!   the residual monotone in C. A constant or a decaying knee torque alone leaves no such root
+//!   at slow speeds: the knee, handed over extending fast, either crosses early or turns back
+//!   before t2 (the residual jumps at the tangency).
 //! - swing3 [0.85, 1 t_swing]: knee locked at κ_hs, hip moment D0 + D1 s (s the fraction of
 //!   swing3) such that θ3 = θ3* at heel strike and the heel comes down at the landing velocity
 //!   attribute [ours: the spec asks for a heel velocity ≤ 0 at contact; with one unknown the leg
@@ -136,11 +136,9 @@ pub enum Subphase {
 
 /// How much looser swing2 integrates than the other phases [ours]. Its servos make the leg
 /// stiff — the coupled knee and hip servo have an eigenvalue ≈ −190 /s (default walk) — and
-/// DOP853's step size there is held at h|λ| ≈ 0.8 by accuracy (34 steps of 4.3 ms at 1e-8,
-/// ≈ 38 % of a default walk's right-hand-side evaluations), while the same stiff mode damps
-/// the local errors away: over the grid of `tests/walk.rs` (`examples/evals.rs`), swing2's end
-/// condition, re-integrated at 1e-12, is met to 1.0e-8 at the common tolerance, 1.2e-8 at
-/// 100 times it (18 steps), 1.6e-7 at 1 000 times and 2.2e-6 at 10 000 times.
+/// DOP853's step size there is held at h|λ| ≈ 0.8 by accuracy, while the same stiff mode damps
+/// the local errors away: at 100 times the tolerance swing2's end condition, re-integrated at
+/// 1e-12, is met about as well as at the common tolerance (`examples/evals.rs`).
 pub const SWING2_TOLERANCE_SCALE: f64 = 100.0;
 
 impl Subphase {

@@ -1271,7 +1271,7 @@ impl Step {
         } else {
             let s = ((tau - t1) / (t.t_step - t1)).clamp(0.0, 1.0);
             (
-                self.constraints.ankle * crate::control::stance::smoothstep(s),
+                self.constraints.ankle * crate::numerics::smooth::smoothstep(s),
                 0.0,
             )
         }

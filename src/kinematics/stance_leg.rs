@@ -16,9 +16,9 @@
 //! the forward axis, so the in-plane drop from hip to ankle is √(Δy² + dz²).
 use std::f64::consts::{FRAC_PI_3, TAU};
 
-use crate::control::stance::smoothstep;
 use crate::kinematics::foot::{Foot, FootPoints, bisect};
 use crate::model::body::Body;
+use crate::numerics::smooth::smoothstep;
 use crate::numerics::trig::{atan2, sin_cos};
 
 /// A leg pose: sagittal points (x forward, y up, world heights; the foot in the vertical plane of

@@ -1,5 +1,7 @@
 //! General numerics with no knowledge of walking: the ODE integrator with dense output and
 //! events, bracketed root finding, and fast sine / cosine / arctangent.
+pub mod chebyshev;
 pub mod ode;
 pub mod roots;
+pub mod smooth;
 pub mod trig;

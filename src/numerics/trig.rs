@@ -297,3 +297,33 @@ mod tests {
         assert!(worst <= 1.0, "worst error {worst} ulp");
     }
 }
+
+/// sin x and cos x by their Taylor polynomials to x⁵ and x⁶, for small angles such as the
+/// pelvis's (|x| ≤ 0.2 rad: errors ≤ x⁷/5040 = 2.5e-9 and x⁸/40320 = 6e-11), at a fraction of
+/// the cost of [`sin_cos`].
+pub fn small_sin_cos(x: f64) -> (f64, f64) {
+    let x2 = x * x;
+    (
+        x * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0)),
+        1.0 - x2 / 2.0 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0)),
+    )
+}
+
+#[cfg(test)]
+mod small_angle_tests {
+    use super::*;
+
+    /// The small-angle sine and cosine against libm within their Taylor remainders.
+    #[test]
+    fn small_sin_cos_is_within_its_remainder() {
+        for k in -200..=200 {
+            let x = 0.2 * k as f64 / 200.0;
+            let (s, c) = small_sin_cos(x);
+            assert!(
+                (s - x.sin()).abs() <= x.powi(7).abs() / 5040.0 + 1e-17,
+                "{x}"
+            );
+            assert!((c - x.cos()).abs() <= x.powi(8) / 40320.0 + 1e-16, "{x}");
+        }
+    }
+}
