@@ -22,19 +22,10 @@ use dense::{DenseStep, Stages};
 /// Relative and absolute integrator tolerance. Spec §6 asks for residuals that are smooth in the
 /// unknowns at the level of the shooting tolerance, by rtol = atol ≤ 1e-10 *or* a fixed step
 /// sequence per (sub)phase: the shooting trials follow a frozen mesh ([`integrate_on`]), so the
-/// tolerance is set by accuracy alone. At 1e-8 the converged magnitudes, integrated again at
-/// 1e-12, meet the step's end conditions to ≤ 1.2e-7 over the grid (`examples/evals.rs`; 6.4e-7
-/// at 1e-7, too close to the 1e-6 promise; measured again after the swing1 knee damper and the
-/// start-up guesses: 5.1e-8 stance, 1.3e-8 swing3 at 1e-8; at 1e-7 the swing's net work also
-/// misses its energy balance, `tests/work.rs`, by 8e-4 J against the 7.9e-4 J bound; with
-/// DOP853 and the segments ending at the forces' jumps and kinks: 1.0e-8 stance, 2.0e-8
-/// swing1, 1.8e-8 swing3 over the grid; with the virtual leg's stance reference 1.0e-8, 1.5e-8,
-/// 1.0e-8, and swing3's heel landing velocity 6.3e-6 m/s at one step, down to 3.4e-8 once the
-/// reference no longer kinked at heel strike (`stance::PAST_END`); swing2 runs at 100 times
-/// this, `swing::SWING2_TOLERANCE_SCALE`); docs/engine.md has the table. Now 5e-8: with DOP853
-/// the grid's end conditions re-integrated at 1e-12 are met to 1.0e-8, 3.7e-8, 1.3e-8, 6.9e-8
-/// (stance, swing1–3), 14 times inside the 1e-6 promise, for 15 % fewer evaluations than at
-/// 1e-8 (at 1e-7: 1.6e-7 in swing1 and swing2, 25 % fewer; at 3e-8: 6.0e-8, 10 % fewer).
+/// tolerance is set by accuracy alone, the largest at which the converged magnitudes,
+/// integrated again at 1e-12, still meet the step's end conditions well inside the 1e-6 promise
+/// (docs/engine.md, "Numerics", has the measurements; swing2 runs at 100 times this,
+/// `swing::SWING2_TOLERANCE_SCALE`).
 pub const TOLERANCE: f64 = 5e-8;
 
 /// How precisely event times are located (s).
@@ -194,9 +185,8 @@ pub enum Method {
     Dop853,
 }
 
-/// The method of [`integrate_on`]: at the walk's tolerance 1e-8, DOP853's steps are 3–5 times
-/// Dopri5's (stance 5–25 ms, swing2 2–7 ms), and every phase takes fewer evaluations
-/// (docs/engine.md, "Speed").
+/// The method of [`integrate_on`]: DOP853, whose longer steps take fewer evaluations than
+/// Dopri5's in every phase of the walk (docs/engine.md, "Speed").
 pub const METHOD: Method = Method::Dop853;
 
 /// [`integrate_on`] by `method`.
