@@ -387,9 +387,9 @@ impl StanceLeg {
     /// (w* > l1 at most speeds, spec §7 "known geometric tension"), so the foot comes down as
     /// the hip passes over it. Bisection to 1e-12 rad (the knee is acos of the leg's extension
     /// there, so the bisection's last bits set it), steered by the closed form
-    /// ([`roots::bisect_with_guess`]): the
-    /// ankle turns about the heel, so the angle is the first on (rule, π/3] where that circle
-    /// meets the one of in-plane radius √(l1² − dz²) about the hip.
+    /// ([`roots::bisect_with_guess`]): the ankle turns about the heel, so the angle is the first
+    /// on (rule, π/3] where that circle meets the one of in-plane radius √(l1² − dz²) about the
+    /// hip.
     fn reach_limited_sole(&self, hip: [f64; 2], dz: f64, rule: f64) -> f64 {
         let l1 = self.l3 + self.l4;
         let too_far = |phi: f64| self.too_far(hip, dz, self.rocker_ankle(sin_cos(-phi)));

@@ -128,6 +128,7 @@ fn dopri5_attempt<P: Phase<N, K>, const N: usize, const K: usize>(
 }
 
 /// A DOP853 step from (t, y) with k1 = f(t, y): its stages k2..k12 in `k[1..12]`.
+// the tableau's twelve rows written out, one expression each, in a fixed summation order
 fn dop853_attempt<P: Phase<N, K>, const N: usize, const K: usize>(
     phase: &P,
     t: f64,
