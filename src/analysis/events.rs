@@ -6,6 +6,7 @@ use serde::Serialize;
 
 use crate::engine::walker::{Step, Walk};
 use crate::kinematics::pelvis::Side;
+use crate::numerics::roots;
 
 /// One event.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -20,18 +21,6 @@ pub struct Event {
 }
 
 const TIME_TOLERANCE: f64 = 1e-9;
-
-/// The first time on (a, b] where `holds` becomes true, given it is false at a and true at b.
-fn first(holds: impl Fn(f64) -> bool, mut a: f64, mut b: f64) -> f64 {
-    while b - a > TIME_TOLERANCE {
-        let m = 0.5 * (a + b);
-        if m <= a || m >= b {
-            break; // the doubles around a and b are adjacent (very long walks)
-        }
-        if holds(m) { b = m } else { a = m }
-    }
-    b
-}
 
 /// Foot pitch (heel up +) of the stance foot of `steps[0]` at world time t, through the next
 /// step's double support (`steps[1]`, if any).
@@ -88,25 +77,23 @@ pub fn step_events(steps: &[Step], end: f64) -> Vec<Event> {
     if let Some(fgm) = [t_fgm, stop]
         .into_iter()
         .find(|&t| flat(t))
-        .map(|t| first(flat, t0, t))
+        .map(|t| roots::bisect(flat, t, t0, TIME_TOLERANCE).0)
     {
         push("FGM", fgm);
         // heel-off: the pitch leaves 0; scan in 1 ms steps, then bisect
         let lifted = |t: f64| p(t) > 1e-12;
-        let mut t = fgm;
-        while t < stop {
-            let u = (t + 1e-3).min(stop);
-            if lifted(u) {
-                let heel_off = first(lifted, t, u);
-                push("heel_off", heel_off);
-                let limit = s.stance_leg.theta6_max;
-                let rolled = |t: f64| p(t) >= limit;
-                if rolled(stop) {
-                    push("MOM", first(rolled, heel_off, stop));
-                }
-                break;
+        let ms = std::iter::successors(Some(fgm), |&t| (t < stop).then(|| (t + 1e-3).min(stop)));
+        if let Some(((t, _), (u, _))) = roots::scan(fgm, ms.skip(1), lifted, |&on| on) {
+            let heel_off = roots::bisect(lifted, u, t, TIME_TOLERANCE).0;
+            push("heel_off", heel_off);
+            let limit = s.stance_leg.theta6_max;
+            let rolled = |t: f64| p(t) >= limit;
+            if rolled(stop) {
+                push(
+                    "MOM",
+                    roots::bisect(rolled, stop, heel_off, TIME_TOLERANCE).0,
+                );
             }
-            t = u;
         }
     }
     if let Some(t_off) = t_off {

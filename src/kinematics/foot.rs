@@ -2,6 +2,7 @@
 //! l8, l9, l12, l13), and its two rolling rules (spec §7): about the metatarsal joint M while the
 //! pitch is below the metatarsal limit θ6_max, then about the toe tip T.
 use crate::model::body::Body;
+use crate::numerics::roots;
 use crate::numerics::trig::sin_cos;
 
 /// Rotate a foot-frame vector (x forward, y up, foot flat) by the pitch p (heel up +).
@@ -246,7 +247,8 @@ impl Foot {
 /// heights it compares are monotonic there), so when the guess lies inside the range, the
 /// guess moved [`GUESS_SLACK`] to the good side where `ok` holds and 1e-12 further to the bad
 /// side where it fails is the boundary to 1e-12, in two evaluations of `ok` (the steered
-/// bisection took ≈ 40 halvings to end where bisection alone does); else [`bisect`].
+/// bisection took ≈ 40 halvings to end where bisection alone does); else
+/// [`roots::bisect_with_guess`].
 fn boundary(ok: impl Fn(f64) -> bool, lo: f64, below: bool, guess: f64) -> f64 {
     let hi = std::f64::consts::FRAC_PI_3;
     let (good, bad) = if below { (lo, hi) } else { (hi, lo) };
@@ -256,7 +258,7 @@ fn boundary(ok: impl Fn(f64) -> bool, lo: f64, below: bool, guess: f64) -> f64 {
         if ok(p) && !ok(p + toward_bad * 1e-12) {
             return p;
         }
-        if let Some(p) = steered(&ok, good, bad, guess) {
+        if let Some(p) = roots::bisect_steered(&ok, good, bad, 1e-12, guess, GUESS_SLACK) {
             return p;
         }
     }
@@ -266,62 +268,17 @@ fn boundary(ok: impl Fn(f64) -> bool, lo: f64, below: bool, guess: f64) -> f64 {
     if !ok(good) {
         return good;
     }
-    bisect(ok, good, bad, guess)
+    roots::bisect_with_guess(ok, good, bad, 1e-12, guess, GUESS_SLACK)
 }
 
-/// Within this distance (rad) of a closed-form boundary [`bisect`] evaluates its predicate: the
-/// closed forms are exact to ≈ 1e-15 rad, and 2e-13 rad moves a foot point by ≈ 2e-14 m, still
-/// far more than the round-off of the heights and distances the predicates compare (≈ 1e-17 m).
-/// The bisection stops at 1e-12 rad, so its last midpoints fall within it ≈ 0.3 times a call
-/// (1e-11 before: ≈ 5 evaluations of the predicate a call, two `sin_cos` each). [`boundary`]
-/// returns the guess moved by it to the good side, where the predicate is checked.
-const GUESS_SLACK: f64 = 2e-13;
-
-/// Bisection to 1e-12 rad between `good`, where `ok` holds, and `bad`, where it fails, each
-/// step decided by `ok` (`steer` false) or, when `steer`, by the side of `guess` the midpoint
-/// falls on, and by `ok` only within [`GUESS_SLACK`] of it. Returns the last (good, bad) pair.
-fn halve(ok: impl Fn(f64) -> bool, good: f64, bad: f64, guess: f64, steer: bool) -> (f64, f64) {
-    // the side of the guess `ok` holds on, and the window where `ok` decides (NaN: everywhere)
-    let good_below = good < guess;
-    let (below, above) = if steer {
-        (guess - GUESS_SLACK, guess + GUESS_SLACK)
-    } else {
-        (f64::NAN, f64::NAN)
-    };
-    let (mut good, mut bad) = (good, bad);
-    while (bad - good).abs() > 1e-12 {
-        let m = 0.5 * (good + bad);
-        let holds = if m < below {
-            good_below
-        } else if m > above {
-            !good_below
-        } else {
-            ok(m)
-        };
-        if holds { good = m } else { bad = m }
-    }
-    (good, bad)
-}
-
-/// The steered bisection ([`halve`]) when its ends check (`ok` at the last good point, not at
-/// the last bad one): the end of bisecting `ok` itself when `ok` changes once on the interval.
-fn steered(ok: impl Fn(f64) -> bool, good: f64, bad: f64, guess: f64) -> Option<f64> {
-    if guess.is_nan() {
-        return None;
-    }
-    let (good, bad) = halve(&ok, good, bad, guess, true);
-    (ok(good) && !ok(bad)).then_some(good)
-}
-
-/// Bisection to 1e-12 rad between `good`, where `ok` holds, and `bad`, where it fails; returns
-/// the last good point. Each step is decided by the side of `guess` (the boundary in closed
-/// form) the midpoint falls on, and by `ok` only within [`GUESS_SLACK`] of it: when `ok` changes
-/// once on the interval these are `ok`'s own decisions, so the end is that of bisecting `ok`, at
-/// a few evaluations instead of ≈ 40. The ends are checked (`ok(good)`, not `ok(bad)`): a guess
-/// that is off, or NaN, bisects `ok` itself.
-pub(crate) fn bisect(ok: impl Fn(f64) -> bool, good: f64, bad: f64, guess: f64) -> f64 {
-    steered(&ok, good, bad, guess).unwrap_or_else(|| halve(&ok, good, bad, guess, false).0)
-}
+/// Within this distance (rad) of a closed-form boundary [`roots::bisect_steered`] evaluates its
+/// predicate: the closed forms are exact to ≈ 1e-15 rad, and 2e-13 rad moves a foot point by
+/// ≈ 2e-14 m, still far more than the round-off of the heights and distances the predicates
+/// compare (≈ 1e-17 m). The bisection stops at 1e-12 rad, so its last midpoints fall within it
+/// ≈ 0.3 times a call (1e-11 before: ≈ 5 evaluations of the predicate a call, two `sin_cos`
+/// each). [`boundary`] returns the guess moved by it to the good side, where the predicate is
+/// checked.
+pub(crate) const GUESS_SLACK: f64 = 2e-13;
 
 #[cfg(test)]
 mod tests {
@@ -399,7 +356,7 @@ mod tests {
             let ankle_y = 0.02 + 0.0005 * i as f64;
             let heel_ok = |p: f64| ankle_y + pitch([-f.l8, -f.l9], p)[1] >= 0.0;
             if !heel_ok(lo_min) && heel_ok(hi) {
-                let plain = bisect(heel_ok, hi, lo_min, f64::NAN);
+                let plain = roots::bisect(heel_ok, hi, lo_min, 1e-12).0;
                 assert!((f.min_pitch_closed_form(ankle_y) - plain).abs() < 1e-12);
                 let p = f.min_pitch(ankle_y);
                 assert!((p - plain).abs() <= 1e-12 && heel_ok(p) && !heel_ok(p - 1e-12));
@@ -411,7 +368,7 @@ mod tests {
                     let ok =
                         |p: f64| meta(p).min(meta(p) + pitch([f.l13, 0.0], p - theta6)[1]) >= floor;
                     if ok(lo_max) && !ok(hi) {
-                        let plain = bisect(ok, lo_max, hi, f64::NAN);
+                        let plain = roots::bisect(ok, lo_max, hi, 1e-12).0;
                         let closed = f.max_pitch_closed_form(ankle_y, theta6, floor);
                         assert!((closed - plain).abs() < 1e-12, "{ankle_y} {theta6} {floor}");
                         let p = f.max_pitch(ankle_y, theta6, floor);
@@ -440,27 +397,8 @@ mod tests {
         } else if !ok(good) {
             good
         } else {
-            bisect(ok, good, bad, f64::NAN)
+            roots::bisect(ok, good, bad, 1e-12).0
         }
-    }
-
-    /// Steered by an exact guess, the bisection evaluates its predicate a few times only and
-    /// ends where bisecting the predicate does; a wrong guess still ends there.
-    #[test]
-    fn steered_bisection_is_the_bisection() {
-        let boundary = 0.123_456_789_012_345_6;
-        let evaluations = std::cell::Cell::new(0);
-        let ok = |p: f64| {
-            evaluations.set(evaluations.get() + 1);
-            p <= boundary
-        };
-        let plain = bisect(ok, -1.0, 1.0, f64::NAN);
-        assert!(evaluations.get() > 40);
-        evaluations.set(0);
-        assert_eq!(bisect(ok, -1.0, 1.0, boundary + 1e-15), plain);
-        assert!(evaluations.get() < 10, "{}", evaluations.get());
-        assert_eq!(bisect(ok, -1.0, 1.0, 0.5), plain);
-        assert_eq!(bisect(ok, -1.0, 1.0, -3.0), plain);
     }
 
     /// The foot's constants are their expressions, and the asin without libm's domain error is

@@ -16,8 +16,9 @@
 //! the forward axis, so the in-plane drop from hip to ankle is √(Δy² + dz²).
 use std::f64::consts::{FRAC_PI_3, TAU};
 
-use crate::kinematics::foot::{Foot, FootPoints, bisect};
+use crate::kinematics::foot::{Foot, FootPoints, GUESS_SLACK};
 use crate::model::body::Body;
+use crate::numerics::roots;
 use crate::numerics::smooth::smoothstep;
 use crate::numerics::trig::{atan2, sin_cos};
 
@@ -385,9 +386,10 @@ impl StanceLeg {
     /// can [ours]: the telescopic leg is longer than the anatomical one just after heel strike
     /// (w* > l1 at most speeds, spec §7 "known geometric tension"), so the foot comes down as
     /// the hip passes over it. Bisection to 1e-12 rad (the knee is acos of the leg's extension
-    /// there, so the bisection's last bits set it), steered by the closed form ([`bisect`]): the
-    /// ankle turns about the heel, so the angle is the first on (rule, π/3] where that circle
-    /// meets the one of in-plane radius √(l1² − dz²) about the hip.
+    /// there, so the bisection's last bits set it), steered by the closed form
+    /// ([`roots::bisect_with_guess`]): the ankle turns about the heel, so the angle is the first
+    /// on (rule, π/3] where that circle meets the one of in-plane radius √(l1² − dz²) about the
+    /// hip.
     fn reach_limited_sole(&self, hip: [f64; 2], dz: f64, rule: f64) -> f64 {
         let l1 = self.l3 + self.l4;
         let too_far = |phi: f64| self.too_far(hip, dz, self.rocker_ankle(sin_cos(-phi)));
@@ -404,7 +406,14 @@ impl StanceLeg {
             .pitches_at(hip, (l1 * l1 - dz * dz).sqrt())
             .and_then(|roots| first_in(roots.map(|p| -p), rule, FRAC_PI_3))
             .unwrap_or(f64::NAN);
-        bisect(|phi| !too_far(phi), FRAC_PI_3, rule, guess)
+        roots::bisect_with_guess(
+            |phi| !too_far(phi),
+            FRAC_PI_3,
+            rule,
+            1e-12,
+            guess,
+            GUESS_SLACK,
+        )
     }
 
     /// The rolling foot's pose for knee flexion κ: the pitch solves |hip − ankle(p)| = a(κ), in
@@ -527,22 +536,15 @@ impl StanceLeg {
         // a scan every ≈ 20 ms (the trigger, once on, stays on until toe-off), then the Illinois
         // method to 1e-9 s (the hip moves ≤ 3e-9 m; bisection took 25 poses, this ≈ 6)
         const SCAN: usize = 24;
-        let (mut lo, mut g_lo) = (t_from, None);
-        let mut found = None;
-        for k in 1..=SCAN {
-            let t = t_from + (t_to - t_from) * k as f64 / SCAN as f64;
-            let g = past(t)?;
-            if g >= 0.0 {
-                found = Some((t, g));
-                break;
-            }
-            (lo, g_lo) = (t, Some(g));
-        }
-        let Some(hi) = found else {
+        let points = (1..=SCAN).map(|k| t_from + (t_to - t_from) * k as f64 / SCAN as f64);
+        // (an error ends the scan as the trigger does, and is returned)
+        let on = |g: &Result<f64, String>| g.as_ref().map_or(true, |&g| g >= 0.0);
+        let Some(((lo, g_lo), (t, g))) = roots::scan(t_from, points, past, on) else {
             return Ok(());
         };
+        let hi = (t, g?);
         let g_lo = match g_lo {
-            Some(g) => g,
+            Some(g) => g?,
             None => past(lo)?,
         };
         // on at foot flat already: heel-off there (else the last time it is off; far into a long
@@ -557,7 +559,7 @@ impl StanceLeg {
                     f64::NAN
                 })
             };
-            let (t0, _) = crate::numerics::roots::illinois(sign, (lo, g_lo), hi, 1e-9, 60);
+            let (t0, _) = roots::illinois(sign, (lo, g_lo), hi, 1e-9, 60);
             if let Some(e) = error.into_inner() {
                 return Err(e);
             }

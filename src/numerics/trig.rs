@@ -1,8 +1,8 @@
-//! sin and cos together for the right-hand sides: libm's `sincos` costs ≈ 110 instructions a
-//! call and was a third of a walk's instructions. Here: Cody–Waite reduction by π/2 and the
-//! minimax polynomials of fdlibm's `__kernel_sin` / `__kernel_cos` (Sun Microsystems 1993, as in
-//! FreeBSD msun and musl; error < 2⁻⁵⁸ on [−π/4, π/4]), ≈ 40 instructions, within 1 ulp of libm
-//! (test below). Also `atan2` (fdlibm's, below).
+//! sin and cos together for the right-hand sides, a fraction of libm's `sincos` cost
+//! (docs/engine.md, "Numerics"): Cody–Waite reduction by π/2 and the minimax polynomials of
+//! fdlibm's `__kernel_sin` / `__kernel_cos` (Sun Microsystems 1993, as in FreeBSD msun and musl;
+//! error < 2⁻⁵⁸ on [−π/4, π/4]), within 1 ulp of libm (test below). Also `atan2` (fdlibm's,
+//! below).
 // the constants are fdlibm's decimal spellings of the exact doubles, digit for digit
 #![allow(clippy::excessive_precision)]
 use std::f64::consts::FRAC_2_PI;
@@ -133,9 +133,9 @@ fn atan_positive(t: f64) -> f64 {
     }
 }
 
-/// atan2(y, x): libm's costs ≈ 120 instructions a call and was a sixth of the frames' (the
-/// clinical angles' Euler decompositions). Here fdlibm's `__ieee754_atan2` (e_atan2.c): atan of
-/// |y / x|, then the quadrant; within 1 ulp of libm (test below; the kernel's error is < 1 ulp,
+/// atan2(y, x) for the clinical angles' Euler decompositions, cheaper than libm's
+/// (docs/engine.md, "Numerics"): fdlibm's `__ieee754_atan2` (e_atan2.c), atan of |y / x|, then
+/// the quadrant; within 1 ulp of libm (test below; the kernel's error is < 1 ulp,
 /// the division's rounding adds up to ½ ulp of the quotient). A zero quotient (y = ±0, or x
 /// infinite) takes the same path and gives libm's ±0 and ±π; only when |y / x| is not finite —
 /// x = ±0, y infinite, or a NaN — libm's `atan2` answers (its ±π/2 and NaN conventions).
