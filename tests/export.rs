@@ -15,7 +15,7 @@ use std::path::Path;
 use glam::{DMat3, DVec3};
 use klaw::error::Error;
 use klaw::export::{self, Format, OpenSimModel, Options, bvh};
-use klaw::figure::skeleton::{self, Clinical};
+use klaw::figure::clinical::{self, Clinical};
 use klaw::figure::{ArmAngles, Landmarks, LegPoints};
 use klaw::model::body::Body;
 use proptest::prelude::*;
@@ -404,7 +404,7 @@ proptest! {
     fn clinical_angles_round_trip(p in pose_q()) {
         let b = body();
         let (lm, _) = figure(&p, &b);
-        let c = skeleton::clinical(&lm, &b).unwrap();
+        let c = clinical::clinical(&lm, &b).unwrap();
         check_clinical(&c, &p, 1e-9);
     }
 
@@ -930,7 +930,7 @@ fn cycle_csv_has_101_rows_from_right_heel_strike() {
     let frames = walk(100.0, 3.05);
     let clinical: Vec<Clinical> = frames
         .iter()
-        .map(|(_, lm)| skeleton::clinical(lm, &b).unwrap())
+        .map(|(_, lm)| clinical::clinical(lm, &b).unwrap())
         .collect();
     let curves = export::cycle_average(&clinical, &[0.0, 1.0, 2.0, 3.0], 1).unwrap();
     assert_eq!(curves.cycles, 2);

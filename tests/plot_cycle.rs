@@ -6,7 +6,8 @@ use std::fs;
 use std::path::Path;
 
 use klaw::engine::walker::simulate;
-use klaw::figure::skeleton::{Clinical, Side};
+use klaw::figure::clinical::Clinical;
+use klaw::figure::skeleton::Side;
 use klaw::plot::cycle::{
     BAND_COLOR, CYCLE_FIGURE_SIZE, Curve, EXCURSION_BAND_COLOR, GaitCycle, Measure, NormTable,
     Panel, check, write_cycle_figure,

@@ -10,14 +10,13 @@
 //! cycles, sample by sample.
 use std::path::Path;
 
-use super::angle_columns;
 use crate::error::{Error, Result};
-use crate::figure::skeleton::Clinical;
+use crate::figure::clinical::{Clinical, angle_columns};
 
 /// Cycle-normalized curves: 101 rows (0…100 %) of the column values.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CycleCurves {
-    /// Column names (from [`super::angle_columns`] for [`cycle_average`]).
+    /// Column names (from [`angle_columns`] for [`cycle_average`]).
     pub columns: Vec<String>,
     /// rows[p][k]: column k at p % of the cycle (rad for angles).
     pub rows: Vec<Vec<f64>>,
@@ -111,7 +110,7 @@ pub fn average_cycles(
     Ok(rows)
 }
 
-/// The clinical angles of [`super::angle_columns`] averaged over the steady-state cycles.
+/// The clinical angles of [`angle_columns`] averaged over the steady-state cycles.
 pub fn cycle_average(
     frames: &[Clinical],
     right_heel_strikes: &[f64],

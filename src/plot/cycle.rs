@@ -21,7 +21,8 @@ use serde::Deserialize;
 use crate::engine::walker::Walk;
 use crate::error::{Error, Result};
 use crate::export::{CycleCurves, average_cycles, cycle_average};
-use crate::figure::skeleton::{self, Clinical, Side};
+use crate::figure::clinical::{self, Clinical};
+use crate::figure::skeleton::Side;
 use crate::model::body::Body;
 use crate::plan::gait::Gait;
 use crate::plot::{self, Drawn, FONT, FigureFormat, TITLE_SIZE, msg};
@@ -115,7 +116,7 @@ impl Panel {
         )
     }
 
-    /// The column of [`crate::export::angle_columns`] the curve is read from (none for height).
+    /// The column of [`crate::figure::clinical::angle_columns`] the curve is read from (none for height).
     fn column(self, side: Side) -> Option<String> {
         let s = side.suffix();
         match self {
@@ -319,7 +320,7 @@ impl GaitCycle {
     /// complete steady cycle of a leg ([`Error::Export`]: walk more steps).
     pub fn from_walk(walk: &Walk) -> Result<GaitCycle> {
         let frames = crate::figure::frames(walk, CYCLE_FPS)
-            .map(|lm| lm.and_then(|lm| skeleton::clinical(&lm, &walk.body)))
+            .map(|lm| lm.and_then(|lm| clinical::clinical(&lm, &walk.body)))
             .collect::<Result<Vec<Clinical>>>()?;
         let strikes = |parity: usize| -> Vec<f64> {
             walk.steps

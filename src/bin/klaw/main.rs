@@ -794,7 +794,7 @@ fn bench(args: &BenchArgs) -> Result<()> {
             let start = Instant::now();
             for lm in klaw::figure::frames(&walk, fps) {
                 let lm = lm?;
-                std::hint::black_box(klaw::figure::skeleton::clinical(&lm, &body)?);
+                std::hint::black_box(klaw::figure::clinical::clinical(&lm, &body)?);
                 frame_count += 1;
             }
             frames_wall += start.elapsed().as_secs_f64();
