@@ -16,7 +16,7 @@ use std::io::{self, BufWriter, Seek, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
-pub use cycle::{CycleCurves, average_cycles, cycle_average, write_cycle_csv};
+pub use cycle::write_cycle_csv;
 pub use opensim::OpenSimModel;
 
 use crate::error::{Error, Result};
