@@ -33,7 +33,7 @@ pub const CYCLE_SKIP: usize = 1;
 pub struct CycleCurves {
     /// Column names (from [`angle_columns`] for [`cycle_average`]).
     pub columns: Vec<String>,
-    /// rows[p][k]: column k at p % of the cycle (rad for angles).
+    /// `rows[p][k]`: column k at p % of the cycle (rad for angles).
     pub rows: Vec<Vec<f64>>,
     /// How many cycles were averaged.
     pub cycles: usize,

@@ -48,7 +48,7 @@ pub struct LegAngles {
 /// One arm's joints.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct ArmJoints {
-    /// adduction = −abduction of [`ArmAngles`].
+    /// adduction = −abduction of [`crate::figure::ArmAngles`].
     pub shoulder: Joint3,
     pub elbow: Joint3,
 }
@@ -151,7 +151,7 @@ fn joint3([a, b, c]: [f64; 3], side: f64, flexion_sign: f64) -> Joint3 {
 /// The clinical angles of one frame: those of [`Skeleton::new`] then [`Skeleton::clinical`]
 /// (the same errors, the same angles to round-off), without the frames the angles are read back
 /// from: the pelvis, lumbar and arm angles are the landmarks' own (the frames are built from
-/// them, [`zxy_round_trip`]), and no arm is placed (the angles do not depend on `_body`).
+/// them, and [`crate::figure::euler`]'s round trips return them), and no arm is placed (the angles do not depend on `_body`).
 pub fn clinical(lm: &Landmarks, _body: &Body) -> Result<Clinical> {
     let trunk = Trunk::new(lm)?;
     let right = leg_frames(&lm.right, Side::Right, trunk.time)?;

@@ -1,9 +1,8 @@
-//! The gait-cycle figure (`klaw plot`, issue item 9): the curves of a
-//! [`GaitCycle`](crate::analysis::cycle::GaitCycle) — hip flexion, knee flexion, ankle
-//! dorsiflexion, pelvic list, pelvic rotation and pelvis height against 0–100 % of the gait
-//! cycle, averaged over the steady cycles — with the published normal ranges of
-//! [`crate::analysis::norms`] shaded over their cycle windows and each panel's norm checks noted
-//! above its curves. Each leg's curves start at its own heel strike (the phase of
+//! The gait-cycle figure (`klaw plot`, issue item 9): the curves of a [`GaitCycle`] — hip
+//! flexion, knee flexion, ankle dorsiflexion, pelvic list, pelvic rotation and pelvis height
+//! against 0–100 % of the gait cycle, averaged over the steady cycles — with the published
+//! normal ranges of [`crate::analysis::norms`] shaded over their cycle windows and each panel's
+//! norm checks noted above its curves. Each leg's curves start at its own heel strike (the phase of
 //! [`crate::analysis::cycle`]); right solid, left dashed.
 //!
 //! PNG or SVG by the extension, 1500 × 1000 px, written whole or not at all; text needs the font
