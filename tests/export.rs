@@ -13,9 +13,10 @@ use std::fs;
 use std::path::Path;
 
 use glam::{DMat3, DVec3};
+use klaw::analysis::cycle;
 use klaw::error::Error;
 use klaw::export::{self, Format, OpenSimModel, Options, bvh};
-use klaw::figure::skeleton::{self, Clinical};
+use klaw::figure::clinical::{self, Clinical};
 use klaw::figure::{ArmAngles, Landmarks, LegPoints};
 use klaw::model::body::Body;
 use proptest::prelude::*;
@@ -398,13 +399,13 @@ fn pose_q() -> impl Strategy<Value = Pose> {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(200))]
 
-    /// angles → this file's forward kinematics → landmarks → `skeleton::clinical` → the same
+    /// angles → this file's forward kinematics → landmarks → `clinical::clinical` → the same
     /// angles.
     #[test]
     fn clinical_angles_round_trip(p in pose_q()) {
         let b = body();
         let (lm, _) = figure(&p, &b);
-        let c = skeleton::clinical(&lm, &b).unwrap();
+        let c = clinical::clinical(&lm, &b).unwrap();
         check_clinical(&c, &p, 1e-9);
     }
 
@@ -900,7 +901,7 @@ fn cycle_average_recovers_an_analytic_periodic_signal() {
         .iter()
         .map(|&t| vec![signal(t), 2.0 * signal(t)])
         .collect();
-    let rows = export::average_cycles(&times, &values, &strikes, 1).unwrap();
+    let rows = cycle::average_cycles(&times, &values, &strikes, 1).unwrap();
     assert_eq!(rows.len(), 101);
     for (p, row) in rows.iter().enumerate() {
         let want = shape(p as f64 / 100.0);
@@ -908,20 +909,20 @@ fn cycle_average_recovers_an_analytic_periodic_signal() {
         assert!((row[1] - 2.0 * want).abs() < 4e-3);
     }
     // without skipping, the start-up cycle's amplitude of 6 shows (mean 2): the skip removes it
-    let all = export::average_cycles(&times, &values, &strikes, 0).unwrap();
+    let all = cycle::average_cycles(&times, &values, &strikes, 0).unwrap();
     assert!(
         (all[25][0] - shaped(2.0, 0.25)).abs() < 1e-2,
         "{}",
         all[25][0]
     );
     // one cycle, skipped: nothing left
-    let e = export::average_cycles(&times, &values, &strikes[..2], 1).unwrap_err();
+    let e = cycle::average_cycles(&times, &values, &strikes[..2], 1).unwrap_err();
     assert!(
         matches!(e, Error::Export { .. }) && e.to_string().contains("steady"),
         "{e}"
     );
     // strikes out of order
-    assert!(export::average_cycles(&times, &values, &[1.0, 0.5, 2.0], 0).is_err());
+    assert!(cycle::average_cycles(&times, &values, &[1.0, 0.5, 2.0], 0).is_err());
 }
 
 #[test]
@@ -930,9 +931,9 @@ fn cycle_csv_has_101_rows_from_right_heel_strike() {
     let frames = walk(100.0, 3.05);
     let clinical: Vec<Clinical> = frames
         .iter()
-        .map(|(_, lm)| skeleton::clinical(lm, &b).unwrap())
+        .map(|(_, lm)| clinical::clinical(lm, &b).unwrap())
         .collect();
-    let curves = export::cycle_average(&clinical, &[0.0, 1.0, 2.0, 3.0], 1).unwrap();
+    let curves = cycle::cycle_average(&clinical, &[0.0, 1.0, 2.0, 3.0], 1).unwrap();
     assert_eq!(curves.cycles, 2);
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("cycle.csv");

@@ -396,15 +396,16 @@ fn closed_form_foot_pitches_match_the_numeric_solvers() {
     assert!(rolling > 1000 && limited > 100, "{rolling} {limited}");
 }
 
-/// `skeleton::clinical` (angles of the trunk and arms taken from the landmarks) agrees with the
+/// `clinical::clinical` (angles of the trunk and arms taken from the landmarks) agrees with the
 /// angles decomposed from the segment frames, `Skeleton::new(..).clinical(..)`, to round-off on
 /// real walks' frames, also with trunk and arm angles beyond the range where the decomposition
 /// returns them, and fails with the same error on the same non-finite field.
 #[test]
 fn clinical_angles_match_the_decomposed_frames() {
-    use klaw::figure::skeleton::{Clinical, Skeleton, clinical};
+    use klaw::figure::clinical::{Clinical, clinical};
+    use klaw::figure::skeleton::Skeleton;
     let flat = |c: &Clinical| {
-        let j = |j: &klaw::figure::skeleton::Joint3| [j.flexion, j.adduction, j.rotation];
+        let j = |j: &klaw::figure::clinical::Joint3| [j.flexion, j.adduction, j.rotation];
         let mut v = vec![
             c.time,
             c.pelvis_tilt,

@@ -6,7 +6,7 @@ use std::process::{Command, Output};
 
 use klaw::engine::report::Frame;
 use klaw::engine::walker::simulate;
-use klaw::plot::{FIGURE_SIZE, walk_figure};
+use klaw::plot::walk::{FIGURE_SIZE, walk_figure};
 use klaw::{AttributeTable, Body, Error, GaitRequest};
 
 /// The frames of the default walk (H = 1.8 m, M = 80 kg, v = 1.4 m/s), 4 steps at 100 frames/s.

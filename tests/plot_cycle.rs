@@ -5,12 +5,12 @@ use std::f64::consts::PI;
 use std::fs;
 use std::path::Path;
 
+use klaw::analysis::cycle::{Curve, GaitCycle, Panel};
+use klaw::analysis::norms::{Measure, NormTable, check};
 use klaw::engine::walker::simulate;
-use klaw::figure::skeleton::{Clinical, Side};
-use klaw::plot::cycle::{
-    BAND_COLOR, CYCLE_FIGURE_SIZE, Curve, EXCURSION_BAND_COLOR, GaitCycle, Measure, NormTable,
-    Panel, check, write_cycle_figure,
-};
+use klaw::figure::clinical::Clinical;
+use klaw::figure::skeleton::Side;
+use klaw::plot::cycle::{BAND_COLOR, CYCLE_FIGURE_SIZE, EXCURSION_BAND_COLOR, write_cycle_figure};
 use klaw::{AttributeTable, Body, Error, GaitRequest};
 
 /// A cycle whose curves are given functions of the cycle % (101 samples).
@@ -48,7 +48,7 @@ fn flat() -> GaitCycle {
     })
 }
 
-fn norm<'a>(t: &'a NormTable, name: &str) -> &'a klaw::plot::cycle::Norm {
+fn norm<'a>(t: &'a NormTable, name: &str) -> &'a klaw::analysis::norms::Norm {
     t.norms
         .iter()
         .find(|n| n.name == name)

@@ -11,10 +11,11 @@
 //!   mid-stance (knee held near straight, heel rising about the metatarsal joint, spec §7), but
 //!   the plan's heel-strike height leaves the trailing ankle at ≥ 17–19° for any human knee
 //!   ([`the_plan_heel_strike_leaves_the_trailing_ankle_above_its_norm`], docs/realism.md).
+use klaw::analysis::cycle::cycle_average;
 use klaw::engine::walker as walk;
-use klaw::export::{angle_columns, cycle_average};
+use klaw::figure::clinical::angle_columns;
+use klaw::figure::clinical::clinical;
 use klaw::figure::frames;
-use klaw::figure::skeleton::clinical;
 use klaw::{Attributes, Body, Gait, GaitRequest};
 
 struct Cycle {

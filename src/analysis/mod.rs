@@ -1,2 +1,16 @@
-//! Analysis of a walk's motion: gait events.
+//! Analysis of a walk's motion: gait events, gait-cycle averaging and the check of the averaged
+//! cycle against published norms.
+pub mod cycle;
 pub mod events;
+pub mod norms;
+
+/// Smallest and largest finite value, if any.
+pub fn extent(values: impl IntoIterator<Item = f64>) -> Option<(f64, f64)> {
+    values
+        .into_iter()
+        .filter(|v| v.is_finite())
+        .fold(None, |acc, v| match acc {
+            None => Some((v, v)),
+            Some((lo, hi)) => Some((lo.min(v), hi.max(v))),
+        })
+}

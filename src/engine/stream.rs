@@ -7,7 +7,7 @@ use crate::analysis::events::{Event, step_events};
 use crate::engine::report::{Frame, StepReport};
 use crate::engine::walker::{Step, Walker};
 use crate::error::Result;
-use crate::figure::skeleton::{Clinical, clinical};
+use crate::figure::clinical::{Clinical, clinical};
 use crate::figure::{Landmarks, landmarks};
 use crate::model::attributes::Attributes;
 use crate::model::body::Body;

@@ -26,7 +26,8 @@ use glam::{DMat3, DVec3};
 
 use super::{FrameData, RowError, RowWriter};
 use crate::error::{Error, Result};
-use crate::figure::skeleton::{LENGTH_TOLERANCE, Side, Skeleton, yxz_angles, zxy_angles};
+use crate::figure::euler::{yxz_angles, zxy_angles};
+use crate::figure::skeleton::{LENGTH_TOLERANCE, Side, Skeleton};
 use crate::model::body::Body;
 
 /// A klaw world vector (x forward, y up, z right) in BVH axes (X left, Y up, Z forward).

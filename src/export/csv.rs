@@ -1,9 +1,10 @@
 //! The clinical-angle CSV (issue item 7): one row per frame, `time_s`, `step`, the pelvis centre
-//! `pelvis_tx_m`, `pelvis_ty_m`, `pelvis_tz_m` (world frame, m), then [`super::angle_columns`]
+//! `pelvis_tx_m`, `pelvis_ty_m`, `pelvis_tz_m` (world frame, m), then [`angle_columns`]
 //! in degrees as `*_deg`. Numbers in their shortest round-trip form.
 use std::io::{self, Write};
 
-use super::{AngleColumn, FrameData, RowError, RowWriter, angle_columns};
+use super::{FrameData, RowError, RowWriter};
+use crate::figure::clinical::{AngleColumn, angle_columns};
 
 /// The frame CSV writer.
 pub(crate) struct FrameCsv {

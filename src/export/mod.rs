@@ -16,12 +16,13 @@ use std::io::{self, BufWriter, Seek, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
-pub use cycle::{CycleCurves, average_cycles, cycle_average, write_cycle_csv};
+pub use cycle::write_cycle_csv;
 pub use opensim::OpenSimModel;
 
 use crate::error::{Error, Result};
 use crate::figure::Landmarks;
-use crate::figure::skeleton::{Clinical, Side, Skeleton};
+use crate::figure::clinical::Clinical;
+use crate::figure::skeleton::Skeleton;
 use crate::model::body::Body;
 
 /// The export file formats, chosen by the file extension.
@@ -261,65 +262,4 @@ where
         io::copy(&mut file, out)?;
         Ok(())
     })
-}
-
-/// A named clinical angle (rad) of a frame.
-pub struct AngleColumn {
-    /// Column name without unit suffix, e.g. `hip_flexion_r`.
-    pub name: String,
-    pub get: Box<dyn Fn(&Clinical) -> f64 + Send + Sync>,
-}
-
-/// The clinical angle columns of the CSV exports, in order: pelvis tilt / list / rotation, lumbar
-/// extension / bending / rotation, then per side (`_r`, then `_l`) hip flexion / adduction /
-/// rotation, knee flexion, ankle dorsiflexion, mtp dorsiflexion, shoulder flexion / abduction,
-/// elbow flexion. Signs as in [`Clinical`]; shoulder abduction is + away from the body.
-pub fn angle_columns() -> Vec<AngleColumn> {
-    fn col(name: &str, get: impl Fn(&Clinical) -> f64 + Send + Sync + 'static) -> AngleColumn {
-        AngleColumn {
-            name: name.to_string(),
-            get: Box::new(get),
-        }
-    }
-    let mut cols = vec![
-        col("pelvis_tilt", |c| c.pelvis_tilt),
-        col("pelvis_list", |c| c.pelvis_list),
-        col("pelvis_rotation", |c| c.pelvis_rotation),
-        col("lumbar_extension", |c| c.lumbar_extension),
-        col("lumbar_bending", |c| c.lumbar_bending),
-        col("lumbar_rotation", |c| c.lumbar_rotation),
-    ];
-    for side in [Side::Right, Side::Left] {
-        let s = side.suffix();
-        cols.extend([
-            col(&format!("hip_flexion_{s}"), move |c| {
-                c.leg(side).hip.flexion
-            }),
-            col(&format!("hip_adduction_{s}"), move |c| {
-                c.leg(side).hip.adduction
-            }),
-            col(&format!("hip_rotation_{s}"), move |c| {
-                c.leg(side).hip.rotation
-            }),
-            col(&format!("knee_flexion_{s}"), move |c| {
-                c.leg(side).knee.flexion
-            }),
-            col(&format!("ankle_dorsiflexion_{s}"), move |c| {
-                c.leg(side).ankle.flexion
-            }),
-            col(&format!("mtp_dorsiflexion_{s}"), move |c| {
-                c.leg(side).mtp.flexion
-            }),
-            col(&format!("shoulder_flexion_{s}"), move |c| {
-                c.arm(side).shoulder.flexion
-            }),
-            col(&format!("shoulder_abduction_{s}"), move |c| {
-                -c.arm(side).shoulder.adduction
-            }),
-            col(&format!("elbow_flexion_{s}"), move |c| {
-                c.arm(side).elbow.flexion
-            }),
-        ]);
-    }
-    cols
 }

@@ -32,7 +32,9 @@ use std::io::{self, Write};
 use glam::DVec3;
 
 use super::{FrameData, RowError, RowWriter};
-use crate::figure::skeleton::{Clinical, Side, Skeleton, zxy_angles};
+use crate::figure::clinical::Clinical;
+use crate::figure::euler::zxy_angles;
+use crate::figure::skeleton::{Side, Skeleton};
 use crate::model::body::Body;
 
 /// The OpenSim model whose coordinates a `.mot` / `.sto` file holds.

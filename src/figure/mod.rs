@@ -1,5 +1,8 @@
 //! The whole figure around the dynamic model (KLAW 1989 §4.2, spec §7): the figure's landmarks
-//! at one instant and the exported skeleton with its clinical joint angles.
+//! at one instant, the segment frames of the exported skeleton, the Euler sequences of its joints
+//! and its clinical joint angles.
+pub mod clinical;
+pub mod euler;
 pub mod landmarks;
 pub mod skeleton;
 

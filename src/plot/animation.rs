@@ -21,7 +21,6 @@ use std::io::Read;
 use std::path::Path;
 
 use plotters::coord::Shift;
-use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
 use crate::engine::walker::Walk;
@@ -29,7 +28,7 @@ use crate::error::{Error, Result};
 use crate::figure::skeleton::Skeleton;
 use crate::figure::{Landmarks, LegPoints};
 use crate::model::body::Body;
-use crate::plot::{self, FONT, msg};
+use crate::plot::{self, Chart, FONT, LEFT_COLOR, RIGHT_COLOR, msg};
 
 /// A foot point this close to the ground (m) is drawn as a contact.
 pub const CONTACT_TOLERANCE_M: f64 = 1e-3;
@@ -45,10 +44,6 @@ pub const HEIGHT_RANGE: (u32, u32) = (100, 4000);
 pub const MAX_FRAMES: usize = 20_000;
 /// Colour of the contact dots.
 pub const CONTACT_COLOR: RGBColor = RGBColor(0, 0, 0);
-/// The right side's segments.
-pub const RIGHT_COLOR: RGBColor = RGBColor(31, 119, 180);
-/// The left side's segments.
-pub const LEFT_COLOR: RGBColor = RGBColor(214, 39, 40);
 /// Pelvis, spine, shoulders, neck and head.
 pub const TRUNK_COLOR: RGBColor = RGBColor(95, 95, 95);
 const GROUND_COLOR: RGBColor = RGBColor(140, 140, 140);
@@ -172,7 +167,7 @@ pub struct Summary {
 }
 
 /// Animate `walk`: its figure at `options.fps` ([`crate::figure::frames`]), then [`write_gif`].
-/// `title` names the walk (e.g. [`crate::plot::cycle::parameters_title`]).
+/// `title` names the walk (e.g. [`crate::plot::parameters_title`]).
 pub fn animate_walk(walk: &Walk, title: &str, path: &Path, options: &Options) -> Result<Summary> {
     check_path(path)?;
     let expected = walk.duration() * options.fps + 1.0;
@@ -253,8 +248,6 @@ fn gif_is_complete(path: &Path) -> std::io::Result<bool> {
     std::fs::File::open(path)?.read_to_end(&mut bytes)?;
     Ok(bytes.starts_with(b"GIF8") && bytes.last() == Some(&0x3B))
 }
-
-type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
 /// A view's chart over `area` with one scale on both axes: vertical range [v_lo, v_hi], the
 /// horizontal range centred on `u_mid`.
@@ -379,6 +372,8 @@ fn contacts(lm: &Landmarks) -> Vec<[f64; 3]> {
         .collect()
 }
 
+/// One GIF frame: the side view (two thirds of the width) and the front view, each with its
+/// lines of text above the figure.
 fn draw_frame<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     lm: &Landmarks,
@@ -395,30 +390,12 @@ fn draw_frame<DB: DrawingBackend>(
     // the text, wrapped to each view's width, in the room above the figure
     let font_px = (h / 30).clamp(12, 16) as i32;
     let style = (FONT, font_px).into_font().color(&BLACK);
-    let line_px = font_px + 4;
     let (side_lines, front_lines) = if text {
-        let stance = if lm.step.is_multiple_of(2) {
-            "right"
-        } else {
-            "left"
-        };
-        let side = [
-            format!("side view: {title}"),
-            format!(
-                "t = {:.2} s, step {} ({stance} stance); dots: feet on the ground",
-                lm.time,
-                lm.step + 1
-            ),
-        ];
-        let front = ["front view: walker's right on the left".to_string()];
-        let width = |px: u32| px.saturating_sub(2 * MARGIN + 12);
-        (
-            wrap(root, &side, width(side_w), &style)?,
-            wrap(root, &front, width(w - side_w), &style)?,
-        )
+        frame_text(root, lm, title, (side_w, w), &style)?
     } else {
         (Vec::new(), Vec::new())
     };
+    let line_px = font_px + 4;
     let text_px = match side_lines.len().max(front_lines.len()) {
         0 => 0.0,
         n => f64::from(n as i32 * line_px + 8),
@@ -431,83 +408,144 @@ fn draw_frame<DB: DrawingBackend>(
     } else {
         0.0
     };
-    let v_range = (-0.12, top + headroom);
-    let segs = segments(lm, sk, body);
-    let dots = contacts(lm);
-    let head_centre = sk
-        .thorax
-        .point(glam::DVec3::new(0.0, f.spine + f.neck + f.head / 2.0, 0.0))
-        .to_array();
+    let scene = Scene {
+        segments: segments(lm, sk, body),
+        contacts: contacts(lm),
+        head_centre: sk
+            .thorax
+            .point(glam::DVec3::new(0.0, f.spine + f.neck + f.head / 2.0, 0.0))
+            .to_array(),
+        head: f.head,
+        pelvis_x: lm.pelvis[0],
+        v_range: (-0.12, top + headroom),
+        style,
+        line_px,
+    };
+    Ok(FrameViews {
+        side: draw_view(&side_area, &scene, true, &side_lines)?,
+        front: draw_view(&front_area, &scene, false, &front_lines)?,
+    })
+}
 
-    let mut maps = Vec::new();
-    for (area, side_view) in [(&side_area, true), (&front_area, false)] {
-        let project = move |p: [f64; 3]| {
-            if side_view {
-                (p[0], p[1])
-            } else {
-                (-p[2], p[1])
-            }
-        };
-        let u_mid = if side_view { lm.pelvis[0] } else { 0.0 };
-        let (mut chart, map) = view_chart(area, u_mid, v_range)?;
-        let (u_lo, u_hi) = (map.u0, map.u0 + 2.0 * (u_mid - map.u0));
-        // ground, and ticks below it that move with the walk
-        chart
-            .draw_series(std::iter::once(PathElement::new(
-                vec![(u_lo, 0.0), (u_hi, 0.0)],
-                GROUND_COLOR.stroke_width(1),
-            )))
-            .map_err(msg)?;
+/// The lines of text of the side and the front view, wrapped to their widths (`side_w` of the
+/// image's `w` pixels is the side view's).
+fn frame_text<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    lm: &Landmarks,
+    title: &str,
+    (side_w, w): (u32, u32),
+    style: &TextStyle,
+) -> std::result::Result<(Vec<String>, Vec<String>), String> {
+    let stance = if lm.step.is_multiple_of(2) {
+        "right"
+    } else {
+        "left"
+    };
+    let side = [
+        format!("side view: {title}"),
+        format!(
+            "t = {:.2} s, step {} ({stance} stance); dots: feet on the ground",
+            lm.time,
+            lm.step + 1
+        ),
+    ];
+    let front = ["front view: walker's right on the left".to_string()];
+    let width = |px: u32| px.saturating_sub(2 * MARGIN + 12);
+    Ok((
+        wrap(root, &side, width(side_w), style)?,
+        wrap(root, &front, width(w - side_w), style)?,
+    ))
+}
+
+/// What both views of a frame show, in world coordinates (m).
+struct Scene<'a> {
+    segments: Vec<(Limb, Vec<[f64; 3]>)>,
+    contacts: Vec<[f64; 3]>,
+    head_centre: [f64; 3],
+    /// The head's diameter.
+    head: f64,
+    pelvis_x: f64,
+    /// The vertical range of both views.
+    v_range: (f64, f64),
+    style: TextStyle<'a>,
+    line_px: i32,
+}
+
+/// One view of `scene` on `area` (the side view, else the front view) and its lines of text:
+/// the ground (with moving ticks in the side view), the segments, the head, the contacts.
+fn draw_view<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    scene: &Scene,
+    side_view: bool,
+    lines: &[String],
+) -> std::result::Result<ViewMap, String> {
+    let project = move |p: [f64; 3]| {
         if side_view {
-            let first = (u_lo / GROUND_TICK_M).ceil() as i64;
-            let last = (u_hi / GROUND_TICK_M).floor() as i64;
-            chart
-                .draw_series((first..=last).map(|k| {
-                    let u = k as f64 * GROUND_TICK_M;
-                    PathElement::new(vec![(u, 0.0), (u, -0.05)], GROUND_COLOR.stroke_width(1))
-                }))
-                .map_err(msg)?;
+            (p[0], p[1])
+        } else {
+            (-p[2], p[1])
         }
-        for (limb, points) in &segs {
-            let color = match limb {
-                Limb::Right => RIGHT_COLOR.to_rgba(),
-                Limb::Left if side_view => LEFT_COLOR.mix(0.55),
-                Limb::Left => LEFT_COLOR.to_rgba(),
-                Limb::Trunk => TRUNK_COLOR.to_rgba(),
-            };
-            let pts: Vec<(f64, f64)> = points.iter().map(|&p| project(p)).collect();
-            chart
-                .draw_series(std::iter::once(PathElement::new(
-                    pts,
-                    color.stroke_width(3),
-                )))
-                .map_err(msg)?;
-        }
-        let radius = (map.scale * f.head / 2.0).round().max(2.0) as i32;
+    };
+    let u_mid = if side_view { scene.pelvis_x } else { 0.0 };
+    let (mut chart, map) = view_chart(area, u_mid, scene.v_range)?;
+    let (u_lo, u_hi) = (map.u0, map.u0 + 2.0 * (u_mid - map.u0));
+    // ground, and ticks below it that move with the walk
+    chart
+        .draw_series(std::iter::once(PathElement::new(
+            vec![(u_lo, 0.0), (u_hi, 0.0)],
+            GROUND_COLOR.stroke_width(1),
+        )))
+        .map_err(msg)?;
+    if side_view {
+        let first = (u_lo / GROUND_TICK_M).ceil() as i64;
+        let last = (u_hi / GROUND_TICK_M).floor() as i64;
         chart
-            .draw_series(std::iter::once(Circle::new(
-                project(head_centre),
-                radius,
-                TRUNK_COLOR.stroke_width(3),
-            )))
-            .map_err(msg)?;
-        chart
-            .draw_series(
-                dots.iter()
-                    .map(|&p| Circle::new(project(p), CONTACT_RADIUS, CONTACT_COLOR.filled())),
-            )
-            .map_err(msg)?;
-        let lines = if side_view { &side_lines } else { &front_lines };
-        chart
-            .draw_series(lines.iter().enumerate().map(|(i, line)| {
-                EmptyElement::at((u_lo, v_range.1))
-                    + Text::new(line.clone(), (6, 4 + line_px * i as i32), style.clone())
+            .draw_series((first..=last).map(|k| {
+                let u = k as f64 * GROUND_TICK_M;
+                PathElement::new(vec![(u, 0.0), (u, -0.05)], GROUND_COLOR.stroke_width(1))
             }))
             .map_err(msg)?;
-        maps.push(map);
     }
-    Ok(FrameViews {
-        side: maps[0],
-        front: maps[1],
-    })
+    for (limb, points) in &scene.segments {
+        let color = match limb {
+            Limb::Right => RIGHT_COLOR.to_rgba(),
+            Limb::Left if side_view => LEFT_COLOR.mix(0.55),
+            Limb::Left => LEFT_COLOR.to_rgba(),
+            Limb::Trunk => TRUNK_COLOR.to_rgba(),
+        };
+        let pts: Vec<(f64, f64)> = points.iter().map(|&p| project(p)).collect();
+        chart
+            .draw_series(std::iter::once(PathElement::new(
+                pts,
+                color.stroke_width(3),
+            )))
+            .map_err(msg)?;
+    }
+    let radius = (map.scale * scene.head / 2.0).round().max(2.0) as i32;
+    chart
+        .draw_series(std::iter::once(Circle::new(
+            project(scene.head_centre),
+            radius,
+            TRUNK_COLOR.stroke_width(3),
+        )))
+        .map_err(msg)?;
+    chart
+        .draw_series(
+            scene
+                .contacts
+                .iter()
+                .map(|&p| Circle::new(project(p), CONTACT_RADIUS, CONTACT_COLOR.filled())),
+        )
+        .map_err(msg)?;
+    chart
+        .draw_series(lines.iter().enumerate().map(|(i, line)| {
+            EmptyElement::at((u_lo, scene.v_range.1))
+                + Text::new(
+                    line.clone(),
+                    (6, 4 + scene.line_px * i as i32),
+                    scene.style.clone(),
+                )
+        }))
+        .map_err(msg)?;
+    Ok(map)
 }

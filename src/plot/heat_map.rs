@@ -12,11 +12,12 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
+use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::error::{Error, Result};
 use crate::model::attributes::AttributeTable;
-use crate::plot::{self, Drawn, FONT, FigureFormat, TITLE_SIZE, msg};
+use crate::plot::{self, Chart, Draw, Drawn, FONT, Png, TITLE_SIZE, msg, titled};
 use crate::sweep::Format;
 
 /// Heat map size in pixels (width, height).
@@ -184,6 +185,74 @@ fn read_rows(path: &Path) -> Result<(Vec<String>, Vec<Vec<String>>)> {
     }
 }
 
+/// The cells of the rows (axis columns `ix`, `iy`, value column `ic`, `converged` column
+/// `iconv`), sorted by y then x: rows on one (x, y) pair share a cell, whose value is the mean
+/// over its converged rows (over all its rows for `converged`).
+fn cells(
+    path: &Path,
+    header: &[String],
+    rows: &[Vec<String>],
+    [ix, iy, ic, iconv]: [usize; 4],
+    column: &str,
+) -> Result<Vec<MapCell>> {
+    let mut grid: BTreeMap<(u64, u64), MapCell> = BTreeMap::new();
+    let mut sums: BTreeMap<(u64, u64), (f64, usize)> = BTreeMap::new();
+    for (i, row) in rows.iter().enumerate() {
+        let line = i + 2;
+        let axis = |flag: &str, k: usize| match number(&row[k]) {
+            Ok(Some(v)) if v.is_finite() => Ok(v),
+            _ => Err(bad(
+                flag,
+                format!(
+                    "column `{}` has `{}` in row {line} of {}: an axis needs a number in every \
+                     row (was it swept?)",
+                    header[k],
+                    row[k],
+                    path.display()
+                ),
+            )),
+        };
+        let (xv, yv) = (axis("x", ix)?, axis("y", iy)?);
+        let converged = row[iconv] == "true";
+        let value = number(&row[ic]).map_err(|_| {
+            bad(
+                "column",
+                format!(
+                    "column `{column}` is not numeric (`{}` in row {line})",
+                    row[ic]
+                ),
+            )
+        })?;
+        // -0.0 and 0.0 are one value
+        let key = ((xv + 0.0).to_bits(), (yv + 0.0).to_bits());
+        let cell = grid.entry(key).or_insert(MapCell {
+            x: xv,
+            y: yv,
+            rows: 0,
+            converged: 0,
+            value: None,
+            pixels: (0, 0, 0, 0),
+        });
+        cell.rows += 1;
+        cell.converged += usize::from(converged);
+        let counts = column == "converged" || converged;
+        if let (true, Some(v)) = (counts, value.filter(|v| v.is_finite())) {
+            let s = sums.entry(key).or_insert((0.0, 0));
+            s.0 += v;
+            s.1 += 1;
+        }
+    }
+    let mut cells: Vec<MapCell> = grid
+        .into_iter()
+        .map(|(key, mut c)| {
+            c.value = sums.get(&key).map(|(s, n)| s / *n as f64);
+            c
+        })
+        .collect();
+    cells.sort_by(|a, b| a.y.total_cmp(&b.y).then(a.x.total_cmp(&b.x)));
+    Ok(cells)
+}
+
 impl HeatMap {
     /// Read `column` over (`x`, `y`) from a sweep output. Unknown names, an axis equal to the
     /// other, axis columns with empty or non-numeric cells and non-numeric columns are input
@@ -221,61 +290,7 @@ impl HeatMap {
                 format!("`{y}` is also the x axis: give two parameters"),
             ));
         }
-        let mut grid: BTreeMap<(u64, u64), MapCell> = BTreeMap::new();
-        let mut sums: BTreeMap<(u64, u64), (f64, usize)> = BTreeMap::new();
-        for (i, row) in rows.iter().enumerate() {
-            let line = i + 2;
-            let axis = |flag: &str, k: usize| match number(&row[k]) {
-                Ok(Some(v)) if v.is_finite() => Ok(v),
-                _ => Err(bad(
-                    flag,
-                    format!(
-                        "column `{}` has `{}` in row {line} of {}: an axis needs a number in every \
-                         row (was it swept?)",
-                        header[k],
-                        row[k],
-                        path.display()
-                    ),
-                )),
-            };
-            let (xv, yv) = (axis("x", ix)?, axis("y", iy)?);
-            let converged = row[iconv] == "true";
-            let value = number(&row[ic]).map_err(|_| {
-                bad(
-                    "column",
-                    format!(
-                        "column `{column}` is not numeric (`{}` in row {line})",
-                        row[ic]
-                    ),
-                )
-            })?;
-            // -0.0 and 0.0 are one value
-            let key = ((xv + 0.0).to_bits(), (yv + 0.0).to_bits());
-            let cell = grid.entry(key).or_insert(MapCell {
-                x: xv,
-                y: yv,
-                rows: 0,
-                converged: 0,
-                value: None,
-                pixels: (0, 0, 0, 0),
-            });
-            cell.rows += 1;
-            cell.converged += usize::from(converged);
-            let counts = column == "converged" || converged;
-            if let (true, Some(v)) = (counts, value.filter(|v| v.is_finite())) {
-                let s = sums.entry(key).or_insert((0.0, 0));
-                s.0 += v;
-                s.1 += 1;
-            }
-        }
-        let mut cells: Vec<MapCell> = grid
-            .into_iter()
-            .map(|(key, mut c)| {
-                c.value = sums.get(&key).map(|(s, n)| s / *n as f64);
-                c
-            })
-            .collect();
-        cells.sort_by(|a, b| a.y.total_cmp(&b.y).then(a.x.total_cmp(&b.x)));
+        let cells = cells(path, &header, &rows, [ix, iy, ic, iconv], column)?;
         let distinct = |f: &dyn Fn(&MapCell) -> f64| {
             let mut v: Vec<f64> = cells.iter().map(f).collect();
             v.sort_by(f64::total_cmp);
@@ -317,33 +332,14 @@ impl HeatMap {
     pub fn write(&mut self, path: &Path) -> Result<()> {
         let format = plot::figure_format(path)?;
         let text = plot::text_available();
-        let fail = |reason: String| Error::Io {
-            action: "writing",
-            path: path.to_path_buf(),
-            source: std::io::Error::other(format!("drawing the heat map: {reason}")),
-        };
-        let (w, h) = HEAT_MAP_SIZE;
-        match format {
-            FigureFormat::Png => {
-                let mut pixels = vec![0u8; w as usize * h as usize * 3];
-                {
-                    let root =
-                        BitMapBackend::with_buffer(&mut pixels, HEAT_MAP_SIZE).into_drawing_area();
-                    self.draw(&root, text).map_err(fail)?;
-                    root.present().map_err(|e| fail(e.to_string()))?;
-                }
-                plot::write_png(path, &pixels, HEAT_MAP_SIZE)
-            }
-            FigureFormat::Svg => {
-                let mut svg = String::new();
-                {
-                    let root = SVGBackend::with_string(&mut svg, HEAT_MAP_SIZE).into_drawing_area();
-                    self.draw(&root, text).map_err(fail)?;
-                    root.present().map_err(|e| fail(e.to_string()))?;
-                }
-                crate::io::write_atomic(path, |out| out.write_all(svg.as_bytes()))
-            }
-        }
+        plot::write_figure(
+            &mut MapDrawing { map: self, text },
+            path,
+            format,
+            HEAT_MAP_SIZE,
+            Png::Default,
+            "the heat map",
+        )
     }
 
     fn title(&self) -> String {
@@ -366,39 +362,16 @@ impl HeatMap {
         )
     }
 
-    fn draw<DB: DrawingBackend>(
-        &mut self,
-        root: &DrawingArea<DB, plotters::coord::Shift>,
-        text: bool,
-    ) -> Drawn {
+    /// The map: title, cells on their value's colour (failed ones grey with a cross), colour bar.
+    fn draw<DB: DrawingBackend>(&mut self, root: &DrawingArea<DB, Shift>, text: bool) -> Drawn {
         root.fill(&WHITE).map_err(msg)?;
-        let area = if text {
-            root.titled(&self.title(), (FONT, TITLE_SIZE))
-                .map_err(msg)?
-        } else {
-            root.clone()
-        };
+        let area = titled(root, &self.title(), TITLE_SIZE, text)?;
         let (w, _) = area.dim_in_pixel();
         let (main, bar) = area.split_horizontally(w - if text { 190 } else { 80 });
-        let edges = |v: &[f64]| -> Vec<f64> {
-            let half = |i: usize| 0.5 * (v[i + 1] - v[i]);
-            let n = v.len();
-            let mut e = Vec::with_capacity(n + 1);
-            let first_gap = if n > 1 {
-                half(0)
-            } else {
-                0.5 * v[0].abs().max(1.0) * 0.1
-            };
-            e.push(v[0] - first_gap);
-            e.extend(v.windows(2).map(|p| 0.5 * (p[0] + p[1])));
-            let last_gap = if n > 1 { half(n - 2) } else { first_gap };
-            e.push(v[n - 1] + last_gap);
-            e
-        };
         if self.cells.is_empty() {
             return Ok(());
         }
-        let (xe, ye) = (edges(&self.xs), edges(&self.ys));
+        let (xe, ye) = (cell_edges(&self.xs), cell_edges(&self.ys));
         let mut b = ChartBuilder::on(&main);
         b.margin(14);
         if text {
@@ -420,44 +393,20 @@ impl HeatMap {
         let index = |v: &[f64], x: f64| v.partition_point(|a| *a < x);
         for cell in &mut self.cells {
             let (i, j) = (index(&self.xs, cell.x), index(&self.ys, cell.y));
-            let (x0, x1, y0, y1) = (xe[i], xe[i + 1], ye[j], ye[j + 1]);
             let color = match cell.value {
                 _ if cell.failed() => FAILED_COLOR,
                 Some(v) => viridis((v - lo) / (hi - lo)),
                 None => NO_VALUE_COLOR,
             };
-            chart
-                .draw_series(std::iter::once(Rectangle::new(
-                    [(x0, y1), (x1, y0)],
-                    color.filled(),
-                )))
-                .map_err(msg)?;
-            if cell.failed() {
-                // the cross, inset a little from the corners
-                let (dx, dy) = (0.15 * (x1 - x0), 0.15 * (y1 - y0));
-                chart
-                    .draw_series([
-                        PathElement::new(
-                            vec![(x0 + dx, y0 + dy), (x1 - dx, y1 - dy)],
-                            CROSS_COLOR.stroke_width(2),
-                        ),
-                        PathElement::new(
-                            vec![(x0 + dx, y1 - dy), (x1 - dx, y0 + dy)],
-                            CROSS_COLOR.stroke_width(2),
-                        ),
-                    ])
-                    .map_err(msg)?;
-            }
-            let (l, t) = chart.backend_coord(&(x0, y1));
-            let (r, bt) = chart.backend_coord(&(x1, y0));
-            cell.pixels = (l, t, r, bt);
+            let corners = ((xe[i], xe[i + 1]), (ye[j], ye[j + 1]));
+            cell.pixels = draw_cell(&mut chart, corners, color, cell.failed())?;
         }
         self.colour_bar(&bar, text, (lo, hi))
     }
 
     fn colour_bar<DB: DrawingBackend>(
         &self,
-        area: &DrawingArea<DB, plotters::coord::Shift>,
+        area: &DrawingArea<DB, Shift>,
         text: bool,
         (lo, hi): (f64, f64),
     ) -> Drawn {
@@ -488,6 +437,70 @@ impl HeatMap {
             }))
             .map_err(msg)?;
         Ok(())
+    }
+}
+
+/// The edges of the cells around sorted distinct values: halfway to each neighbour, the outer
+/// cells as wide as their inner halves (a single value: ±10 % of it, at least ±0.1 / 2).
+fn cell_edges(v: &[f64]) -> Vec<f64> {
+    let half = |i: usize| 0.5 * (v[i + 1] - v[i]);
+    let n = v.len();
+    let mut e = Vec::with_capacity(n + 1);
+    let first_gap = if n > 1 {
+        half(0)
+    } else {
+        0.5 * v[0].abs().max(1.0) * 0.1
+    };
+    e.push(v[0] - first_gap);
+    e.extend(v.windows(2).map(|p| 0.5 * (p[0] + p[1])));
+    let last_gap = if n > 1 { half(n - 2) } else { first_gap };
+    e.push(v[n - 1] + last_gap);
+    e
+}
+
+/// One cell over ((x0, x1), (y0, y1)), with the cross of a failed one; its pixel rectangle.
+fn draw_cell<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    ((x0, x1), (y0, y1)): ((f64, f64), (f64, f64)),
+    color: RGBColor,
+    failed: bool,
+) -> std::result::Result<(i32, i32, i32, i32), String> {
+    chart
+        .draw_series(std::iter::once(Rectangle::new(
+            [(x0, y1), (x1, y0)],
+            color.filled(),
+        )))
+        .map_err(msg)?;
+    if failed {
+        // the cross, inset a little from the corners
+        let (dx, dy) = (0.15 * (x1 - x0), 0.15 * (y1 - y0));
+        chart
+            .draw_series([
+                PathElement::new(
+                    vec![(x0 + dx, y0 + dy), (x1 - dx, y1 - dy)],
+                    CROSS_COLOR.stroke_width(2),
+                ),
+                PathElement::new(
+                    vec![(x0 + dx, y1 - dy), (x1 - dx, y0 + dy)],
+                    CROSS_COLOR.stroke_width(2),
+                ),
+            ])
+            .map_err(msg)?;
+    }
+    let (l, t) = chart.backend_coord(&(x0, y1));
+    let (r, b) = chart.backend_coord(&(x1, y0));
+    Ok((l, t, r, b))
+}
+
+struct MapDrawing<'a> {
+    map: &'a mut HeatMap,
+    text: bool,
+}
+
+impl Draw for MapDrawing<'_> {
+    type Output = ();
+    fn draw<DB: DrawingBackend>(&mut self, root: &DrawingArea<DB, Shift>) -> Drawn {
+        self.map.draw(root, self.text)
     }
 }
 

@@ -1,13 +1,16 @@
-//! A figure of a walk, drawn from its frames: a side view of stick-figure legs over the ground
-//! (equal aspect ratio, metres), the hip height and the joint angles θ1..θ4 against time.
+//! Figures of walks and sweeps: the walk figure ([`walk`], `klaw walk --plot`), the gait-cycle
+//! figure ([`cycle`], `klaw plot`), sweep heat maps ([`heat_map`], `klaw plot-sweep`) and the
+//! stick-figure animation ([`animation`], `klaw animate`); here what they share: the font, the
+//! colours, the file format by extension and the writing of a drawn figure.
 //!
 //! PNG (rendered in memory, encoded here) or SVG, chosen by the file's extension, written
 //! atomically through `io::write_atomic`. Text needs a TrueType font: it is read at run time from
 //! the file named by `KLAW_FONT` or else from the usual DejaVu Sans locations; without one the
-//! figure is drawn without any text (no titles, tick labels or legends) rather than failing.
+//! figures are drawn without any text (no titles, tick labels or legends) rather than failing.
 pub mod animation;
 pub mod cycle;
 pub mod heat_map;
+pub mod walk;
 
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -20,16 +23,11 @@ use plotters::style::{FontStyle, register_font};
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::{ColorType, ImageEncoder, ImageError};
 
-use crate::engine::report::Frame;
 use crate::error::{Error, Result};
 use crate::io;
+use crate::model::body::Body;
+use crate::plan::gait::Gait;
 
-/// Figure size in pixels (width, height).
-pub const FIGURE_SIZE: (u32, u32) = (1600, 1000);
-/// Stick figures are drawn this often (s of walk time).
-pub const FIGURE_INTERVAL_S: f64 = 0.1;
-/// The side view shows at most this many steps (the first ones); the time plots show all.
-pub const SIDE_VIEW_MAX_STEPS: usize = 12;
 /// Environment variable naming the TrueType font to use instead of the default locations.
 pub const FONT_ENV: &str = "KLAW_FONT";
 /// Where the font is looked for when `KLAW_FONT` is not set (Debian/Ubuntu, Arch, Fedora).
@@ -42,22 +40,10 @@ pub const FONT_CANDIDATES: &[&str] = &[
 
 pub(crate) const FONT: &str = "sans-serif";
 pub(crate) const TITLE_SIZE: i32 = 22;
-const RIGHT: RGBColor = RGBColor(31, 119, 180);
-const LEFT: RGBColor = RGBColor(214, 39, 40);
-const HIP_PATH: RGBColor = RGBColor(150, 150, 150);
-const STEP_LINE: RGBColor = RGBColor(215, 215, 215);
-const THETA_COLORS: [RGBColor; 4] = [
-    RGBColor(31, 119, 180),
-    RGBColor(255, 127, 14),
-    RGBColor(44, 160, 44),
-    RGBColor(148, 103, 189),
-];
-const THETA_LABELS: [&str; 4] = [
-    "θ1 stance leg (from vertical)",
-    "θ2 upper body (from vertical)",
-    "θ3 swing thigh (from vertical)",
-    "θ4 swing knee flexion",
-];
+/// The right side's curves and segments, in every figure.
+pub const RIGHT_COLOR: RGBColor = RGBColor(31, 119, 180);
+/// The left side's curves and segments, in every figure.
+pub const LEFT_COLOR: RGBColor = RGBColor(214, 39, 40);
 
 /// The file format of a figure, from its path's extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -101,74 +87,123 @@ pub fn text_available() -> bool {
     })
 }
 
-/// Write the figure of a walk to `path` (PNG or SVG by its extension, 1600 × 1000 px): the
-/// side view on top, hip height (bottom left) and θ1..θ4 (bottom right) against time. The file is
-/// written whole or not at all; rendering and writing failures are `Error::Io { action: "writing" }`.
-pub fn walk_figure(frames: &[Frame], path: &Path) -> Result<()> {
-    let format = figure_format(path)?;
-    render_figure(frames, path, format, text_available())
+/// The title line of a walk's parameters: `v 1.40 m/s, sl 0.778 m, sf 108.0 steps/min, H 1.80 m,
+/// M 80 kg, style normal`; a walk whose steps ask for different gaits shows the range of each.
+pub fn parameters_title(gaits: &[Gait], body: &Body, style: &str) -> String {
+    let span = |f: fn(&Gait) -> f64, decimals: usize| {
+        let (lo, hi) = gaits
+            .iter()
+            .map(f)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |a, v| {
+                (a.0.min(v), a.1.max(v))
+            });
+        if !lo.is_finite() {
+            "?".to_string()
+        } else if hi - lo < 1e-9 {
+            format!("{lo:.decimals$}")
+        } else {
+            format!("{lo:.decimals$}–{hi:.decimals$}")
+        }
+    };
+    format!(
+        "v {} m/s, sl {} m, sf {} steps/min, H {:.2} m, M {:.0} kg, style {style}",
+        span(|g| g.velocity, 2),
+        span(|g| g.step_length, 3),
+        span(|g| g.step_frequency, 1),
+        body.height,
+        body.mass
+    )
 }
 
-/// `walk_figure` with the text switched on or off (off needs no font).
-fn render_figure(frames: &[Frame], path: &Path, format: FigureFormat, text: bool) -> Result<()> {
+pub(crate) type Drawn = std::result::Result<(), String>;
+/// A chart with both axes in f64.
+pub(crate) type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+pub(crate) fn msg<E: std::fmt::Display>(e: E) -> String {
+    e.to_string()
+}
+
+/// `area` with `title` above it in `size` px when there is text, else `area` itself.
+pub(crate) fn titled<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    title: &str,
+    size: i32,
+    text: bool,
+) -> std::result::Result<DrawingArea<DB, Shift>, String> {
+    if text {
+        area.titled(title, (FONT, size)).map_err(msg)
+    } else {
+        Ok(area.clone())
+    }
+}
+
+/// A figure that draws itself on any plotters backend (the bitmap of a PNG, or SVG).
+pub(crate) trait Draw {
+    /// What drawing reports (e.g. where the panels were put).
+    type Output;
+    fn draw<DB: DrawingBackend>(
+        &mut self,
+        root: &DrawingArea<DB, Shift>,
+    ) -> std::result::Result<Self::Output, String>;
+}
+
+/// How a PNG is encoded.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Png {
+    /// The encoder's default compression and filter.
+    Default,
+    /// The best compression and adaptive filters: slower, and the file about a third of the size
+    /// (for figures committed to the repository).
+    Small,
+}
+
+/// Draw `figure` on `size` pixels and write it to `path` in `format`, whole or not at all. A
+/// drawing failure is `Error::Io { action: "writing" }` saying "drawing {what}: …".
+pub(crate) fn write_figure<F: Draw>(
+    figure: &mut F,
+    path: &Path,
+    format: FigureFormat,
+    size: (u32, u32),
+    png: Png,
+    what: &str,
+) -> Result<F::Output> {
     let fail = |reason: String| Error::Io {
         action: "writing",
         path: path.to_path_buf(),
-        source: std::io::Error::other(format!("drawing the figure: {reason}")),
+        source: std::io::Error::other(format!("drawing {what}: {reason}")),
     };
-    let (w, h) = FIGURE_SIZE;
     match format {
         FigureFormat::Png => {
-            let mut pixels = vec![0u8; w as usize * h as usize * 3];
-            {
-                let root = BitMapBackend::with_buffer(&mut pixels, FIGURE_SIZE).into_drawing_area();
-                draw(&root, frames, text).map_err(fail)?;
+            let mut pixels = vec![0u8; size.0 as usize * size.1 as usize * 3];
+            let drawn = {
+                let root = BitMapBackend::with_buffer(&mut pixels, size).into_drawing_area();
+                let drawn = figure.draw(&root).map_err(fail)?;
                 root.present().map_err(|e| fail(e.to_string()))?;
-            }
-            write_png(path, &pixels, (w, h))
+                drawn
+            };
+            write_png(path, &pixels, size, png)?;
+            Ok(drawn)
         }
         FigureFormat::Svg => {
             let mut svg = String::new();
-            {
-                let root = SVGBackend::with_string(&mut svg, FIGURE_SIZE).into_drawing_area();
-                draw(&root, frames, text).map_err(fail)?;
+            let drawn = {
+                let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
+                let drawn = figure.draw(&root).map_err(fail)?;
                 root.present().map_err(|e| fail(e.to_string()))?;
-            }
-            io::write_atomic(path, |out| out.write_all(svg.as_bytes()))
+                drawn
+            };
+            io::write_atomic(path, |out| out.write_all(svg.as_bytes()))?;
+            Ok(drawn)
         }
     }
 }
 
 /// Encode an RGB buffer as PNG and write it atomically.
-pub(crate) fn write_png(path: &Path, pixels: &[u8], size: (u32, u32)) -> Result<()> {
-    write_png_with(
-        path,
-        pixels,
-        size,
-        CompressionType::default(),
-        FilterType::default(),
-    )
-}
-
-/// [`write_png`] with the best compression and adaptive filters: slower, and the file about a
-/// third of the size (for figures committed to the repository).
-pub(crate) fn write_png_small(path: &Path, pixels: &[u8], size: (u32, u32)) -> Result<()> {
-    write_png_with(
-        path,
-        pixels,
-        size,
-        CompressionType::Best,
-        FilterType::Adaptive,
-    )
-}
-
-fn write_png_with(
-    path: &Path,
-    pixels: &[u8],
-    (w, h): (u32, u32),
-    compression: CompressionType,
-    filter: FilterType,
-) -> Result<()> {
+fn write_png(path: &Path, pixels: &[u8], (w, h): (u32, u32), png: Png) -> Result<()> {
+    let (compression, filter) = match png {
+        Png::Default => (CompressionType::default(), FilterType::default()),
+        Png::Small => (CompressionType::Best, FilterType::Adaptive),
+    };
     io::write_atomic(path, |out| {
         PngEncoder::new_with_quality(out, compression, filter)
             .write_image(pixels, w, h, ColorType::Rgb8)
@@ -179,479 +214,9 @@ fn write_png_with(
     })
 }
 
-pub(crate) type Drawn = std::result::Result<(), String>;
-/// A named, coloured curve in pieces (each piece a polyline of finite points).
-type Series<'a> = (&'a str, RGBColor, Vec<Vec<(f64, f64)>>);
-
-pub(crate) fn msg<E: std::fmt::Display>(e: E) -> String {
-    e.to_string()
-}
-
-/// Smallest and largest finite value, if any.
-fn extent(values: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
-    values
-        .filter(|v| v.is_finite())
-        .fold(None, |acc, v| match acc {
-            None => Some((v, v)),
-            Some((lo, hi)) => Some((lo.min(v), hi.max(v))),
-        })
-}
-
-/// [lo, hi] widened by `frac` of its span on each side, and to at least `min_span`.
-fn padded((lo, hi): (f64, f64), frac: f64, min_span: f64) -> (f64, f64) {
-    let pad = (hi - lo) * frac;
-    let (lo, hi) = (lo - pad, hi + pad);
-    if hi - lo < min_span {
-        let mid = 0.5 * (lo + hi);
-        (mid - 0.5 * min_span, mid + 0.5 * min_span)
-    } else {
-        (lo, hi)
-    }
-}
-
-fn finite(points: impl IntoIterator<Item = (f64, f64)>) -> Vec<(f64, f64)> {
-    points
-        .into_iter()
-        .filter(|(x, y)| x.is_finite() && y.is_finite())
-        .collect()
-}
-
-fn side_color(side: &str) -> RGBColor {
-    if side == "left" { LEFT } else { RIGHT }
-}
-
-fn other_side_color(side: &str) -> RGBColor {
-    if side == "left" { RIGHT } else { LEFT }
-}
-
-/// The frames at which stick figures are drawn: the first at or after each multiple of the
-/// interval, and the last frame.
-fn figure_frames(frames: &[Frame]) -> Vec<&Frame> {
-    let mut picked: Vec<&Frame> = Vec::new();
-    let mut next = f64::NEG_INFINITY;
-    for f in frames {
-        if f.time_s >= next - 1e-9 {
-            picked.push(f);
-            next = ((f.time_s + 1e-9) / FIGURE_INTERVAL_S).floor() * FIGURE_INTERVAL_S
-                + FIGURE_INTERVAL_S;
-        }
-    }
-    if let (Some(last), Some(p)) = (frames.last(), picked.last())
-        && !std::ptr::eq(last, *p)
-    {
-        picked.push(last);
-    }
-    picked
-}
-
-/// Times at which a new step starts (heel strikes).
-fn step_starts(frames: &[Frame]) -> Vec<f64> {
-    frames
-        .windows(2)
-        .filter(|w| w[1].step != w[0].step)
-        .map(|w| w[1].time_s)
-        .collect()
-}
-
-fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, frames: &[Frame], text: bool) -> Drawn {
-    root.fill(&WHITE).map_err(msg)?;
-    let (w, h) = root.dim_in_pixel();
-    // a long walk would shrink the stick figures to nothing: the side view shows its start
-    let side = match frames.first() {
-        Some(first) => {
-            let n = frames.partition_point(|f| f.step < first.step + SIDE_VIEW_MAX_STEPS);
-            &frames[..n.max(1)]
-        }
-        None => frames,
-    };
-    let title = side_title(frames, side);
-    let extent = side_extent(side);
-    // the side view takes the height its equal-aspect figures need (30–56 % of the figure),
-    // the time plots the rest: measure the space around the plotting area on a trial split
-    let title_h = if text {
-        let (_, th) = root
-            .estimate_text_size(&title, &TextStyle::from((FONT, TITLE_SIZE)))
-            .map_err(msg)?;
-        th + 2 * (th / 2).min(5)
-    } else {
-        0
-    };
-    let (max_top, min_top) = (h * 56 / 100, h * 30 / 100);
-    let trial = root.split_vertically(max_top).0;
-    let trial = trial.split_vertically(title_h.min(max_top)).1;
-    let (pw, ph) = builder(&trial, text)
-        .build_cartesian_2d(0.0..1.0, 0.0..1.0)
-        .map_err(msg)?
-        .plotting_area()
-        .dim_in_pixel();
-    let ((x_lo, x_hi), (y_lo, y_hi)) = extent;
-    let needed = f64::from(pw) * (y_hi - y_lo) / (x_hi - x_lo);
-    let top_h = (needed.ceil() as u32 + (max_top - ph.min(max_top))).clamp(min_top, max_top);
-    let (top, bottom) = root.split_vertically(top_h);
-    let (left, right) = bottom.split_horizontally(w / 2);
-    side_view(&top, side, text, &title, extent)?;
-    let starts = step_starts(frames);
-    let hip = vec![finite(frames.iter().map(|f| (f.time_s, f.hip_y_m)))];
-    time_plot(
-        &left,
-        "Hip height",
-        "hip height (m)",
-        &[("hip", RGBColor(0, 0, 0), hip)],
-        2,
-        &starts,
-        text,
-    )?;
-    // the angles jump at a heel strike, where the legs exchange roles: one curve per step
-    let angles: Vec<Series> = (0..4)
-        .map(|k| {
-            let pieces = frames
-                .chunk_by(|a, b| a.step == b.step)
-                .map(|step| {
-                    finite(step.iter().map(|f| {
-                        let a = [f.theta1_deg, f.theta2_deg, f.theta3_deg, f.theta4_deg];
-                        (f.time_s, a[k])
-                    }))
-                })
-                .collect();
-            (THETA_LABELS[k], THETA_COLORS[k], pieces)
-        })
-        .collect();
-    time_plot(
-        &right,
-        "Joint angles",
-        "angle (°)",
-        &angles,
-        0,
-        &starts,
-        text,
-    )
-}
-
-/// A chart builder with the figure's margins; label areas only when there is text.
-fn builder<'a, 'b, DB: DrawingBackend>(
-    area: &'a DrawingArea<DB, Shift>,
-    text: bool,
-) -> ChartBuilder<'a, 'b, DB> {
-    let mut b = ChartBuilder::on(area);
-    b.margin(12);
-    if text {
-        b.x_label_area_size(48).y_label_area_size(64);
-    }
-    b
-}
-
-fn side_title(frames: &[Frame], side: &[Frame]) -> String {
-    match (frames.first(), frames.last(), side.last()) {
-        (Some(a), Some(b), Some(c)) => {
-            let steps = b.step + 1 - a.step.min(b.step);
-            let shown = if c.step == b.step {
-                String::new()
-            } else {
-                format!(" (first {} shown)", c.step + 1 - a.step.min(c.step))
-            };
-            format!(
-                "Side view: {steps} step{}{shown} in {:.2} s, hip advances {:.2} m. Legs every {} s \
-                 (blue right, red left), grey hip path, dots at stance ankles",
-                if steps == 1 { "" } else { "s" },
-                b.time_s - a.time_s,
-                b.hip_x_m - a.hip_x_m,
-                FIGURE_INTERVAL_S
-            )
-        }
-        _ => "Side view (no frames)".to_string(),
-    }
-}
-
-/// The side view's data ranges (m), padded, the ground always in view.
-fn side_extent(frames: &[Frame]) -> ((f64, f64), (f64, f64)) {
-    let xs = frames.iter().flat_map(|f| {
-        [
-            f.hip_x_m,
-            f.stance_ankle_x_m,
-            f.swing_knee_x_m,
-            f.swing_ankle_x_m,
-            f.swing_heel_x_m,
-            f.swing_toe_x_m,
-        ]
-    });
-    let ys = frames.iter().flat_map(|f| {
-        [
-            f.hip_y_m,
-            f.stance_ankle_y_m,
-            f.swing_knee_y_m,
-            f.swing_ankle_y_m,
-            f.swing_heel_y_m,
-            f.swing_toe_y_m,
-        ]
-    });
-    let (x_lo, x_hi) = padded(extent(xs).unwrap_or((0.0, 1.0)), 0.03, 0.5);
-    let (y_lo, y_hi) = extent(ys).unwrap_or((0.0, 1.0));
-    // the ground is always in view, with a margin under the lowest point
-    let (y_lo, y_hi) = (y_lo.min(0.0) - 0.08, y_hi.max(0.5) + 0.08);
-    ((x_lo, x_hi), (y_lo, y_hi))
-}
-
-fn side_view<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
-    frames: &[Frame],
-    text: bool,
-    title: &str,
-    ((x_lo, x_hi), (y_lo, y_hi)): ((f64, f64), (f64, f64)),
-) -> Drawn {
-    let area = if text {
-        area.titled(title, (FONT, TITLE_SIZE)).map_err(msg)?
-    } else {
-        area.clone()
-    };
-
-    // equal aspect ratio: one scale (px per m) on both axes, the smaller of the two fits
-    let mut b = builder(&area, text);
-    let (pw, ph) = {
-        let probe = b.build_cartesian_2d(0.0..1.0, 0.0..1.0).map_err(msg)?;
-        probe.plotting_area().dim_in_pixel()
-    };
-    let (pw, ph) = (f64::from(pw.max(1)), f64::from(ph.max(1)));
-    let scale = (pw / (x_hi - x_lo)).min(ph / (y_hi - y_lo));
-    let x_mid = 0.5 * (x_lo + x_hi);
-    let x_range = (x_mid - 0.5 * pw / scale)..(x_mid + 0.5 * pw / scale);
-    // extra height goes above the figures: the ground stays near the bottom
-    let y_range = y_lo..(y_lo + ph / scale);
-    let mut chart = b
-        .build_cartesian_2d(x_range.clone(), y_range)
-        .map_err(msg)?;
-    let mut mesh = chart.configure_mesh();
-    mesh.light_line_style(RGBColor(240, 240, 240));
-    if text {
-        mesh.x_desc("x, forward (m)")
-            .y_desc("height (m)")
-            .label_style((FONT, 15))
-            .axis_desc_style((FONT, 17));
-    }
-    mesh.draw().map_err(msg)?;
-
-    chart
-        .draw_series(std::iter::once(PathElement::new(
-            vec![(x_range.start, 0.0), (x_range.end, 0.0)],
-            BLACK.stroke_width(2),
-        )))
-        .map_err(msg)?;
-    let hip_path = finite(frames.iter().map(|f| (f.hip_x_m, f.hip_y_m)));
-    chart
-        .draw_series(LineSeries::new(hip_path, HIP_PATH.stroke_width(1)))
-        .map_err(msg)?;
-
-    // stance ankles, one mark per step, coloured by side
-    let mut ankles: Vec<(f64, f64, RGBColor)> = Vec::new();
-    for f in frames {
-        let p = (f.stance_ankle_x_m, f.stance_ankle_y_m);
-        if ankles.last().is_none_or(|a| (a.0, a.1) != p) {
-            ankles.push((p.0, p.1, side_color(f.stance_side)));
-        }
-    }
-    chart
-        .draw_series(
-            ankles
-                .iter()
-                .filter(|a| a.0.is_finite() && a.1.is_finite())
-                .map(|&(x, y, c)| Circle::new((x, y), 5, c.filled())),
-        )
-        .map_err(msg)?;
-
-    for f in figure_frames(frames) {
-        let stance = finite([
-            (f.hip_x_m, f.hip_y_m),
-            (f.stance_ankle_x_m, f.stance_ankle_y_m),
-        ]);
-        let swing = finite([
-            (f.hip_x_m, f.hip_y_m),
-            (f.swing_knee_x_m, f.swing_knee_y_m),
-            (f.swing_ankle_x_m, f.swing_ankle_y_m),
-            (f.swing_heel_x_m, f.swing_heel_y_m),
-            (f.swing_toe_x_m, f.swing_toe_y_m),
-            (f.swing_ankle_x_m, f.swing_ankle_y_m),
-        ]);
-        let stance_style = side_color(f.stance_side).mix(0.7).stroke_width(2);
-        let swing_style = other_side_color(f.stance_side).mix(0.7).stroke_width(2);
-        chart
-            .draw_series([
-                PathElement::new(stance, stance_style),
-                PathElement::new(swing, swing_style),
-            ])
-            .map_err(msg)?;
-        if f.hip_x_m.is_finite() && f.hip_y_m.is_finite() {
-            chart
-                .draw_series(std::iter::once(Circle::new(
-                    (f.hip_x_m, f.hip_y_m),
-                    3,
-                    BLACK.filled(),
-                )))
-                .map_err(msg)?;
-        }
-    }
-    if !text {
-        frame_border(&chart)?;
-    }
-    Ok(())
-}
-
-/// The outline of the plotting area (drawn instead of the axes when there is no text).
-fn frame_border<DB: DrawingBackend>(
-    chart: &ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
-) -> Drawn {
-    let (w, h) = chart.plotting_area().dim_in_pixel();
-    let area = chart.plotting_area().strip_coord_spec();
-    area.draw(&Rectangle::new(
-        [(0, 0), (w as i32 - 1, h as i32 - 1)],
-        BLACK.stroke_width(1),
-    ))
-    .map_err(msg)
-}
-
-/// A panel of curves against time, light vertical lines at the heel strikes.
-fn time_plot<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
-    title: &str,
-    y_desc: &str,
-    series: &[Series],
-    y_decimals: usize,
-    step_starts: &[f64],
-    text: bool,
-) -> Drawn {
-    let area = if text {
-        area.titled(title, (FONT, TITLE_SIZE)).map_err(msg)?
-    } else {
-        area.clone()
-    };
-    let (t_lo, t_hi) = padded(
-        extent(
-            series
-                .iter()
-                .flat_map(|s| s.2.iter().flatten().map(|p| p.0)),
-        )
-        .unwrap_or((0.0, 1.0)),
-        0.0,
-        0.1,
-    );
-    let legend = text && series.len() > 1;
-    let (y_lo, mut y_hi) = padded(
-        extent(
-            series
-                .iter()
-                .flat_map(|s| s.2.iter().flatten().map(|p| p.1)),
-        )
-        .unwrap_or((0.0, 1.0)),
-        0.08,
-        0.02,
-    );
-    if legend {
-        // headroom for the legend (one row per series) above the curves
-        y_hi += (y_hi - y_lo) * 0.09 * series.len() as f64;
-    }
-    let mut chart = builder(&area, text)
-        .build_cartesian_2d(t_lo..t_hi, y_lo..y_hi)
-        .map_err(msg)?;
-    let y_label = |v: &f64| format!("{v:.y_decimals$}");
-    let mut mesh = chart.configure_mesh();
-    mesh.light_line_style(RGBColor(240, 240, 240));
-    if text {
-        mesh.x_desc("time (s)")
-            .y_desc(y_desc)
-            .y_label_formatter(&y_label)
-            .label_style((FONT, 15))
-            .axis_desc_style((FONT, 17));
-    }
-    mesh.draw().map_err(msg)?;
-    chart
-        .draw_series(
-            step_starts
-                .iter()
-                .filter(|t| t.is_finite())
-                .map(|&t| PathElement::new(vec![(t, y_lo), (t, y_hi)], STEP_LINE.stroke_width(1))),
-        )
-        .map_err(msg)?;
-    for (name, color, pieces) in series {
-        let color = *color;
-        let anno = chart
-            .draw_series(
-                pieces
-                    .iter()
-                    .map(|p| PathElement::new(p.clone(), color.stroke_width(2))),
-            )
-            .map_err(msg)?;
-        if legend {
-            anno.label(*name).legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(3))
-            });
-        }
-    }
-    if legend {
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .label_font((FONT, 15))
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .draw()
-            .map_err(msg)?;
-    }
-    if !text {
-        frame_border(&chart)?;
-    }
-    Ok(())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn frame(t: f64, step: usize) -> Frame {
-        Frame {
-            time_s: t,
-            step,
-            stance_side: if step.is_multiple_of(2) {
-                "right"
-            } else {
-                "left"
-            },
-            hip_x_m: t,
-            hip_y_m: 0.95,
-            stance_ankle_x_m: 0.7 * step as f64,
-            stance_ankle_y_m: 0.08,
-            swing_knee_x_m: t + 0.1,
-            swing_knee_y_m: 0.5,
-            swing_ankle_x_m: t,
-            swing_ankle_y_m: 0.1,
-            swing_heel_x_m: t - 0.05,
-            swing_heel_y_m: 0.02,
-            swing_toe_x_m: t + 0.15,
-            swing_toe_y_m: 0.02,
-            ..Frame::default()
-        }
-    }
-
-    #[test]
-    fn figure_frames_every_interval_and_the_last() {
-        let frames: Vec<Frame> = (0..=100).map(|k| frame(k as f64 / 100.0, 0)).collect();
-        let t: Vec<f64> = figure_frames(&frames).iter().map(|f| f.time_s).collect();
-        assert_eq!(t.len(), 11, "{t:?}");
-        for (k, t) in t.iter().enumerate() {
-            assert!((t - k as f64 * 0.1).abs() < 1e-9, "{t}");
-        }
-        // frames sparser than the interval: every frame, once
-        let sparse: Vec<Frame> = (0..=4).map(|k| frame(k as f64 * 0.25, 0)).collect();
-        assert_eq!(figure_frames(&sparse).len(), 5);
-        assert!(figure_frames(&[]).is_empty());
-    }
-
-    #[test]
-    fn side_view_title_tells_when_only_the_first_steps_are_shown() {
-        let frames: Vec<Frame> = (0..=400).map(|k| frame(k as f64 / 20.0, k / 20)).collect();
-        let n = frames.partition_point(|f| f.step < SIDE_VIEW_MAX_STEPS);
-        let t = side_title(&frames, &frames[..n]);
-        assert!(t.starts_with("Side view: 21 steps (first 12 shown)"), "{t}");
-        let t = side_title(&frames[..20], &frames[..20]);
-        assert!(t.starts_with("Side view: 1 step in"), "{t}");
-    }
 
     #[test]
     fn extension_chooses_the_format() {
@@ -668,41 +233,5 @@ mod tests {
             assert_eq!(e.exit_code(), 2, "{e}");
             assert!(e.to_string().contains(".png or .svg"), "{e}");
         }
-    }
-
-    /// Without a font the figure is still drawn: no text at all is laid out. (This test binary
-    /// never registers a font: nothing here calls `text_available`.)
-    #[test]
-    fn figure_without_text_needs_no_font() {
-        let dir = tempfile::tempdir().unwrap();
-        let frames: Vec<Frame> = (0..=120).map(|k| frame(k as f64 / 100.0, k / 60)).collect();
-        for (name, format) in [("w.png", FigureFormat::Png), ("w.svg", FigureFormat::Svg)] {
-            let p = dir.path().join(name);
-            render_figure(&frames, &p, format, false).unwrap();
-            assert!(std::fs::metadata(&p).unwrap().len() > 1000);
-        }
-        // with text but no font registered, plotters fails: an Io error, and no file
-        let p = dir.path().join("t.png");
-        let e = render_figure(&frames, &p, FigureFormat::Png, true).unwrap_err();
-        assert!(
-            matches!(
-                e,
-                Error::Io {
-                    action: "writing",
-                    ..
-                }
-            ),
-            "{e}"
-        );
-        assert!(!p.exists());
-        // degenerate input: no frames, one frame
-        render_figure(&[], &dir.path().join("e.png"), FigureFormat::Png, false).unwrap();
-        render_figure(
-            &frames[..1],
-            &dir.path().join("o.svg"),
-            FigureFormat::Svg,
-            false,
-        )
-        .unwrap();
     }
 }

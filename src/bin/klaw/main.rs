@@ -176,7 +176,7 @@ impl GaitArgs {
             (None, Some(a)) => a.display().to_string(),
             (None, None) => "default".to_string(),
         };
-        let title = klaw::plot::cycle::parameters_title(&gaits, &body, &style);
+        let title = klaw::plot::parameters_title(&gaits, &body, &style);
         Ok((simulate(body, attrs, &gaits)?, title))
     }
 }
@@ -715,11 +715,12 @@ fn walk(args: &WalkArgs) -> Result<()> {
         io::write_events_csv(path, &stream.events)?;
     }
     if let Some(path) = &args.cycle_out {
-        let curves = export::cycle_average(&stream.clinical, &stream.right_heel_strikes, 1)?;
+        let curves =
+            klaw::analysis::cycle::cycle_average(&stream.clinical, &stream.right_heel_strikes, 1)?;
         export::write_cycle_csv(path, &curves)?;
     }
     if let Some(plot) = plot {
-        plot::walk_figure(&stream.state_frames, plot)?;
+        plot::walk::walk_figure(&stream.state_frames, plot)?;
     }
     let frames = (stream.duration() * fps + 1e-9).floor() as usize + 1;
 
@@ -794,7 +795,7 @@ fn bench(args: &BenchArgs) -> Result<()> {
             let start = Instant::now();
             for lm in klaw::figure::frames(&walk, fps) {
                 let lm = lm?;
-                std::hint::black_box(klaw::figure::skeleton::clinical(&lm, &body)?);
+                std::hint::black_box(klaw::figure::clinical::clinical(&lm, &body)?);
                 frame_count += 1;
             }
             frames_wall += start.elapsed().as_secs_f64();
@@ -1026,8 +1027,8 @@ fn plot_cycle(args: &PlotArgs) -> Result<()> {
     plot::figure_format(&args.out)?;
     check_output_dir(&args.out)?;
     let (walk, title) = args.walk.simulate()?;
-    let cycle = klaw::plot::cycle::GaitCycle::from_walk(&walk)?;
-    let norms = klaw::plot::cycle::NormTable::builtin();
+    let cycle = klaw::analysis::cycle::GaitCycle::from_walk(&walk)?;
+    let norms = klaw::analysis::norms::NormTable::builtin();
     let figure = klaw::plot::cycle::write_cycle_figure(&cycle, &norms, &title, &args.out)?;
     let mut out = std::io::stdout().lock();
     let _ = writeln!(
