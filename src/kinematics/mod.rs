@@ -1,5 +1,8 @@
-//! Lower-body kinematics: pure functions of the dynamic state (KLAW 1989 §4.2 "cosmetics"):
-//! the foot's shape and rolling, and the kinematic completion of the hind leg's stance.
+//! Lower-body kinematics: pure geometry of the figure around the dynamic models (KLAW 1989 §4.2
+//! "cosmetics"): the foot's shape and rolling, the two-link leg, the knee's prescribed curve after
+//! heel-off, the determinants of gait, and the virtual stance leg that completes each stance.
 pub mod foot;
+pub mod knee_curve;
+pub mod leg;
 pub mod pelvis;
 pub mod stance_leg;

@@ -17,32 +17,13 @@
 use std::f64::consts::{FRAC_PI_3, TAU};
 
 use crate::kinematics::foot::{Foot, FootPoints, GUESS_SLACK};
+pub use crate::kinematics::knee_curve::KneeCurve;
+pub use crate::kinematics::leg::{LegPose, leg_points, leg_points_sc};
+use crate::kinematics::leg::{chain, reach};
 use crate::model::body::Body;
 use crate::numerics::roots;
 use crate::numerics::smooth::smoothstep;
 use crate::numerics::trig::{atan2, sin_cos};
-
-/// A leg pose: sagittal points (x forward, y up, world heights; the foot in the vertical plane of
-/// its ankle) and the in-plane angles.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LegPose {
-    /// Knee in the leg's plane, unfolded: x, and the in-plane height above the ankle added to the
-    /// ankle's height (equal to the world height when the leg has no lateral offset).
-    pub knee: [f64; 2],
-    pub ankle: [f64; 2],
-    pub foot: FootPoints,
-    /// Thigh from the in-plane downward vertical (knee ahead −), rad.
-    pub theta3: f64,
-    /// Knee flexion, rad.
-    pub theta4: f64,
-    /// (sin, cos) of θ3 and of the shank's θ3 + θ4 (for [`leg_points_sc`] and the figure).
-    pub sin_cos: [(f64, f64); 2],
-    /// Foot pitch (heel up +) and toe dorsiflexion θ6, rad.
-    pub pitch: f64,
-    pub theta6: f64,
-    /// By how much the straight leg falls short of the hip (m; 0 when the hip is reachable).
-    pub gap: f64,
-}
 
 /// Which foot rule holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -50,151 +31,6 @@ pub enum FootPhase {
     HeelRocker,
     FootFlat,
     Rolling,
-}
-
-/// Knee flexion after heel-off (spec §7: "a C¹ cubic from its value and rate at heel-off to
-/// κ_TO at toe-off"): the cubic Hermite from (κ0, κ̇0) at t0 to (κ_TO, κ̇_TO) at t_to.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct KneeCurve {
-    pub t0: f64,
-    pub kappa0: f64,
-    pub rate0: f64,
-    pub t_to: f64,
-    pub kappa_to: f64,
-    pub rate_to: f64,
-}
-
-/// The knee's rate at toe-off as a multiple of its mean rate from heel-off [ours]: the knee
-/// stays nearly straight after heel-off and folds in pre-swing, as in human gait (Perry: ≈ 5° at
-/// 40 % of the cycle, 35–40° at toe-off, still flexing), while the foot rolls up and the ankle
-/// plantarflexes.
-pub const TOE_OFF_KNEE_RATE: f64 = 2.0;
-
-impl KneeCurve {
-    /// The curve from (κ0, κ̇0) at t0 to κ_TO at t_to, reaching it at TOE_OFF_KNEE_RATE × the
-    /// mean rate. A start rate below −κ0 / (t_to − t0) is raised to it [ours]: the cubic then
-    /// starts no steeper down than the line to a straight knee at toe-off and cannot swing
-    /// through hyperextension (a flat-foot knee that straightens into heel-off has an unbounded
-    /// rate, the acos of a distance at its maximum).
-    pub fn new(t0: f64, kappa0: f64, rate0: f64, t_to: f64, kappa_to: f64) -> Self {
-        KneeCurve {
-            t0,
-            kappa0,
-            rate0: rate0.max(-kappa0.max(0.0) / (t_to - t0)),
-            t_to,
-            kappa_to,
-            rate_to: TOE_OFF_KNEE_RATE * (kappa_to - kappa0) / (t_to - t0),
-        }
-    }
-
-    /// Value and rate at t.
-    pub fn at(&self, t: f64) -> (f64, f64) {
-        let d = self.t_to - self.t0;
-        let s = (t - self.t0) / d;
-        let (p0, m0, p1, m1) = (self.kappa0, self.rate0 * d, self.kappa_to, self.rate_to * d);
-        let (s2, s3) = (s * s, s * s * s);
-        let value = (2.0 * s3 - 3.0 * s2 + 1.0) * p0
-            + (s3 - 2.0 * s2 + s) * m0
-            + (-2.0 * s3 + 3.0 * s2) * p1
-            + (s3 - s2) * m1;
-        let rate = ((6.0 * s2 - 6.0 * s) * p0
-            + (3.0 * s2 - 4.0 * s + 1.0) * m0
-            + (-6.0 * s2 + 6.0 * s) * p1
-            + (3.0 * s2 - 2.0 * s) * m1)
-            / d;
-        (value, rate)
-    }
-}
-
-/// Knee and ankle (x, world y) of a leg hanging from a hip joint at `hip` with in-plane thigh
-/// angle θ3 and knee flexion θ4, in a plane that contains the forward axis and is tilted by φ,
-/// sin φ = dz / (in-plane drop), so that the ankle sits `dz` to the side of the hip. Also
-/// returns the (sin, cos) of θ3 and of the shank's θ3 + θ4 it used (the figure places the leg
-/// in 3-D with them).
-pub fn leg_points(
-    hip: [f64; 2],
-    dz: f64,
-    theta3: f64,
-    theta4: f64,
-    l3: f64,
-    l4: f64,
-) -> ([f64; 2], [f64; 2], [(f64, f64); 2]) {
-    let sin_cos = [sin_cos(theta3), sin_cos(theta3 + theta4)];
-    let (knee, ankle) = leg_points_sc(hip, dz, sin_cos, l3, l4);
-    (knee, ankle, sin_cos)
-}
-
-/// [`leg_points`] from the (sin, cos) of θ3 and of θ3 + θ4 (a pose that has them already).
-pub fn leg_points_sc(
-    hip: [f64; 2],
-    dz: f64,
-    [(s3, c3), (ss, cs)]: [(f64, f64); 2],
-    l3: f64,
-    l4: f64,
-) -> ([f64; 2], [f64; 2]) {
-    let drop = l3 * c3 + l4 * cs;
-    let cos_phi = (1.0 - (dz / drop).powi(2)).max(0.0).sqrt();
-    let knee = [hip[0] - l3 * s3, hip[1] - l3 * c3 * cos_phi];
-    let ankle = [knee[0] - l4 * ss, knee[1] - l4 * cs * cos_phi];
-    (knee, ankle)
-}
-
-/// The (sin, cos) of a + b from those of a and of b.
-#[inline]
-fn add_angles((sa, ca): (f64, f64), (sb, cb): (f64, f64)) -> (f64, f64) {
-    (sa * cb + ca * sb, ca * cb - sa * sb)
-}
-
-/// Hip–ankle distance of a leg with knee flexion κ, from cos κ.
-fn reach(l3: f64, l4: f64, cos_kappa: f64) -> f64 {
-    (l3 * l3 + l4 * l4 + 2.0 * l3 * l4 * cos_kappa).sqrt()
-}
-
-/// The leg chain for a hip at `hip` (with lateral offset `dz`) and an ankle at `ankle`: knee
-/// flexion from the distance (0 and a gap when out of reach), thigh angle in the leg's plane.
-struct Chain {
-    kappa: f64,
-    theta3: f64,
-    knee: [f64; 2],
-    gap: f64,
-    /// (sin, cos) of θ3 and of κ.
-    thigh: (f64, f64),
-    knee_sc: (f64, f64),
-}
-
-impl Chain {
-    /// The pose's (sin, cos) of θ3 and of θ3 + θ4 for knee flexion θ4 with (sin, cos) `knee`.
-    fn sin_cos(&self, knee: (f64, f64)) -> [(f64, f64); 2] {
-        [self.thigh, add_angles(self.thigh, knee)]
-    }
-}
-
-/// [`Chain`] of a hip and an ankle. (The distances stay libm's `hypot`: near a straight knee κ
-/// is the acos of nearly 1, which turns a last-bit change of d into ≈ 1e-8 rad.)
-fn chain(l3: f64, l4: f64, hip: [f64; 2], dz: f64, ankle: [f64; 2]) -> Chain {
-    let dx = hip[0] - ankle[0];
-    let dv = (hip[1] - ankle[1]).hypot(dz);
-    let d = dx.hypot(dv);
-    let cos_k = ((d * d - l3 * l3 - l4 * l4) / (2.0 * l3 * l4)).clamp(-1.0, 1.0);
-    let kappa = cos_k.acos();
-    let gap = (d - (l3 + l4)).max(0.0);
-    // (κ's own sine and cosine, not cos_k: the leg's points use the κ reported)
-    let knee_sc = sin_cos(kappa);
-    let a = reach(l3, l4, knee_sc.1);
-    // thigh = hip–ankle line angle (from the downward vertical, ankle ahead −) minus β
-    let line = atan2(dx, dv);
-    let beta = (l4 * knee_sc.0 / a).clamp(-1.0, 1.0).asin();
-    let theta3 = line - beta;
-    let (s3, c3) = sin_cos(theta3);
-    let knee = [hip[0] - l3 * s3, ankle[1] + dv - l3 * c3];
-    Chain {
-        kappa,
-        theta3,
-        knee,
-        gap,
-        thigh: (s3, c3),
-        knee_sc,
-    }
 }
 
 /// The stance leg of one step, from its heel strike to its toe-off. Times are world times (s),
@@ -631,32 +467,6 @@ mod tests {
 
     /// In every foot rule the chain closes (|hip − knee| = l3, |knee − ankle| = l4 in the leg's
     /// plane), the contact point stays put and no point of the foot is under the ground.
-    /// The knee curve meets its ends (value and rate, the start rate unless bounded) and never
-    /// hyperextends, even from a knee straightening fast into heel-off; checked on a dense grid.
-    #[test]
-    fn knee_curve_meets_its_ends_and_never_hyperextends() {
-        for (k0, r0) in [
-            (0.2, 0.5),
-            (0.15, -0.2),
-            (0.01, -50.0),
-            (0.0, -1e6),
-            (0.1, -0.4),
-        ] {
-            let c = KneeCurve::new(1.0, k0, r0, 1.3, 0.7);
-            let (v0, d0) = c.at(1.0);
-            let (v1, d1) = c.at(1.3);
-            assert!((v0 - k0).abs() < 1e-12 && (v1 - 0.7).abs() < 1e-12);
-            assert!((d1 - TOE_OFF_KNEE_RATE * (0.7 - k0) / 0.3).abs() < 1e-9);
-            if r0 >= -k0 / 0.3 {
-                assert!((d0 - r0).abs() < 1e-9, "{k0} {r0}: {d0}");
-            }
-            for i in 0..=1000 {
-                let (v, _) = c.at(1.0 + 0.3 * i as f64 / 1000.0);
-                assert!(v >= -1e-12, "{k0} {r0}: {v} at {i}");
-            }
-        }
-    }
-
     #[test]
     fn chain_closes_and_contacts_hold() {
         let (b, mut l) = leg();
@@ -696,56 +506,6 @@ mod tests {
             }
         }
         assert_eq!(phases.len(), 3, "every rule was exercised: {phases:?}");
-    }
-
-    /// The chain against its first form (the shank's sine and cosine from sin_cos(θ3 + κ), and
-    /// libm's sin and cos) over hips near and out of reach, with and without a lateral offset:
-    /// the same angles and knee to round-off.
-    #[test]
-    fn chain_agrees_with_hypot_and_the_shank_angle() {
-        let (b, _) = leg();
-        let (l3, l4) = (b.l3, b.l4);
-        let old = |hip: [f64; 2], dz: f64, ankle: [f64; 2]| {
-            let dx = hip[0] - ankle[0];
-            let dv = (hip[1] - ankle[1]).hypot(dz);
-            let d = dx.hypot(dv);
-            let cos_k = ((d * d - l3 * l3 - l4 * l4) / (2.0 * l3 * l4)).clamp(-1.0, 1.0);
-            let kappa = cos_k.acos();
-            let a = reach(l3, l4, kappa.cos());
-            let theta3 = dx.atan2(dv) - (l4 * kappa.sin() / a).clamp(-1.0, 1.0).asin();
-            let knee = [
-                hip[0] - l3 * theta3.sin(),
-                ankle[1] + dv - l3 * theta3.cos(),
-            ];
-            (kappa, theta3, knee, (d - (l3 + l4)).max(0.0))
-        };
-        let mut worst: f64 = 0.0;
-        for i in 0..=40 {
-            for j in 0..=40 {
-                for dz in [0.0, 0.03, -0.08] {
-                    let hip = [-0.5 + 0.025 * i as f64, 0.55 + 0.01 * j as f64];
-                    let ankle = [0.05, 0.08];
-                    let c = chain(l3, l4, hip, dz, ankle);
-                    let (kappa, theta3, knee, gap) = old(hip, dz, ankle);
-                    let [(s3, c3), (ss, cs)] = c.sin_cos(c.knee_sc);
-                    let (s, co) = (theta3 + kappa).sin_cos();
-                    for e in [
-                        c.kappa - kappa,
-                        c.theta3 - theta3,
-                        c.knee[0] - knee[0],
-                        c.knee[1] - knee[1],
-                        c.gap - gap,
-                        s3 - theta3.sin(),
-                        c3 - theta3.cos(),
-                        ss - s,
-                        cs - co,
-                    ] {
-                        worst = worst.max(e.abs());
-                    }
-                }
-            }
-        }
-        assert!(worst < 1e-14, "{worst}");
     }
 
     /// Every pose carries the (sin, cos) of its θ3 and θ3 + θ4, and the rolling foot's arc
