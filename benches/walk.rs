@@ -1,7 +1,9 @@
-//! Criterion benchmarks of the walking simulation (H = 1.8 m, M = 80 kg, v = 1.4 m/s):
+//! Criterion benchmarks of the walking simulation (H = 1.8 m, M = 80 kg, v = 1.4 m/s), the
+//! walks run through the library's `Simulation` builder:
 //! - `one_step`: a fresh 1-step walk (cold shooting start);
 //! - `walk_10_steps`: simulation only;
-//! - `walk_10_steps_with_frames`: simulation, then frames sampled at 100 frames/s;
+//! - `walk_10_steps_with_frames`: simulation, then the engine's state frames sampled at
+//!   100 frames/s;
 //! - `walk_10_steps_frames_csv`: the same, then the frames written as CSV to a temporary file;
 //! - `sweep_1000_walks` (group `sweep`): 1 000 walks of 10 steps, v = 0.6…1.99 m/s (250 values)
 //!   × H = 1.5, 1.65, 1.8, 1.95 m (M = 23 H²), on the rayon pool (all cores), as `klaw sweep`
@@ -20,12 +22,9 @@ use std::time::Duration;
 
 use criterion::{Criterion, criterion_group};
 use klaw::engine::walker::simulate;
-use klaw::{AttributeTable, Attributes, Body, Gait, GaitRequest};
+use klaw::{AttributeTable, Attributes, Body, Gait, GaitRequest, Simulation};
 use rayon::prelude::*;
 
-const HEIGHT: f64 = 1.8;
-const MASS: f64 = 80.0;
-const VELOCITY: f64 = 1.4;
 const FPS: f64 = 100.0;
 
 fn gait(body: &Body, attrs: &Attributes, v: f64) -> Gait {
@@ -37,39 +36,30 @@ fn gait(body: &Body, attrs: &Attributes, v: f64) -> Gait {
     .expect("the gait is valid")
 }
 
-fn setup() -> (Body, Attributes, Gait) {
-    let body = Body::standard(HEIGHT, MASS).expect("the default body is valid");
-    let attrs = AttributeTable::builtin().defaults();
-    let gait = gait(&body, &attrs, VELOCITY);
-    (body, attrs, gait)
-}
-
 fn one_step(c: &mut Criterion) {
-    let (body, attrs, gait) = setup();
-    let one = [gait];
+    let one = Simulation::default().steps(1);
     c.bench_function("one_step", |b| {
-        b.iter(|| simulate(black_box(body), attrs.clone(), black_box(&one)).expect("walks"))
+        b.iter(|| black_box(&one).run().expect("walks"))
     });
 }
 
 fn ten_steps(c: &mut Criterion) {
-    let (body, attrs, gait) = setup();
-    let ten = [gait; 10];
+    let ten = Simulation::default();
     c.bench_function("walk_10_steps", |b| {
-        b.iter(|| simulate(black_box(body), attrs.clone(), black_box(&ten)).expect("walks"))
+        b.iter(|| black_box(&ten).run().expect("walks"))
     });
     c.bench_function("walk_10_steps_with_frames", |b| {
         b.iter(|| {
-            let walk = simulate(black_box(body), attrs.clone(), black_box(&ten)).expect("walks");
-            walk.frames(black_box(FPS))
+            let walk = black_box(&ten).run().expect("walks");
+            walk.state_frames(black_box(FPS)).expect("valid fps")
         })
     });
     let dir = tempfile::tempdir().expect("a temporary directory");
     let path = dir.path().join("walk.csv");
     c.bench_function("walk_10_steps_frames_csv", |b| {
         b.iter(|| {
-            let walk = simulate(black_box(body), attrs.clone(), black_box(&ten)).expect("walks");
-            klaw::io::write_frames_csv(&path, &walk.frames(FPS)).expect("writes")
+            let walk = black_box(&ten).run().expect("walks");
+            walk.write_state(&path, FPS).expect("writes")
         })
     });
 }

@@ -5,23 +5,13 @@
 use std::fs;
 use std::path::Path;
 
+mod common;
+
+use common::default_walk;
 use image::{AnimationDecoder, RgbaImage};
-use klaw::engine::walker::{Walk, simulate};
+use klaw::Error;
 use klaw::figure::Landmarks;
 use klaw::plot::animation::{Options, animate_walk, check_path, parse_size, write_gif};
-use klaw::{AttributeTable, Body, Error, GaitRequest};
-
-fn default_walk(steps: usize) -> Walk {
-    let body = Body::standard(1.8, 80.0).unwrap();
-    let attrs = AttributeTable::builtin().defaults();
-    let gait = GaitRequest {
-        velocity: Some(1.4),
-        ..GaitRequest::default()
-    }
-    .complete(&body, &attrs)
-    .unwrap();
-    simulate(body, attrs, &vec![gait; steps]).unwrap()
-}
 
 /// The decoded frames (RGBA) and each frame's delay in ms.
 fn decode(path: &Path) -> Vec<(RgbaImage, u32)> {

@@ -6,15 +6,17 @@
 //! segment's own forces, with t held inside the segment. The engine's phases are integrated
 //! again here at 1e-8, the tolerance the bounds were measured at (the walk's own tolerance is
 //! looser, `ode::TOLERANCE`).
+mod common;
+
 use nalgebra::SVector;
 use ode_solvers::{Dopri5, OutputType, System};
 
 use klaw::control::stance::{HipPath, StanceForces, StanceRun, TORQUE_OFF};
 use klaw::control::swing::{Subphase, SwingForces, SwingSetup};
 use klaw::dynamics::SwingModel;
-use klaw::engine::walker::{Step, Walker, swing_hip_vy_end};
+use klaw::engine::walker::{Step, Walk, swing_hip_vy_end};
 use klaw::numerics::ode::Phase;
-use klaw::{AttributeTable, Attributes, Body, GaitRequest};
+use klaw::{Attributes, Body};
 
 /// The integrator tolerance of the checks (the bounds below were measured at it).
 const TOLERANCE: f64 = 1e-8;
@@ -33,16 +35,7 @@ fn stance_again(step: &Step) -> StanceRun {
 }
 
 fn steps(n: usize) -> (Body, Attributes, Vec<Step>) {
-    let body = Body::standard(1.8, 80.0).unwrap();
-    let attrs = AttributeTable::builtin().defaults();
-    let gait = GaitRequest {
-        velocity: Some(1.4),
-        ..GaitRequest::default()
-    }
-    .complete(&body, &attrs)
-    .unwrap();
-    let mut walker = Walker::new(body, attrs.clone());
-    let steps = (0..n).map(|_| walker.step(gait).unwrap()).collect();
+    let Walk { body, attrs, steps } = common::default_walk(n);
     (body, attrs, steps)
 }
 

@@ -5,6 +5,9 @@
 //! rebuilt from the positions and velocities of the centres of mass (`StanceGeo`, `SwingGeo`),
 //! with the segment parameters taken from `Body`, and the Lagrange equations are then evaluated
 //! by finite differences of that T and V. Expected values are computed, never copied from output.
+mod common;
+
+use common::default_body;
 use klaw::Body;
 use klaw::dynamics::{StanceModel, SwingModel, impact};
 use nalgebra::{Matrix2, SMatrix, SVector, Vector2, Vector3};
@@ -21,10 +24,7 @@ const FD_TOL: f64 = 1e-6;
 
 /// The bodies used: the paper's example and a small body at the other end of the table.
 fn bodies() -> [Body; 2] {
-    [
-        Body::standard(1.8, 80.0).unwrap(),
-        Body::standard(1.55, 52.0).unwrap(),
-    ]
+    [default_body(), Body::standard(1.55, 52.0).unwrap()]
 }
 
 /// Deterministic SplitMix64 generator.
@@ -636,7 +636,7 @@ fn integrate<const N: usize, S: System<f64, SVector<f64, N>>>(
 /// E = T + V_g + ½ k_w (l1 − w)²; k_w = m2 (2π·5 Hz)².
 #[test]
 fn stance_with_leg_spring_conserves_energy() {
-    let body = Body::standard(1.8, 80.0).unwrap();
+    let body = default_body();
     let model = StanceModel::new(&body);
     let geo = StanceGeo::new(&body, model.g);
     let (l1, m2, g) = (body.l1, body.m2, model.g);
@@ -695,7 +695,7 @@ fn stance_with_leg_spring_conserves_energy() {
 /// The locked stance (w fixed, 2 DOF) conserves T + V_g.
 #[test]
 fn locked_stance_conserves_energy() {
-    let body = Body::standard(1.8, 80.0).unwrap();
+    let body = default_body();
     let model = StanceModel::new(&body);
     let geo = StanceGeo::new(&body, model.g);
     let (l1, m2, g) = (body.l1, body.m2, model.g);
@@ -743,7 +743,7 @@ fn locked_stance_conserves_energy() {
 /// §10: swing with the hip fixed and no torques conserves T + V (also with the knee locked).
 #[test]
 fn free_swing_conserves_energy() {
-    let body = Body::standard(1.8, 80.0).unwrap();
+    let body = default_body();
     let model = SwingModel::new(&body);
     let geo = SwingGeo::new(&body, model.g);
     let (l1, m2, g) = (body.l1, body.m2, model.g);
@@ -851,7 +851,7 @@ fn heel_strike_stops_the_leg_axis_and_keeps_the_angular_momenta() {
 #[test]
 fn rates_about_pivot_reproduce_the_hip_velocity() {
     let mut rng = Rng(6);
-    let body = Body::standard(1.8, 80.0).unwrap();
+    let body = default_body();
     let geo = StanceGeo::new(&body, 9.81);
     for _ in 0..50 {
         let (q, _) = random_stance_state(&mut rng);
@@ -1048,7 +1048,7 @@ fn knee_lock_keeps_the_angular_momentum_about_the_hip() {
 #[test]
 fn stance_hip_acceleration_is_the_second_derivative_of_the_hip() {
     let mut rng = Rng(9);
-    let body = Body::standard(1.8, 80.0).unwrap();
+    let body = default_body();
     let model = StanceModel::new(&body);
     let geo = StanceGeo::new(&body, model.g);
     let (mut worst_v, mut worst_a, mut worst_a2) = (0.0_f64, 0.0_f64, 0.0_f64);
@@ -1095,7 +1095,7 @@ fn stance_hip_acceleration_is_the_second_derivative_of_the_hip() {
 /// nearby integrated states.
 #[test]
 fn stance_hip_acceleration_along_a_trajectory() {
-    let body = Body::standard(1.8, 80.0).unwrap();
+    let body = default_body();
     let model = StanceModel::new(&body);
     let l1 = body.l1;
     let kw = body.m2 * (2.0 * std::f64::consts::PI * 5.0).powi(2);
@@ -1165,7 +1165,7 @@ fn stance_hip_acceleration_along_a_trajectory() {
 #[test]
 fn swing_joints_and_ankle_jacobian() {
     let mut rng = Rng(10);
-    let body = Body::standard(1.8, 80.0).unwrap();
+    let body = default_body();
     let model = SwingModel::new(&body);
     for _ in 0..50 {
         let (q, qd) = random_swing_state(&mut rng);

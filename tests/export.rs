@@ -21,6 +21,10 @@ use klaw::figure::{ArmAngles, Landmarks, LegPoints};
 use klaw::model::body::Body;
 use proptest::prelude::*;
 
+mod common;
+
+use common::default_body as body;
+
 fn rx(a: f64) -> DMat3 {
     DMat3::from_rotation_x(a)
 }
@@ -64,10 +68,6 @@ struct ArmPoints {
     shoulder: DVec3,
     elbow: DVec3,
     wrist: DVec3,
-}
-
-fn body() -> Body {
-    Body::standard(1.8, 80.0).unwrap()
 }
 
 /// The figure of `pose`, following the conventions the issue and `Landmarks` state: pelvis
@@ -1053,15 +1053,8 @@ fn malformed_bvh_is_rejected() {
 /// the engine put them, to 1 mm (measured ≈ 1e-6 m), in place or not.
 #[test]
 fn bvh_of_a_real_walk_reproduces_the_engine() {
-    let b = Body::standard(1.8, 80.0).unwrap();
-    let attrs = klaw::Attributes::default();
-    let gait = klaw::GaitRequest {
-        velocity: Some(1.4),
-        ..Default::default()
-    }
-    .complete(&b, &attrs)
-    .unwrap();
-    let walk = klaw::engine::walker::simulate(b, attrs, &[gait; 4]).unwrap();
+    let b = body();
+    let walk = common::default_walk(4);
     let lms: Vec<Landmarks> = klaw::figure::frames(&walk, 50.0)
         .collect::<klaw::Result<_>>()
         .unwrap();

@@ -1,9 +1,12 @@
 //! The whole figure (spec §7) checked by geometry that does not depend on how it is built: rigid
 //! segments, feet on (never under) the ground, stance contacts that do not slide, heels that
 //! land where the step constraints put them, and no joint angle jumping at a phase boundary.
+mod common;
+
+use common::{body_of_height, default_attributes, default_body};
 use klaw::engine::walker as walk;
 use klaw::figure::{Landmarks, LegPoints, landmarks};
-use klaw::{Attributes, Body, GaitRequest};
+use klaw::{Attributes, Body};
 
 fn d(a: [f64; 3], b: [f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
@@ -29,16 +32,12 @@ fn foot_pitch(l: &LegPoints) -> f64 {
 }
 
 fn walk_of(v: f64, h: f64) -> (Body, Attributes, walk::Walk) {
-    let body = Body::standard(h, 23.0 * h * h).unwrap();
-    let attrs = Attributes::default();
-    let g = GaitRequest {
-        velocity: Some(v),
-        ..Default::default()
-    }
-    .complete(&body, &attrs)
-    .unwrap();
-    let w = walk::simulate(body, attrs.clone(), &[g; 6]).unwrap();
-    (body, attrs, w)
+    let body = body_of_height(h);
+    (
+        body,
+        default_attributes(),
+        common::walk(body, v, 6).unwrap(),
+    )
 }
 
 fn figure_at(w: &walk::Walk, attrs: &Attributes, t: f64) -> Landmarks {
@@ -209,7 +208,7 @@ fn events_match_the_figure() {
 #[test]
 fn bisections_end_far_into_a_long_walk() {
     use klaw::kinematics::stance_leg::StanceLeg;
-    let b = Body::standard(1.8, 80.0).unwrap();
+    let b = default_body();
     let t0 = 1e5;
     let mut leg = StanceLeg::new(
         &b,

@@ -5,21 +5,17 @@ use std::path::Path;
 use std::process::{Command, Output};
 
 use klaw::engine::report::Frame;
-use klaw::engine::walker::simulate;
 use klaw::plot::walk::{FIGURE_SIZE, walk_figure};
-use klaw::{AttributeTable, Body, Error, GaitRequest};
+use klaw::{Error, Simulation};
 
 /// The frames of the default walk (H = 1.8 m, M = 80 kg, v = 1.4 m/s), 4 steps at 100 frames/s.
 fn default_frames() -> Vec<Frame> {
-    let body = Body::standard(1.8, 80.0).unwrap();
-    let attrs = AttributeTable::builtin().defaults();
-    let gait = GaitRequest {
-        velocity: Some(1.4),
-        ..GaitRequest::default()
-    }
-    .complete(&body, &attrs)
-    .unwrap();
-    simulate(body, attrs, &[gait; 4]).unwrap().frames(100.0)
+    Simulation::default()
+        .steps(4)
+        .run()
+        .unwrap()
+        .state_frames(100.0)
+        .unwrap()
 }
 
 fn files(dir: &Path) -> Vec<String> {

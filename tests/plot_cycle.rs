@@ -5,13 +5,15 @@ use std::f64::consts::PI;
 use std::fs;
 use std::path::Path;
 
+mod common;
+
+use common::default_walk;
+use klaw::Error;
 use klaw::analysis::cycle::{Curve, GaitCycle, Panel};
 use klaw::analysis::norms::{Measure, NormTable, check};
-use klaw::engine::walker::simulate;
 use klaw::figure::clinical::Clinical;
 use klaw::figure::skeleton::Side;
 use klaw::plot::cycle::{BAND_COLOR, CYCLE_FIGURE_SIZE, EXCURSION_BAND_COLOR, write_cycle_figure};
-use klaw::{AttributeTable, Body, Error, GaitRequest};
 
 /// A cycle whose curves are given functions of the cycle % (101 samples).
 fn synthetic(f: impl Fn(Panel, Option<Side>, f64) -> f64) -> GaitCycle {
@@ -344,18 +346,6 @@ fn norm_bands_are_drawn_over_their_windows_only() {
     assert_ne!(img.get_pixel(x as u32, y as u32).0, exc);
     let (x, y) = px(Panel::PelvisHeight, 25.0, 92.5);
     assert_ne!(img.get_pixel(x as u32, y as u32).0, exc);
-}
-
-fn default_walk(steps: usize) -> klaw::engine::walker::Walk {
-    let body = Body::standard(1.8, 80.0).unwrap();
-    let attrs = AttributeTable::builtin().defaults();
-    let gait = GaitRequest {
-        velocity: Some(1.4),
-        ..GaitRequest::default()
-    }
-    .complete(&body, &attrs)
-    .unwrap();
-    simulate(body, attrs, &vec![gait; steps]).unwrap()
 }
 
 /// The default walk's figure as PNG (1500 × 1000) and SVG; a bad extension is a typed error and

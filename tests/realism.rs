@@ -11,12 +11,13 @@
 //!   mid-stance (knee held near straight, heel rising about the metatarsal joint, spec §7), but
 //!   the plan's heel-strike height leaves the trailing ankle at ≥ 17–19° for any human knee
 //!   ([`the_plan_heel_strike_leaves_the_trailing_ankle_above_its_norm`], docs/realism.md).
+mod common;
+
+use common::{body_of_height, default_attributes, gait};
 use klaw::analysis::cycle::cycle_average;
-use klaw::engine::walker as walk;
-use klaw::figure::clinical::angle_columns;
-use klaw::figure::clinical::clinical;
+use klaw::figure::clinical::{angle_columns, clinical};
 use klaw::figure::frames;
-use klaw::{Attributes, Body, Gait, GaitRequest};
+use klaw::{Attributes, Body, Gait};
 
 struct Cycle {
     columns: Vec<String>,
@@ -35,20 +36,13 @@ impl Cycle {
 
 /// The default style at v m/s for height h (M = 23 h²): body, attributes and gait.
 fn default_gait(v: f64, h: f64) -> (Body, Attributes, Gait) {
-    let body = Body::standard(h, 23.0 * h * h).unwrap();
-    let attrs = Attributes::default();
-    let g = GaitRequest {
-        velocity: Some(v),
-        ..Default::default()
-    }
-    .complete(&body, &attrs)
-    .unwrap();
-    (body, attrs, g)
+    let body = body_of_height(h);
+    (body, default_attributes(), gait(&body, v))
 }
 
 fn cycle(v: f64, h: f64) -> Cycle {
-    let (body, attrs, g) = default_gait(v, h);
-    let w = walk::simulate(body, attrs, &[g; 8]).unwrap();
+    let body = body_of_height(h);
+    let w = common::walk(body, v, 8).unwrap();
     let lms: Vec<_> = frames(&w, 200.0).map(|l| l.unwrap()).collect();
     let clin: Vec<_> = lms.iter().map(|l| clinical(l, &body).unwrap()).collect();
     let strikes: Vec<f64> = w.steps.iter().step_by(2).map(|s| s.t_start).collect();

@@ -1,9 +1,12 @@
 //! Style presets (models/styles/): each converges over its speed range and body heights, and
 //! the styles differ measurably from the normal walk in what they claim to change.
+mod common;
+
+use common::body_of_height;
 use klaw::engine::walker as walk;
 use klaw::figure::landmarks;
 use klaw::model::attributes::{AttributeTable, STYLES, style};
-use klaw::{Attributes, Body, GaitRequest};
+use klaw::{Attributes, Simulation};
 
 fn attrs_of(name: &str) -> Attributes {
     AttributeTable::builtin()
@@ -12,17 +15,13 @@ fn attrs_of(name: &str) -> Attributes {
 }
 
 fn walk_with(name: &str, v: f64, h: f64) -> (Attributes, walk::Walk) {
-    let body = Body::standard(h, 23.0 * h * h).unwrap();
-    let attrs = attrs_of(name);
-    let g = GaitRequest {
-        velocity: Some(v),
-        ..Default::default()
-    }
-    .complete(&body, &attrs)
-    .unwrap_or_else(|e| panic!("{name} v {v}: {e}"));
-    let w = walk::simulate(body, attrs.clone(), &[g; 8])
+    let w = Simulation::new(body_of_height(h))
+        .style(name)
+        .velocity(v)
+        .steps(8)
+        .run()
         .unwrap_or_else(|e| panic!("{name} v {v} H {h}: {e}"));
-    (attrs, w)
+    (w.attributes().clone(), w.into_engine())
 }
 
 /// Each style over its own speed range [velocity_min, min(velocity_max, 2)] (5 speeds) and

@@ -1,16 +1,9 @@
 //! The walking engine's bounds (issue: walking engine), checked on whole walks.
-use klaw::engine::report::StepReport;
-use klaw::engine::walker as walk;
-use klaw::{Attributes, Body, GaitRequest};
+mod common;
 
-fn gait(body: &Body, v: f64) -> klaw::Gait {
-    GaitRequest {
-        velocity: Some(v),
-        ..Default::default()
-    }
-    .complete(body, &Attributes::default())
-    .unwrap()
-}
+use common::{body_of_height, default_attributes, default_body, gait, grid, walk};
+use klaw::engine::report::StepReport;
+use klaw::{GaitRequest, Simulation};
 
 /// Every per-step bound of the issue that does not depend on the speed range.
 fn check_step(s: &StepReport, label: &str) {
@@ -81,9 +74,9 @@ fn check_warm_iterations(iterations: &mut [usize]) {
 
 #[test]
 fn default_walk_meets_every_bound() {
-    let body = Body::standard(1.8, 80.0).unwrap();
+    let body = default_body();
     let g = gait(&body, 1.4);
-    let w = walk::simulate(body, Attributes::default(), &[g; 10]).unwrap();
+    let w = walk(body, 1.4, 10).unwrap();
     let report = w.report();
     assert_eq!(report.steps.len(), 10);
     let mut late = Vec::new();
@@ -104,7 +97,7 @@ fn default_walk_meets_every_bound() {
     // spec §7: the hip speed surviving each impact lies between cos 2θ1* and cos θ1* (the point-
     // mass bounds; tests/dynamics.rs shows the trunk can push it below cos 2θ1* for a velocity
     // across the old leg, but not in a walk, where the hip moves nearly horizontally)
-    let c = klaw::StepConstraints::new(&body, &Attributes::default(), g).unwrap();
+    let c = klaw::StepConstraints::new(&body, &default_attributes(), g).unwrap();
     for s in &report.steps {
         let r = s.impact_speed_ratio;
         assert!(
@@ -141,28 +134,21 @@ fn default_walk_meets_every_bound() {
 /// converges and meets every bound.
 #[test]
 fn grid_meets_every_bound() {
-    let attrs = Attributes::default();
     let mut late = Vec::new();
-    for hi in 0..4 {
-        let h = 1.5 + 0.15 * hi as f64;
-        for vi in 0..15 {
-            let v = 0.6 + 0.1 * vi as f64;
-            let body = Body::standard(h, 23.0 * h * h).unwrap();
-            let label = format!("v {v:.1} H {h:.2}");
-            let w = walk::simulate(body, attrs.clone(), &[gait(&body, v); 10])
-                .unwrap_or_else(|e| panic!("{label}: {e}"));
-            for s in &w.report().steps {
-                check_step(s, &label);
-                if (1.2..=1.4 + 1e-9).contains(&v) && h >= 1.65 {
-                    assert!(
-                        (0.03..=0.06).contains(&s.hip_excursion),
-                        "{label}: {}",
-                        s.hip_excursion
-                    );
-                }
-                if s.index >= 3 {
-                    late.extend(s.solves.iter().map(|so| so.report.iterations));
-                }
+    for (v, h) in grid() {
+        let label = format!("v {v:.1} H {h:.2}");
+        let w = walk(body_of_height(h), v, 10).unwrap_or_else(|e| panic!("{label}: {e}"));
+        for s in &w.report().steps {
+            check_step(s, &label);
+            if (1.2..=1.4 + 1e-9).contains(&v) && h >= 1.65 {
+                assert!(
+                    (0.03..=0.06).contains(&s.hip_excursion),
+                    "{label}: {}",
+                    s.hip_excursion
+                );
+            }
+            if s.index >= 3 {
+                late.extend(s.solves.iter().map(|so| so.report.iterations));
             }
         }
     }
@@ -172,10 +158,17 @@ fn grid_meets_every_bound() {
 /// A schedule that accelerates from 1.0 to 1.6 m/s over 6 steps meets every step's targets.
 #[test]
 fn accelerating_schedule_meets_every_target() {
-    let body = Body::standard(1.8, 80.0).unwrap();
-    let gaits: Vec<_> = (0..6).map(|i| gait(&body, 1.0 + 0.12 * i as f64)).collect();
-    let w = walk::simulate(body, Attributes::default(), &gaits).unwrap();
-    for (s, g) in w.report().steps.iter().zip(&gaits) {
+    let schedule = (0..6)
+        .map(|i| GaitRequest {
+            velocity: Some(1.0 + 0.12 * i as f64),
+            ..GaitRequest::default()
+        })
+        .collect();
+    let w = Simulation::new(default_body())
+        .schedule(schedule)
+        .run()
+        .unwrap();
+    for (s, g) in w.report().steps.iter().zip(w.gaits()) {
         check_step(s, "schedule");
         assert!((s.target.velocity - g.velocity).abs() < 1e-12);
         assert!(
@@ -191,8 +184,7 @@ fn accelerating_schedule_meets_every_target() {
 #[test]
 fn hip_path_interpolates_the_stance_hip() {
     use klaw::control::stance::HipPath;
-    let body = Body::standard(1.8, 80.0).unwrap();
-    let w = walk::simulate(body, Attributes::default(), &[gait(&body, 1.4); 3]).unwrap();
+    let w = walk(default_body(), 1.4, 3).unwrap();
     let s = &w.steps[2];
     let t = s.constraints.timing;
     // with an offset whose acceleration is known: (0.01 sin 9t, 0.02 cos 7t)
@@ -222,8 +214,12 @@ fn hip_path_interpolates_the_stance_hip() {
 fn measured_extremes_are_at_least_those_of_dense_sampling() {
     use klaw::kinematics::foot::Foot;
     for (v, h) in [(1.4, 1.8), (0.6, 1.5), (2.0, 1.5), (0.6, 1.95), (2.0, 1.95)] {
-        let body = Body::standard(h, if h == 1.8 { 80.0 } else { 23.0 * h * h }).unwrap();
-        let w = walk::simulate(body, Attributes::default(), &[gait(&body, v); 4]).unwrap();
+        let body = if h == 1.8 {
+            default_body()
+        } else {
+            body_of_height(h)
+        };
+        let w = walk(body, v, 4).unwrap();
         let foot = Foot::new(&body);
         for s in &w.steps {
             let r = &s.report;

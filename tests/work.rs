@@ -3,26 +3,19 @@
 //! the swing leg hanging from an accelerating hip, the work of the frame's inertial force). The
 //! energies are the models' `kinetic_energy` / `potential_energy`, which tests/dynamics.rs checks
 //! against energies computed from the segment points; the work side is the code under test.
+mod common;
+
+use common::{default_attributes, default_body, default_walk};
 use nalgebra::{Vector2, Vector3};
 
 use klaw::control::stance::HipPath;
 use klaw::control::swing::{Subphase, SwingSetup, SwingState, SwingTrial};
 use klaw::dynamics::SwingModel;
-use klaw::engine::walker::{Step, Walker, simulate};
+use klaw::engine::walker::Step;
 use klaw::engine::work::{self, simpson};
-use klaw::{AttributeTable, Attributes, Body, GaitRequest};
 
 fn steps(v: f64, n: usize) -> Vec<Step> {
-    let body = Body::standard(1.8, 80.0).unwrap();
-    let attrs = AttributeTable::builtin().defaults();
-    let gait = GaitRequest {
-        velocity: Some(v),
-        ..GaitRequest::default()
-    }
-    .complete(&body, &attrs)
-    .unwrap();
-    let mut walker = Walker::new(body, attrs);
-    (0..n).map(|_| walker.step(gait).unwrap()).collect()
+    common::walk(default_body(), v, n).unwrap().steps
 }
 
 /// Stance: over every integration segment of a converged step (telescopic and locked), the net
@@ -105,7 +98,7 @@ fn swing_setup<'a>(step: &'a Step, model: SwingModel, hip: &'a HipPath) -> Swing
         d_k: 2.0,
         k_h: 40.0,
         d_h: 3.0,
-        ..SwingSetup::new(model, hip, 0.0, &step.constraints, &Attributes::default())
+        ..SwingSetup::new(model, hip, 0.0, &step.constraints, &default_attributes())
     }
 }
 
@@ -114,7 +107,7 @@ fn swing_setup<'a>(step: &'a Step, model: SwingModel, hip: &'a HipPath) -> Swing
 /// energy balance of the leg hanging from the accelerating hip.
 #[test]
 fn swing_net_work_is_the_energy_balance_in_the_hip_frame() {
-    let body = Body::standard(1.8, 80.0).unwrap();
+    let body = default_body();
     let model = SwingModel::new(&body);
     for v in [0.8, 1.4, 2.0] {
         for step in steps(v, 2) {
@@ -196,15 +189,7 @@ fn positive_work_converges_with_sampling() {
 /// — do 3–4 times the work of human muscles, which store and return energy in tendons.
 #[test]
 fn work_per_metre_is_plausible() {
-    let body = Body::standard(1.8, 80.0).unwrap();
-    let attrs = AttributeTable::builtin().defaults();
-    let gait = GaitRequest {
-        velocity: Some(1.4),
-        ..GaitRequest::default()
-    }
-    .complete(&body, &attrs)
-    .unwrap();
-    let walk = simulate(body, attrs, &[gait; 6]).unwrap();
+    let walk = default_walk(6);
     let report = walk.report();
     let work: f64 = report.steps.iter().map(|s| s.positive_work).sum();
     let distance: f64 = report.steps.iter().map(|s| s.achieved.step_length).sum();

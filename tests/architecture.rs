@@ -1,0 +1,206 @@
+//! The crate's imports run one way, down the levels of `docs/architecture.md`: every reference
+//! `crate::<module>` in a file of `src/<level module>/` names a module of a lower level (or its
+//! own), and the modules of one folder import each other without a cycle. Unit tests
+//! (`#[cfg(test)]`, at the end of a file) may build on higher levels. Read from the source
+//! text, so a new arrow up the hierarchy fails here before anyone draws the graph.
+use std::collections::{BTreeMap, BTreeSet};
+use std::fs;
+use std::path::{Path, PathBuf};
+
+/// The top-level modules by level, lowest first (docs/architecture.md). Modules on one level
+/// may not import each other.
+const LEVELS: &[&[&str]] = &[
+    &["error", "memory", "numerics"],
+    &["model"],
+    &["kinematics", "dynamics"],
+    &["plan"],
+    &["control"],
+    &["engine"],
+    &["figure"],
+    &["analysis"],
+    &["simulation"],
+    &["export", "input", "sweep"],
+    &["plot"],
+];
+
+fn level(module: &str) -> Option<usize> {
+    LEVELS.iter().position(|l| l.contains(&module))
+}
+
+fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    for entry in fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            rust_files(&path, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+}
+
+/// The module path of a file under src/ (`src/control/stance/run.rs` → control::stance::run).
+fn module_of(src: &Path, file: &Path) -> Vec<String> {
+    let rel = file.strip_prefix(src).unwrap().with_extension("");
+    let mut parts: Vec<String> = rel
+        .iter()
+        .map(|p| p.to_string_lossy().into_owned())
+        .collect();
+    if parts.last().is_some_and(|p| p == "mod" || p == "lib") {
+        parts.pop();
+    }
+    parts
+}
+
+/// Every `crate::a::b…` path in the text outside comments, as its segments.
+fn crate_paths(text: &str) -> Vec<Vec<String>> {
+    let mut found = Vec::new();
+    for line in text.lines() {
+        let code = line.split("//").next().unwrap_or("");
+        let mut rest = code;
+        while let Some(i) = rest.find("crate::") {
+            let after = &rest[i + "crate::".len()..];
+            if i > 0 && rest[..i].ends_with(|c: char| c.is_alphanumeric() || c == '_' || c == '$') {
+                rest = after;
+                continue;
+            }
+            let path: Vec<String> = after
+                .split("::")
+                .map(|s| {
+                    s.chars()
+                        .take_while(|c| c.is_alphanumeric() || *c == '_')
+                        .collect::<String>()
+                })
+                .take_while(|s| !s.is_empty() && s.starts_with(|c: char| c.is_lowercase()))
+                .collect();
+            if !path.is_empty() {
+                found.push(path);
+            }
+            rest = after;
+        }
+    }
+    found
+}
+
+/// (file module, referenced module path) for every file of the library.
+fn references() -> Vec<(Vec<String>, Vec<String>)> {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    let mut refs = Vec::new();
+    for file in files {
+        if file.starts_with(src.join("bin")) {
+            continue;
+        }
+        let module = module_of(&src, &file);
+        let text = fs::read_to_string(&file).unwrap();
+        // unit tests may build on higher levels (a walk to test a stance formula)
+        let code = text.split("#[cfg(test)]").next().unwrap_or("");
+        for path in crate_paths(code) {
+            refs.push((module.clone(), path));
+        }
+    }
+    refs
+}
+
+#[test]
+fn imports_run_down_the_levels() {
+    let mut wrong = Vec::new();
+    for (module, path) in references() {
+        let Some(from) = module.first() else { continue };
+        let to = &path[0];
+        let (Some(lf), Some(lt)) = (level(from), level(to)) else {
+            // a root re-export (crate::Body) or a module missing from LEVELS
+            if module.len() > 0 && level(from).is_none() {
+                wrong.push(format!("{}: module not in LEVELS", module.join("::")));
+            }
+            continue;
+        };
+        if from != to && lt >= lf {
+            wrong.push(format!(
+                "{} -> crate::{}",
+                module.join("::"),
+                path.join("::")
+            ));
+        }
+    }
+    wrong.sort();
+    wrong.dedup();
+    assert!(
+        wrong.is_empty(),
+        "imports that run up or across the levels:\n{}",
+        wrong.join("\n")
+    );
+}
+
+#[test]
+fn modules_of_a_folder_form_no_cycle() {
+    // edges between sibling modules: a::b -> a::c
+    let mut edges: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for (module, path) in references() {
+        let depth = module.len().min(path.len());
+        // the first segment where the two paths part, under a common parent
+        let common = module.iter().zip(&path).take_while(|(a, b)| a == b).count();
+        if common >= depth || common == 0 && module.len() > 1 {
+            continue;
+        }
+        let parent = module[..common].join("::");
+        let from = format!("{parent}::{}", module[common]);
+        let to = format!("{parent}::{}", path[common]);
+        edges.entry(from).or_default().insert(to);
+    }
+    // depth-first search for a back edge
+    fn visit(
+        n: &str,
+        edges: &BTreeMap<String, BTreeSet<String>>,
+        state: &mut BTreeMap<String, u8>,
+        stack: &mut Vec<String>,
+    ) -> Option<Vec<String>> {
+        state.insert(n.to_string(), 1);
+        stack.push(n.to_string());
+        for m in edges.get(n).into_iter().flatten() {
+            match state.get(m.as_str()) {
+                Some(1) => {
+                    let i = stack.iter().position(|s| s == m).unwrap();
+                    let mut cycle = stack[i..].to_vec();
+                    cycle.push(m.clone());
+                    return Some(cycle);
+                }
+                Some(_) => {}
+                None => {
+                    if let Some(c) = visit(m, edges, state, stack) {
+                        return Some(c);
+                    }
+                }
+            }
+        }
+        stack.pop();
+        state.insert(n.to_string(), 2);
+        None
+    }
+    let mut state = BTreeMap::new();
+    for n in edges.keys() {
+        if !state.contains_key(n.as_str()) {
+            let cycle = visit(n, &edges, &mut state, &mut Vec::new());
+            assert!(
+                cycle.is_none(),
+                "import cycle: {}",
+                cycle.unwrap().join(" -> ")
+            );
+        }
+    }
+}
+
+#[test]
+fn the_reader_finds_paths_in_code_and_not_in_comments() {
+    let text = "use crate::engine::walker::Step; // crate::plot\nlet x = crate::numerics::trig::sin_cos(1.0);";
+    let strings = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+    assert_eq!(
+        crate_paths(text),
+        vec![
+            strings(&["engine", "walker"]),
+            strings(&["numerics", "trig", "sin_cos"])
+        ]
+    );
+    assert!(crate_paths("klaw_crate::x; $crate::y").is_empty());
+    assert!(level("dynamics") < level("plan") && level("kinematics") < level("control"));
+}
