@@ -1,48 +1,14 @@
-//! The high level of the control hierarchy: from a gait to the **step constraints** — state-phase
-//! timings (KLAW 1989 eq. 2) and the final conditions of a step from step symmetry (eq. 3 and
-//! Figures 4–5, made precise in the spec §3).
+//! The step constraints: the final conditions of a step from step symmetry (KLAW 1989 eq. 3 and
+//! Figures 4–5, made precise in the spec §3), with the step's state-phase timings (eq. 2).
 use serde::Serialize;
 
 use crate::error::{Error, Result};
 use crate::model::attributes::Attributes;
 use crate::model::body::Body;
 use crate::plan::gait::Gait;
+use crate::plan::timing::Timing;
 
 use crate::model::GRAVITY;
-
-/// State-phase timings of one step (s), KLAW 1989 eq. 2.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct Timing {
-    pub t_step: f64,
-    pub t_cycle: f64,
-    /// Double support: t_ds = (−0.16 sf + 29.08) · t_cycle / 100.
-    pub t_ds: f64,
-    pub t_stance: f64,
-    pub t_swing: f64,
-}
-
-impl Timing {
-    /// Eq. 2 for a step frequency in steps/min. Fails when double support vanishes
-    /// (sf ≥ 181.75: running).
-    pub fn new(step_frequency: f64) -> Result<Self> {
-        let t_step = 60.0 / step_frequency;
-        let t_cycle = 2.0 * t_step;
-        let t_ds = (-0.16 * step_frequency + 29.08) * t_cycle / 100.0;
-        if t_ds <= 0.0 {
-            return Err(Error::NoDoubleSupport {
-                step_frequency,
-                t_ds,
-            });
-        }
-        Ok(Timing {
-            t_step,
-            t_cycle,
-            t_ds,
-            t_stance: t_step + t_ds,
-            t_swing: t_step - t_ds,
-        })
-    }
-}
 
 /// Everything the lower levels must achieve in one step. Positions are relative to the step's
 /// stance ankle pivot (x = 0, y = l9); heights are absolute (ground at y = 0).
@@ -179,19 +145,6 @@ mod tests {
         .complete(body, attrs)
         .unwrap();
         StepConstraints::new(body, attrs, gait).unwrap()
-    }
-
-    /// Spec §3 worked example, recomputed by hand: sf = 108.01, t_step = 60/108.01 = 0.5555 s,
-    /// t_ds = (−0.16·108.01 + 29.08)·1.1110/100 = 0.1311 s.
-    #[test]
-    fn timings_of_the_worked_example() {
-        let (_, c) = worked(0.0, 0.0);
-        let t = c.timing;
-        assert!((t.t_step - 0.5555).abs() < 1e-4);
-        assert!((t.t_ds - 0.1311).abs() < 1e-4);
-        assert!((t.t_stance - 0.6866).abs() < 1e-4);
-        assert!((t.t_swing - 0.4244).abs() < 1e-4);
-        assert!((t.t_cycle - 2.0 * t.t_step).abs() < 1e-15);
     }
 
     /// Spec §3 worked example: hip = (0.3888, 0.8768), w* = 0.8963, θ1* = 25.71°,

@@ -3,6 +3,8 @@
 //! final conditions, eq. 3).
 pub mod constraints;
 pub mod gait;
+pub mod timing;
 
-pub use constraints::{StepConstraints, Timing};
+pub use constraints::StepConstraints;
 pub use gait::{Gait, GaitRequest};
+pub use timing::Timing;
