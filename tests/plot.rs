@@ -4,13 +4,13 @@ use std::fs;
 use std::path::Path;
 use std::process::{Command, Output};
 
-use klaw::engine::report::Frame;
+use klaw::engine::report::StateFrame;
 use klaw::engine::walker::simulate;
 use klaw::plot::{FIGURE_SIZE, walk_figure};
 use klaw::{AttributeTable, Body, Error, GaitRequest};
 
 /// The frames of the default walk (H = 1.8 m, M = 80 kg, v = 1.4 m/s), 4 steps at 100 frames/s.
-fn default_frames() -> Vec<Frame> {
+fn default_frames() -> Vec<StateFrame> {
     let body = Body::standard(1.8, 80.0).unwrap();
     let attrs = AttributeTable::builtin().defaults();
     let gait = GaitRequest {

@@ -2,12 +2,13 @@
 //! report (targets, achievements, shooting statistics). Plain data, serialized by `io`.
 use serde::Serialize;
 
-use crate::engine::walker::SolveRecord;
+use crate::control::shooting::SolveReport;
 
-/// One output frame. Field names are the CSV header; positions are world coordinates (x forward
-/// from the first stance ankle, y up from the ground), angles in degrees.
+/// The engine's state at one output frame: the stance's degrees of freedom, the swing leg's
+/// angles and the points of both legs. Field names are the CSV header; positions are world
+/// coordinates (x forward from the first stance ankle, y up from the ground), angles in degrees.
 #[derive(Clone, Debug, Default, Serialize)]
-pub struct Frame {
+pub struct StateFrame {
     pub time_s: f64,
     pub step: usize,
     /// `double_support`, `swing1`, `swing2` or `swing3` (the swing leg's subphase).
@@ -52,6 +53,14 @@ pub struct Achieved {
     pub step_length: f64,
     /// Heel strike to heel strike (s).
     pub duration: f64,
+}
+
+/// One shooting solve in the report.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct SolveRecord {
+    pub phase: &'static str,
+    #[serde(flatten)]
+    pub report: SolveReport,
 }
 
 /// The report of one step.

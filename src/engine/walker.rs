@@ -2,7 +2,6 @@
 //! complete the hind leg through double support, shoot the swing subphases, strike the heel, and
 //! carry the warm starts to the next step.
 use nalgebra::{Vector2, Vector3};
-use serde::Serialize;
 use std::f64::consts::PI;
 
 use crate::control::shooting::{self, Memory1, Memory2, Options, SolveReport, Start1, Start2};
@@ -10,7 +9,7 @@ use crate::control::stance::{HipPath, StanceRun, StanceSetup, StanceState, Termi
 use crate::control::swing::{self, Subphase, SwingSetup, SwingState, SwingTrial};
 use crate::dynamics::impact::{self, ImpactReport};
 use crate::dynamics::{StanceModel, SwingModel};
-use crate::engine::report::{Achieved, Frame, Report, StepReport, Target};
+use crate::engine::report::{Achieved, Report, SolveRecord, StateFrame, StepReport, Target};
 use crate::engine::work;
 use crate::error::{Error, Result};
 use crate::kinematics::foot::{Foot, FootPoints};
@@ -43,14 +42,6 @@ pub const TOE_CLEARANCE_MIN: f64 = 1e-6;
 pub const MAX_ITERATIONS: usize = 25;
 /// Fraction of swing1 at which the swing ankle is back at neutral.
 pub const ANKLE_NEUTRAL: f64 = 0.8;
-
-/// One shooting solve in the report.
-#[derive(Clone, Copy, Debug, Serialize)]
-pub struct SolveRecord {
-    pub phase: &'static str,
-    #[serde(flatten)]
-    pub report: SolveReport,
-}
 
 /// A simulated step: its constraints, its dynamic records and its report.
 #[derive(Clone, Debug)]
@@ -972,7 +963,7 @@ impl Walk {
     }
 
     /// Frames at `fps` frames per second from t = 0 to the last heel strike (inclusive).
-    pub fn frames(&self, fps: f64) -> Vec<Frame> {
+    pub fn frames(&self, fps: f64) -> Vec<StateFrame> {
         let foot = Foot::new(&self.body);
         let n = (self.duration() * fps + 1e-9).floor() as usize;
         let mut frames = Vec::with_capacity(n + 1);
@@ -1206,14 +1197,14 @@ impl Step {
         }
     }
 
-    /// The frame at world time t.
-    pub fn frame(&self, t: f64, foot: &Foot) -> Frame {
+    /// The engine's state frame at world time t.
+    pub fn frame(&self, t: f64, foot: &Foot) -> StateFrame {
         let tau = (t - self.t_start).clamp(0.0, self.constraints.timing.t_step);
         let now = self.at(tau);
         let (y, locked, hip) = (now.state, now.locked, now.centre);
         let sw = self.swing_pose_at(&now, foot);
         let x0 = self.x_ankle;
-        Frame {
+        StateFrame {
             time_s: t,
             step: self.index,
             phase: sw.phase,

@@ -20,7 +20,7 @@ use plotters::style::{FontStyle, register_font};
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::{ColorType, ImageEncoder, ImageError};
 
-use crate::engine::report::Frame;
+use crate::engine::report::StateFrame;
 use crate::error::{Error, Result};
 use crate::io;
 
@@ -104,13 +104,18 @@ pub fn text_available() -> bool {
 /// Write the figure of a walk to `path` (PNG or SVG by its extension, 1600 × 1000 px): the
 /// side view on top, hip height (bottom left) and θ1..θ4 (bottom right) against time. The file is
 /// written whole or not at all; rendering and writing failures are `Error::Io { action: "writing" }`.
-pub fn walk_figure(frames: &[Frame], path: &Path) -> Result<()> {
+pub fn walk_figure(frames: &[StateFrame], path: &Path) -> Result<()> {
     let format = figure_format(path)?;
     render_figure(frames, path, format, text_available())
 }
 
 /// `walk_figure` with the text switched on or off (off needs no font).
-fn render_figure(frames: &[Frame], path: &Path, format: FigureFormat, text: bool) -> Result<()> {
+fn render_figure(
+    frames: &[StateFrame],
+    path: &Path,
+    format: FigureFormat,
+    text: bool,
+) -> Result<()> {
     let fail = |reason: String| Error::Io {
         action: "writing",
         path: path.to_path_buf(),
@@ -226,8 +231,8 @@ fn other_side_color(side: &str) -> RGBColor {
 
 /// The frames at which stick figures are drawn: the first at or after each multiple of the
 /// interval, and the last frame.
-fn figure_frames(frames: &[Frame]) -> Vec<&Frame> {
-    let mut picked: Vec<&Frame> = Vec::new();
+fn figure_frames(frames: &[StateFrame]) -> Vec<&StateFrame> {
+    let mut picked: Vec<&StateFrame> = Vec::new();
     let mut next = f64::NEG_INFINITY;
     for f in frames {
         if f.time_s >= next - 1e-9 {
@@ -245,7 +250,7 @@ fn figure_frames(frames: &[Frame]) -> Vec<&Frame> {
 }
 
 /// Times at which a new step starts (heel strikes).
-fn step_starts(frames: &[Frame]) -> Vec<f64> {
+fn step_starts(frames: &[StateFrame]) -> Vec<f64> {
     frames
         .windows(2)
         .filter(|w| w[1].step != w[0].step)
@@ -253,7 +258,11 @@ fn step_starts(frames: &[Frame]) -> Vec<f64> {
         .collect()
 }
 
-fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, frames: &[Frame], text: bool) -> Drawn {
+fn draw<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    frames: &[StateFrame],
+    text: bool,
+) -> Drawn {
     root.fill(&WHITE).map_err(msg)?;
     let (w, h) = root.dim_in_pixel();
     // a long walk would shrink the stick figures to nothing: the side view shows its start
@@ -340,7 +349,7 @@ fn builder<'a, 'b, DB: DrawingBackend>(
     b
 }
 
-fn side_title(frames: &[Frame], side: &[Frame]) -> String {
+fn side_title(frames: &[StateFrame], side: &[StateFrame]) -> String {
     match (frames.first(), frames.last(), side.last()) {
         (Some(a), Some(b), Some(c)) => {
             let steps = b.step + 1 - a.step.min(b.step);
@@ -363,7 +372,7 @@ fn side_title(frames: &[Frame], side: &[Frame]) -> String {
 }
 
 /// The side view's data ranges (m), padded, the ground always in view.
-fn side_extent(frames: &[Frame]) -> ((f64, f64), (f64, f64)) {
+fn side_extent(frames: &[StateFrame]) -> ((f64, f64), (f64, f64)) {
     let xs = frames.iter().flat_map(|f| {
         [
             f.hip_x_m,
@@ -393,7 +402,7 @@ fn side_extent(frames: &[Frame]) -> ((f64, f64), (f64, f64)) {
 
 fn side_view<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
-    frames: &[Frame],
+    frames: &[StateFrame],
     text: bool,
     title: &str,
     ((x_lo, x_hi), (y_lo, y_hi)): ((f64, f64), (f64, f64)),
@@ -604,8 +613,8 @@ fn time_plot<DB: DrawingBackend>(
 mod tests {
     use super::*;
 
-    fn frame(t: f64, step: usize) -> Frame {
-        Frame {
+    fn frame(t: f64, step: usize) -> StateFrame {
+        StateFrame {
             time_s: t,
             step,
             stance_side: if step.is_multiple_of(2) {
@@ -625,27 +634,27 @@ mod tests {
             swing_heel_y_m: 0.02,
             swing_toe_x_m: t + 0.15,
             swing_toe_y_m: 0.02,
-            ..Frame::default()
+            ..StateFrame::default()
         }
     }
 
     #[test]
     fn figure_frames_every_interval_and_the_last() {
-        let frames: Vec<Frame> = (0..=100).map(|k| frame(k as f64 / 100.0, 0)).collect();
+        let frames: Vec<StateFrame> = (0..=100).map(|k| frame(k as f64 / 100.0, 0)).collect();
         let t: Vec<f64> = figure_frames(&frames).iter().map(|f| f.time_s).collect();
         assert_eq!(t.len(), 11, "{t:?}");
         for (k, t) in t.iter().enumerate() {
             assert!((t - k as f64 * 0.1).abs() < 1e-9, "{t}");
         }
         // frames sparser than the interval: every frame, once
-        let sparse: Vec<Frame> = (0..=4).map(|k| frame(k as f64 * 0.25, 0)).collect();
+        let sparse: Vec<StateFrame> = (0..=4).map(|k| frame(k as f64 * 0.25, 0)).collect();
         assert_eq!(figure_frames(&sparse).len(), 5);
         assert!(figure_frames(&[]).is_empty());
     }
 
     #[test]
     fn side_view_title_tells_when_only_the_first_steps_are_shown() {
-        let frames: Vec<Frame> = (0..=400).map(|k| frame(k as f64 / 20.0, k / 20)).collect();
+        let frames: Vec<StateFrame> = (0..=400).map(|k| frame(k as f64 / 20.0, k / 20)).collect();
         let n = frames.partition_point(|f| f.step < SIDE_VIEW_MAX_STEPS);
         let t = side_title(&frames, &frames[..n]);
         assert!(t.starts_with("Side view: 21 steps (first 12 shown)"), "{t}");
@@ -675,7 +684,7 @@ mod tests {
     #[test]
     fn figure_without_text_needs_no_font() {
         let dir = tempfile::tempdir().unwrap();
-        let frames: Vec<Frame> = (0..=120).map(|k| frame(k as f64 / 100.0, k / 60)).collect();
+        let frames: Vec<StateFrame> = (0..=120).map(|k| frame(k as f64 / 100.0, k / 60)).collect();
         for (name, format) in [("w.png", FigureFormat::Png), ("w.svg", FigureFormat::Svg)] {
             let p = dir.path().join(name);
             render_figure(&frames, &p, format, false).unwrap();
