@@ -58,7 +58,7 @@ impl<'a> WalkStream<'a> {
             gaits: gaits.iter(),
             fps,
             next_frame: 0,
-            last_frame: (duration * fps + 1e-9).floor() as usize,
+            last_frame: crate::engine::step::last_frame(duration, fps),
             duration,
             current: None,
             gather,
