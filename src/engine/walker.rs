@@ -29,6 +29,7 @@ pub use crate::engine::swing::swing_hip_vy_end;
 pub struct Walker {
     pub body: Body,
     pub attrs: Attributes,
+    /// The tolerances and limits ([`Self::with_parameters`]).
     pub(super) parameters: EngineParameters,
     pub(super) stance_model: StanceModel,
     pub(super) swing_model: SwingModel,
