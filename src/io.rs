@@ -8,7 +8,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use serde::Deserialize;
 
-use crate::engine::report::{Frame, Report};
+use crate::engine::report::{Report, StateFrame};
 use crate::error::{Error, Result};
 use crate::model::attributes;
 use crate::plan::gait::GaitRequest;
@@ -131,12 +131,12 @@ pub fn write_atomic(
     file.commit()
 }
 
-/// The CSV header: the serde field names of `Frame`, in declaration order.
+/// The CSV header: the serde field names of `StateFrame`, in declaration order.
 pub fn frame_header() -> Vec<String> {
     let mut w = csv::WriterBuilder::new()
         .has_headers(true)
         .from_writer(Vec::new());
-    w.serialize(Frame::default())
+    w.serialize(StateFrame::default())
         .expect("a default frame serializes");
     let bytes = w.into_inner().expect("writing to memory does not fail");
     let mut r = csv::ReaderBuilder::new()
@@ -148,9 +148,9 @@ pub fn frame_header() -> Vec<String> {
     header.iter().map(str::to_string).collect()
 }
 
-/// Write the frames as CSV: a header of the `Frame` field names (written even when there are no
+/// Write the frames as CSV: a header of the `StateFrame` field names (written even when there are no
 /// frames), then one row per frame; floats in their shortest exact (round-trip) form.
-pub fn write_frames_csv(path: &Path, frames: &[Frame]) -> Result<()> {
+pub fn write_frames_csv(path: &Path, frames: &[StateFrame]) -> Result<()> {
     write_atomic(path, |out| {
         let mut w = csv::WriterBuilder::new()
             .has_headers(false)
@@ -473,7 +473,7 @@ mod tests {
         assert_eq!(header[..3], ["time_s", "step", "phase"]);
         assert_eq!(header[21], "swing_toe_y_m");
 
-        let f = Frame {
+        let f = StateFrame {
             time_s: 0.1 + 0.2,
             step: 3,
             phase: "swing2",
@@ -481,7 +481,7 @@ mod tests {
             stance_mode: "locked",
             hip_x_m: 1.0 / 3.0,
             swing_toe_y_m: -1e-12,
-            ..Frame::default()
+            ..StateFrame::default()
         };
         write_frames_csv(&p, &[f.clone(), f]).unwrap();
         let mut r = csv::Reader::from_path(&p).unwrap();

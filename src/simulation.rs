@@ -14,7 +14,7 @@ use std::path::Path;
 
 use crate::analysis::cycle::{CycleCurves, cycle_average};
 use crate::analysis::events::{self, Event};
-use crate::engine::report::{Frame, Report};
+use crate::engine::report::{Report, StateFrame};
 use crate::engine::stream::{Gather, WalkStream};
 use crate::engine::walker::{self, simulate};
 use crate::error::{Error, Result};
@@ -346,7 +346,7 @@ impl Walk {
 
     /// The engine's state (θ1…θ4, w, the sagittal joint points, phase) at `fps` frames per
     /// second: the rows of `klaw walk --state-out`.
-    pub fn state_frames(&self, fps: f64) -> Result<Vec<Frame>> {
+    pub fn state_frames(&self, fps: f64) -> Result<Vec<StateFrame>> {
         Ok(self.walk.frames(check_fps(fps)?))
     }
 

@@ -4,12 +4,12 @@ use std::fs;
 use std::path::Path;
 use std::process::{Command, Output};
 
-use klaw::engine::report::Frame;
+use klaw::engine::report::StateFrame;
 use klaw::plot::walk::{FIGURE_SIZE, walk_figure};
 use klaw::{Error, Simulation};
 
 /// The frames of the default walk (H = 1.8 m, M = 80 kg, v = 1.4 m/s), 4 steps at 100 frames/s.
-fn default_frames() -> Vec<Frame> {
+fn default_frames() -> Vec<StateFrame> {
     Simulation::default()
         .steps(4)
         .run()

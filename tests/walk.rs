@@ -52,7 +52,8 @@ fn check_step(s: &StepReport, label: &str) {
         -s.min_foot_height
     );
     assert!(
-        s.min_toe_clearance > klaw::engine::walker::TOE_CLEARANCE_MIN,
+        s.min_toe_clearance
+            > klaw::engine::parameters::EngineParameters::default().toe_clearance_min,
         "{who}: no toe clearance in mid swing"
     );
     assert!(

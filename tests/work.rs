@@ -11,6 +11,7 @@ use nalgebra::{Vector2, Vector3};
 use klaw::control::stance::HipPath;
 use klaw::control::swing::{Subphase, SwingSetup, SwingState, SwingTrial};
 use klaw::dynamics::SwingModel;
+use klaw::engine::parameters::EngineParameters;
 use klaw::engine::walker::Step;
 use klaw::engine::work::{self, simpson};
 
@@ -162,11 +163,13 @@ fn swing_net_work_is_the_energy_balance_in_the_hip_frame() {
 }
 
 /// The report's positive work converges with the number of Gauss–Legendre panels: one per
-/// integrator step (`work::SAMPLES`, what the walk uses) is within 0.5 % of 8000 per segment.
+/// integrator step (`EngineParameters::work_panels`, what the walk uses) is within 0.5 % of 8000
+/// per segment.
 #[test]
 fn positive_work_converges_with_sampling() {
     for step in steps(1.4, 2) {
-        let coarse = work::stance_work(&step.stance_setup, &step.stance, work::SAMPLES);
+        let panels = EngineParameters::default().work_panels;
+        let coarse = work::stance_work(&step.stance_setup, &step.stance, panels);
         let fine = work::stance_work(&step.stance_setup, &step.stance, 8000);
         assert!(
             (coarse.positive - fine.positive).abs() < 5e-3 * fine.positive,

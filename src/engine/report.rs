@@ -2,12 +2,16 @@
 //! report (targets, achievements, shooting statistics). Plain data, serialized by `io`.
 use serde::Serialize;
 
-use crate::engine::walker::SolveRecord;
+use crate::control::shooting::SolveReport;
+use crate::engine::work::Work;
+use crate::plan::StepConstraints;
+use crate::plan::gait::Gait;
 
-/// One output frame. Field names are the CSV header; positions are world coordinates (x forward
-/// from the first stance ankle, y up from the ground), angles in degrees.
+/// The engine's state at one output frame: the stance's degrees of freedom, the swing leg's
+/// angles and the points of both legs. Field names are the CSV header; positions are world
+/// coordinates (x forward from the first stance ankle, y up from the ground), angles in degrees.
 #[derive(Clone, Debug, Default, Serialize)]
-pub struct Frame {
+pub struct StateFrame {
     pub time_s: f64,
     pub step: usize,
     /// `double_support`, `swing1`, `swing2` or `swing3` (the swing leg's subphase).
@@ -54,6 +58,14 @@ pub struct Achieved {
     pub duration: f64,
 }
 
+/// One shooting solve in the report.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct SolveRecord {
+    pub phase: &'static str,
+    #[serde(flatten)]
+    pub report: SolveReport,
+}
+
 /// The report of one step.
 #[derive(Clone, Debug, Serialize)]
 pub struct StepReport {
@@ -86,6 +98,46 @@ pub struct StepReport {
     /// ∫ max(power, 0) dt) and net (∫ Σ power dt); see `work`.
     pub positive_work: f64,
     pub net_work: f64,
+}
+
+impl StepReport {
+    /// The report of step `index` before its measurements (`Step::measure`; NaN until then):
+    /// its target, duration, bounce reference, impact and work.
+    pub(super) fn unmeasured(
+        index: usize,
+        gait: &Gait,
+        c: &StepConstraints,
+        impact_speed_ratio: f64,
+        work: Work,
+    ) -> Self {
+        StepReport {
+            index,
+            target: Target {
+                velocity: gait.velocity,
+                step_length: gait.step_length,
+                step_frequency: gait.step_frequency,
+            },
+            achieved: Achieved {
+                velocity: f64::NAN,
+                step_length: f64::NAN,
+                duration: c.timing.t_step,
+            },
+            solves: Vec::new(),
+            end_condition_error: f64::NAN,
+            heel_height_at_strike: f64::NAN,
+            hip_excursion: f64::NAN,
+            bounce_reference: c.bounce,
+            hip_min_margin: f64::NAN,
+            impact_speed_ratio,
+            min_foot_height: f64::NAN,
+            min_toe_clearance: f64::NAN,
+            heel_contact_velocity: f64::NAN,
+            rhs_evaluations: 0,
+            peak_swing_knee_flexion: f64::NAN,
+            positive_work: work.positive,
+            net_work: work.net,
+        }
+    }
 }
 
 /// The report of a walk.

@@ -4,7 +4,7 @@
 //! reports, events, the engine's state frames and the clinical angles for cycle averaging are
 //! gathered on the side, each only when asked for.
 use crate::analysis::events::{Event, step_events};
-use crate::engine::report::{Frame, StepReport};
+use crate::engine::report::{StateFrame, StepReport};
 use crate::engine::walker::{Step, Walker};
 use crate::error::Result;
 use crate::figure::clinical::{Clinical, clinical};
@@ -42,7 +42,7 @@ pub struct WalkStream<'a> {
     pub iterations: usize,
     pub max_iterations: usize,
     pub events: Vec<Event>,
-    pub state_frames: Vec<Frame>,
+    pub state_frames: Vec<StateFrame>,
     pub clinical: Vec<Clinical>,
     /// Heel strikes of the right foot (the start of every even step), gathered with `clinical`.
     pub right_heel_strikes: Vec<f64>,
@@ -58,7 +58,7 @@ impl<'a> WalkStream<'a> {
             gaits: gaits.iter(),
             fps,
             next_frame: 0,
-            last_frame: (duration * fps + 1e-9).floor() as usize,
+            last_frame: crate::engine::step::last_frame(duration, fps),
             duration,
             current: None,
             gather,

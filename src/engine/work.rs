@@ -29,10 +29,6 @@ use nalgebra::SVector;
 
 use crate::numerics::ode::Segment;
 
-/// Least Gauss–Legendre panels per integration segment in the walk's report: one per
-/// integrator step (≈ 140 in a stance, ≈ 200 in a swing).
-pub const SAMPLES: usize = 1;
-
 /// Positive and net mechanical work (J).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct Work {

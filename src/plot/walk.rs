@@ -7,7 +7,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::analysis::extent;
-use crate::engine::report::Frame;
+use crate::engine::report::StateFrame;
 use crate::error::Result;
 use crate::plot::{
     self, Chart, Draw, Drawn, FONT, FigureFormat, LEFT_COLOR, Png, RIGHT_COLOR, TITLE_SIZE, msg,
@@ -39,13 +39,18 @@ const THETA_LABELS: [&str; 4] = [
 /// Write the figure of a walk to `path` (PNG or SVG by its extension, 1600 × 1000 px): the
 /// side view on top, hip height (bottom left) and θ1..θ4 (bottom right) against time. The file is
 /// written whole or not at all; rendering and writing failures are `Error::Io { action: "writing" }`.
-pub fn walk_figure(frames: &[Frame], path: &Path) -> Result<()> {
+pub fn walk_figure(frames: &[StateFrame], path: &Path) -> Result<()> {
     let format = plot::figure_format(path)?;
     render_figure(frames, path, format, plot::text_available())
 }
 
 /// `walk_figure` with the text switched on or off (off needs no font).
-fn render_figure(frames: &[Frame], path: &Path, format: FigureFormat, text: bool) -> Result<()> {
+fn render_figure(
+    frames: &[StateFrame],
+    path: &Path,
+    format: FigureFormat,
+    text: bool,
+) -> Result<()> {
     let mut figure = WalkFigure { frames, text };
     plot::write_figure(
         &mut figure,
@@ -58,7 +63,7 @@ fn render_figure(frames: &[Frame], path: &Path, format: FigureFormat, text: bool
 }
 
 struct WalkFigure<'a> {
-    frames: &'a [Frame],
+    frames: &'a [StateFrame],
     text: bool,
 }
 
@@ -109,8 +114,8 @@ fn other_side_color(side: &str) -> RGBColor {
 
 /// The frames at which stick figures are drawn: the first at or after each multiple of the
 /// interval, and the last frame.
-fn figure_frames(frames: &[Frame]) -> Vec<&Frame> {
-    let mut picked: Vec<&Frame> = Vec::new();
+fn figure_frames(frames: &[StateFrame]) -> Vec<&StateFrame> {
+    let mut picked: Vec<&StateFrame> = Vec::new();
     let mut next = f64::NEG_INFINITY;
     for f in frames {
         if f.time_s >= next - 1e-9 {
@@ -128,7 +133,7 @@ fn figure_frames(frames: &[Frame]) -> Vec<&Frame> {
 }
 
 /// Times at which a new step starts (heel strikes).
-fn step_starts(frames: &[Frame]) -> Vec<f64> {
+fn step_starts(frames: &[StateFrame]) -> Vec<f64> {
     frames
         .windows(2)
         .filter(|w| w[1].step != w[0].step)
@@ -138,7 +143,7 @@ fn step_starts(frames: &[Frame]) -> Vec<f64> {
 
 /// The frames of the side view: its first [`SIDE_VIEW_MAX_STEPS`] steps (a long walk would
 /// shrink the stick figures to nothing).
-fn side_frames(frames: &[Frame]) -> &[Frame] {
+fn side_frames(frames: &[StateFrame]) -> &[StateFrame] {
     match frames.first() {
         Some(first) => {
             let n = frames.partition_point(|f| f.step < first.step + SIDE_VIEW_MAX_STEPS);
@@ -148,7 +153,11 @@ fn side_frames(frames: &[Frame]) -> &[Frame] {
     }
 }
 
-fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, frames: &[Frame], text: bool) -> Drawn {
+fn draw<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    frames: &[StateFrame],
+    text: bool,
+) -> Drawn {
     root.fill(&WHITE).map_err(msg)?;
     let (w, _) = root.dim_in_pixel();
     let side = side_frames(frames);
@@ -211,7 +220,7 @@ fn side_view_height<DB: DrawingBackend>(
 
 /// θ1..θ4 against time. The angles jump at a heel strike, where the legs exchange roles: one
 /// curve per step.
-fn angle_series(frames: &[Frame]) -> Vec<Series<'static>> {
+fn angle_series(frames: &[StateFrame]) -> Vec<Series<'static>> {
     (0..4)
         .map(|k| {
             let pieces = frames
@@ -241,7 +250,7 @@ fn builder<'a, 'b, DB: DrawingBackend>(
     b
 }
 
-fn side_title(frames: &[Frame], side: &[Frame]) -> String {
+fn side_title(frames: &[StateFrame], side: &[StateFrame]) -> String {
     match (frames.first(), frames.last(), side.last()) {
         (Some(a), Some(b), Some(c)) => {
             let steps = b.step + 1 - a.step.min(b.step);
@@ -264,7 +273,7 @@ fn side_title(frames: &[Frame], side: &[Frame]) -> String {
 }
 
 /// The side view's data ranges (m), padded, the ground always in view.
-fn side_extent(frames: &[Frame]) -> ((f64, f64), (f64, f64)) {
+fn side_extent(frames: &[StateFrame]) -> ((f64, f64), (f64, f64)) {
     let xs = frames.iter().flat_map(|f| {
         [
             f.hip_x_m,
@@ -294,7 +303,7 @@ fn side_extent(frames: &[Frame]) -> ((f64, f64), (f64, f64)) {
 
 fn side_view<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
-    frames: &[Frame],
+    frames: &[StateFrame],
     text: bool,
     title: &str,
     extent: ((f64, f64), (f64, f64)),
@@ -353,7 +362,7 @@ fn equal_aspect_chart<'a, DB: DrawingBackend>(
 }
 
 /// The stance ankles, one mark per step, coloured by side.
-fn stance_ankles<DB: DrawingBackend>(chart: &mut Chart<'_, DB>, frames: &[Frame]) -> Drawn {
+fn stance_ankles<DB: DrawingBackend>(chart: &mut Chart<'_, DB>, frames: &[StateFrame]) -> Drawn {
     let mut ankles: Vec<(f64, f64, RGBColor)> = Vec::new();
     for f in frames {
         let p = (f.stance_ankle_x_m, f.stance_ankle_y_m);
@@ -374,7 +383,7 @@ fn stance_ankles<DB: DrawingBackend>(chart: &mut Chart<'_, DB>, frames: &[Frame]
 
 /// The legs every [`FIGURE_INTERVAL_S`]: stance leg hip–ankle, swing leg hip–knee–ankle–heel–
 /// toe–ankle, a dot at the hip.
-fn stick_figures<DB: DrawingBackend>(chart: &mut Chart<'_, DB>, frames: &[Frame]) -> Drawn {
+fn stick_figures<DB: DrawingBackend>(chart: &mut Chart<'_, DB>, frames: &[StateFrame]) -> Drawn {
     for f in figure_frames(frames) {
         let stance = finite([
             (f.hip_x_m, f.hip_y_m),
@@ -511,8 +520,8 @@ mod tests {
     use super::*;
     use crate::error::Error;
 
-    fn frame(t: f64, step: usize) -> Frame {
-        Frame {
+    fn frame(t: f64, step: usize) -> StateFrame {
+        StateFrame {
             time_s: t,
             step,
             stance_side: if step.is_multiple_of(2) {
@@ -532,27 +541,27 @@ mod tests {
             swing_heel_y_m: 0.02,
             swing_toe_x_m: t + 0.15,
             swing_toe_y_m: 0.02,
-            ..Frame::default()
+            ..StateFrame::default()
         }
     }
 
     #[test]
     fn figure_frames_every_interval_and_the_last() {
-        let frames: Vec<Frame> = (0..=100).map(|k| frame(k as f64 / 100.0, 0)).collect();
+        let frames: Vec<StateFrame> = (0..=100).map(|k| frame(k as f64 / 100.0, 0)).collect();
         let t: Vec<f64> = figure_frames(&frames).iter().map(|f| f.time_s).collect();
         assert_eq!(t.len(), 11, "{t:?}");
         for (k, t) in t.iter().enumerate() {
             assert!((t - k as f64 * 0.1).abs() < 1e-9, "{t}");
         }
         // frames sparser than the interval: every frame, once
-        let sparse: Vec<Frame> = (0..=4).map(|k| frame(k as f64 * 0.25, 0)).collect();
+        let sparse: Vec<StateFrame> = (0..=4).map(|k| frame(k as f64 * 0.25, 0)).collect();
         assert_eq!(figure_frames(&sparse).len(), 5);
         assert!(figure_frames(&[]).is_empty());
     }
 
     #[test]
     fn side_view_title_tells_when_only_the_first_steps_are_shown() {
-        let frames: Vec<Frame> = (0..=400).map(|k| frame(k as f64 / 20.0, k / 20)).collect();
+        let frames: Vec<StateFrame> = (0..=400).map(|k| frame(k as f64 / 20.0, k / 20)).collect();
         let t = side_title(&frames, side_frames(&frames));
         assert!(t.starts_with("Side view: 21 steps (first 12 shown)"), "{t}");
         let t = side_title(&frames[..20], &frames[..20]);
@@ -564,7 +573,7 @@ mod tests {
     #[test]
     fn figure_without_text_needs_no_font() {
         let dir = tempfile::tempdir().unwrap();
-        let frames: Vec<Frame> = (0..=120).map(|k| frame(k as f64 / 100.0, k / 60)).collect();
+        let frames: Vec<StateFrame> = (0..=120).map(|k| frame(k as f64 / 100.0, k / 60)).collect();
         for (name, format) in [("w.png", FigureFormat::Png), ("w.svg", FigureFormat::Svg)] {
             let p = dir.path().join(name);
             render_figure(&frames, &p, format, false).unwrap();

@@ -1,0 +1,59 @@
+//! The engine's tolerances and limits: what the walker's shooting solves converge to and may
+//! spend, how its measurements sample a step, and what a step's invariants allow (spec §4, §5;
+//! the decisions behind each value: docs/engine.md, "Decisions" and "Engine").
+
+/// The tolerances and limits of one walker ([`crate::engine::walker::Walker::with_parameters`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EngineParameters {
+    /// Shooting tolerance of the stance's and swing3's end conditions (rad or m): 100× inside
+    /// the 1e-6 the walk promises, and small enough for the heel-contact check, which
+    /// differences the heel height over 1e-6 s.
+    pub solve_tolerance: f64,
+    /// [ours] Shooting tolerance of swing1's and swing2's end conditions (rad): 10× inside the
+    /// 1e-6 the walk promises, since they are waypoints: the next subphase starts from the state
+    /// they reach, swing3 meets the heel strike's conditions at `solve_tolerance` whatever it
+    /// is, and swing2's error is the knee's jump where it locks.
+    pub waypoint_tolerance: f64,
+    /// Trial integrations allowed per solve (count): about twice the most any solve of the
+    /// grid of `tests/walk.rs` needs (13).
+    pub max_iterations: usize,
+    /// Integrator tolerance of every shooting trial (relative and absolute, 1): the ODE
+    /// integrator's own, [`crate::numerics::ode::TOLERANCE`], set by the accuracy of the end
+    /// conditions.
+    pub ode_tolerance: f64,
+    /// The least mid-swing toe clearance a step may have (m): the feet's placement precision.
+    pub toe_clearance_min: f64,
+    /// How far the hip may drop below its heel-strike height and the swing foot go under the
+    /// ground (m): the 1e-6 the walk promises.
+    pub invariant_slack: f64,
+    /// Uniform samples of the hip height and of the swing knee per interval in the step's
+    /// measurements (count): each sampled local extreme is then refined by Brent's search.
+    pub coarse_samples: usize,
+    /// Uniform samples of the swing foot's height (count): narrow dips (the toe under the
+    /// ground for 1 % of the swing while the heel rests on its floor) need them denser.
+    pub foot_samples: usize,
+    /// Least Gauss–Legendre panels per integration segment in the work of the step's report
+    /// (count): one per integrator step (≈ 140 in a stance, ≈ 200 in a swing) is within 0.5 %
+    /// of 8000 per segment (`tests/work.rs`).
+    pub work_panels: usize,
+    /// Pelvic list (rad) below which a failed swing's retry drops the list instead of halving
+    /// it: below it the list lowers the swing hip by (l0/2) sin L < 0.1 mm.
+    pub least_halved_list: f64,
+}
+
+impl Default for EngineParameters {
+    fn default() -> Self {
+        EngineParameters {
+            solve_tolerance: 1e-8,
+            waypoint_tolerance: 1e-7,
+            max_iterations: 25,
+            ode_tolerance: crate::numerics::ode::TOLERANCE,
+            toe_clearance_min: 1e-6,
+            invariant_slack: 1e-6,
+            coarse_samples: 32,
+            foot_samples: 100,
+            work_panels: 1,
+            least_halved_list: 1e-3,
+        }
+    }
+}
