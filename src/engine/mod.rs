@@ -1,5 +1,6 @@
-//! The engine: the step loop that walks a body step after step (KLAW 1989 Figure 1), the
-//! streamed walk, the per-step report and the actuators' work.
+//! The engine: the step loop that walks a body step after step (KLAW 1989 Figure 1) with its
+//! parameters, the poses of a simulated step at any instant, the per-step measures and report,
+//! and the actuators' work.
 pub mod measure;
 pub mod parameters;
 pub mod pose;
@@ -7,7 +8,6 @@ pub mod report;
 pub mod stance;
 pub mod startup;
 pub mod step;
-pub mod stream;
 pub mod swing;
 pub mod trials;
 pub mod walker;

@@ -90,6 +90,6 @@ impl Walk {
 
 /// The last frame k of a walk of `duration` s sampled at k / `fps` (the 1e-9 keeps the frame
 /// that falls on the last heel strike whatever the rounding of the product).
-pub(super) fn last_frame(duration: f64, fps: f64) -> usize {
+pub(crate) fn last_frame(duration: f64, fps: f64) -> usize {
     (duration * fps + 1e-9).floor() as usize
 }

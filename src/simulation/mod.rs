@@ -9,13 +9,14 @@
 //! [`Prepared::stream`] samples the figure step by step in bounded memory.
 #![warn(missing_docs)]
 
+pub mod stream;
+
 use std::fmt;
 use std::path::Path;
 
 use crate::analysis::cycle::{CycleCurves, cycle_average};
 use crate::analysis::events::{self, Event};
 use crate::engine::report::{Report, StateFrame};
-use crate::engine::stream::{Gather, WalkStream};
 use crate::engine::walker::{self, simulate};
 use crate::error::{Error, Result};
 use crate::export::{self, Format, Options};
@@ -24,6 +25,7 @@ use crate::figure::{Landmarks, frames, landmarks};
 use crate::model::attributes::{AttributeTable, Attributes, style};
 use crate::model::body::Body;
 use crate::plan::{Gait, GaitRequest};
+use crate::simulation::stream::{Gather, WalkStream};
 
 /// Body height H of [`Simulation::default`] (m): the paper's example figure.
 pub const DEFAULT_HEIGHT: f64 = 1.8;

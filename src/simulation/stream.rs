@@ -18,8 +18,11 @@ use crate::plan::gait::Gait;
 pub struct Gather {
     /// Keep every step's report (otherwise only the shooting statistics are kept).
     pub reports: bool,
+    /// Find the gait events of every step ([`Event`]).
     pub events: bool,
+    /// Sample the engine's state frames ([`StateFrame`]) at the stream's rate.
     pub state_frames: bool,
+    /// Compute the clinical angles of every frame, for the gait-cycle average.
     pub clinical: bool,
 }
 
@@ -35,14 +38,21 @@ pub struct WalkStream<'a> {
     current: Option<Step>,
     gather: Gather,
     failed: bool,
+    /// Every step's report (with [`Gather::reports`]).
     pub reports: Vec<StepReport>,
-    /// Steps simulated, and shooting iterations over all solves: count, sum and largest.
+    /// Steps simulated.
     pub steps: usize,
+    /// Shooting solves over all steps.
     pub solves: usize,
+    /// Trial integrations over all solves.
     pub iterations: usize,
+    /// The most trial integrations of one solve.
     pub max_iterations: usize,
+    /// Gait events (with [`Gather::events`]).
     pub events: Vec<Event>,
+    /// The engine's state frames (with [`Gather::state_frames`]).
     pub state_frames: Vec<StateFrame>,
+    /// Clinical angles of every frame (with [`Gather::clinical`]).
     pub clinical: Vec<Clinical>,
     /// Heel strikes of the right foot (the start of every even step), gathered with `clinical`.
     pub right_heel_strikes: Vec<f64>,
@@ -80,6 +90,7 @@ impl<'a> WalkStream<'a> {
         self.duration
     }
 
+    /// The walker's locomotion attributes.
     pub fn attributes(&self) -> &Attributes {
         &self.walker.attrs
     }
