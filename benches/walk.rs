@@ -69,7 +69,7 @@ fn ten_steps(c: &mut Criterion) {
     c.bench_function("walk_10_steps_frames_csv", |b| {
         b.iter(|| {
             let walk = simulate(black_box(body), attrs.clone(), black_box(&ten)).expect("walks");
-            klaw::io::write_frames_csv(&path, &walk.frames(FPS)).expect("writes")
+            klaw::export::write_frames_csv(&path, &walk.frames(FPS)).expect("writes")
         })
     });
 }

@@ -7,7 +7,7 @@ pub mod engine;
 pub mod error;
 pub mod export;
 pub mod figure;
-pub mod io;
+pub mod input;
 pub mod kinematics;
 pub mod memory;
 pub mod model;

@@ -4,12 +4,16 @@
 //!
 //! Every writer streams: rows go to a scratch file next to the target while the frames are
 //! converted, then the header (which needs the row count) and the rows are written to the target
-//! by [`crate::io::write_atomic`]. Any error, in a frame or in the file system, leaves no file (and
+//! by [`file::write_atomic`]. Any error, in a frame or in the file system, leaves no file (and
 //! an existing target untouched).
 pub mod bvh;
 pub mod csv;
 pub mod cycle;
+pub mod events;
+pub mod file;
 pub mod opensim;
+pub mod report;
+pub mod state;
 
 use std::fs::{self, File, OpenOptions};
 use std::io::{self, BufWriter, Seek, Write};
@@ -17,7 +21,10 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
 pub use cycle::{CycleCurves, average_cycles, cycle_average, write_cycle_csv};
+pub use events::write_events_csv;
 pub use opensim::OpenSimModel;
+pub use report::write_report_json;
+pub use state::write_frames_csv;
 
 use crate::error::{Error, Result};
 use crate::figure::Landmarks;
@@ -256,7 +263,7 @@ where
         .into_inner()
         .map_err(|e| io_error(path, e.into_error()))?;
     file.rewind().map_err(|e| io_error(path, e))?;
-    crate::io::write_atomic(path, |out| {
+    file::write_atomic(path, |out| {
         writer.header(out, rows)?;
         io::copy(&mut file, out)?;
         Ok(())

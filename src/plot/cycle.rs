@@ -577,7 +577,7 @@ fn render(
                 root.present().map_err(|e| fail(e.to_string()))?;
                 panels
             };
-            crate::io::write_atomic(path, |out| out.write_all(svg.as_bytes()))?;
+            crate::export::file::write_atomic(path, |out| out.write_all(svg.as_bytes()))?;
             panels
         }
     };

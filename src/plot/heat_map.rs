@@ -341,7 +341,7 @@ impl HeatMap {
                     self.draw(&root, text).map_err(fail)?;
                     root.present().map_err(|e| fail(e.to_string()))?;
                 }
-                crate::io::write_atomic(path, |out| out.write_all(svg.as_bytes()))
+                crate::export::file::write_atomic(path, |out| out.write_all(svg.as_bytes()))
             }
         }
     }

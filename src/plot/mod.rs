@@ -2,7 +2,7 @@
 //! (equal aspect ratio, metres), the hip height and the joint angles θ1..θ4 against time.
 //!
 //! PNG (rendered in memory, encoded here) or SVG, chosen by the file's extension, written
-//! atomically through `io::write_atomic`. Text needs a TrueType font: it is read at run time from
+//! atomically through `write_atomic`. Text needs a TrueType font: it is read at run time from
 //! the file named by `KLAW_FONT` or else from the usual DejaVu Sans locations; without one the
 //! figure is drawn without any text (no titles, tick labels or legends) rather than failing.
 pub mod animation;
@@ -22,7 +22,7 @@ use image::{ColorType, ImageEncoder, ImageError};
 
 use crate::engine::report::Frame;
 use crate::error::{Error, Result};
-use crate::io;
+use crate::export::file::write_atomic;
 
 /// Figure size in pixels (width, height).
 pub const FIGURE_SIZE: (u32, u32) = (1600, 1000);
@@ -134,7 +134,7 @@ fn render_figure(frames: &[Frame], path: &Path, format: FigureFormat, text: bool
                 draw(&root, frames, text).map_err(fail)?;
                 root.present().map_err(|e| fail(e.to_string()))?;
             }
-            io::write_atomic(path, |out| out.write_all(svg.as_bytes()))
+            write_atomic(path, |out| out.write_all(svg.as_bytes()))
         }
     }
 }
@@ -169,7 +169,7 @@ fn write_png_with(
     compression: CompressionType,
     filter: FilterType,
 ) -> Result<()> {
-    io::write_atomic(path, |out| {
+    write_atomic(path, |out| {
         PngEncoder::new_with_quality(out, compression, filter)
             .write_image(pixels, w, h, ColorType::Rgb8)
             .map_err(|e| match e {

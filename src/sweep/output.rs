@@ -19,7 +19,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use crate::error::{Error, Result};
-use crate::io::AtomicFile;
+use crate::export::file::AtomicFile;
 use crate::sweep::{Format, Shard, Sweep};
 
 /// The partial output of a sweep writing `target`: `.NAME.partial` in the same directory.

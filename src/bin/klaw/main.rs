@@ -13,7 +13,9 @@ use klaw::engine::stream::{Gather, WalkStream};
 use klaw::engine::walker::simulate;
 use klaw::sweep::output as swio;
 use klaw::sweep::{self as sw, Axis};
-use klaw::{AttributeTable, Attributes, Body, Error, Gait, GaitRequest, Result, export, io, plot};
+use klaw::{
+    AttributeTable, Attributes, Body, Error, Gait, GaitRequest, Result, export, input, plot,
+};
 
 const DEFAULT_HEIGHT: f64 = 1.8;
 const DEFAULT_MASS: f64 = 80.0;
@@ -581,7 +583,7 @@ fn gaits(args: &GaitArgs, body: &Body, attrs: &Attributes) -> Result<Vec<Gait>> 
     }
     match &args.schedule {
         Some(path) => {
-            let rows = io::read_schedule(path)?;
+            let rows = input::read_schedule(path)?;
             let n = args.steps.unwrap_or(rows.len());
             check_count("steps", n, 1, MAX_STEPS, "steps")?;
             let completed = rows
@@ -625,7 +627,7 @@ fn load_attributes(style: Option<&str>, path: Option<&Path>) -> Result<Attribute
     };
     let mut source = style.map_or(String::new(), |s| format!("style {s}"));
     if let Some(p) = path {
-        overrides.extend(io::read_attributes(p)?);
+        overrides.extend(input::read_attributes(p)?);
         source = p.display().to_string();
     }
     table.resolve(&overrides, &source)
@@ -706,13 +708,13 @@ fn walk(args: &WalkArgs) -> Result<()> {
             mass: body.mass,
             steps: std::mem::take(&mut stream.reports),
         };
-        io::write_report_json(path, &report)?;
+        export::write_report_json(path, &report)?;
     }
     if let Some(path) = &args.state_out {
-        io::write_frames_csv(path, &stream.state_frames)?;
+        export::write_frames_csv(path, &stream.state_frames)?;
     }
     if let Some(path) = &args.events {
-        io::write_events_csv(path, &stream.events)?;
+        export::write_events_csv(path, &stream.events)?;
     }
     if let Some(path) = &args.cycle_out {
         let curves = export::cycle_average(&stream.clinical, &stream.right_heel_strikes, 1)?;
