@@ -1,91 +1,76 @@
 //! The atomic output file: every file klaw writes appears whole, by a rename over the target, or
 //! not at all.
-use std::fs::{self, File, OpenOptions};
+use std::ffi::OsString;
+use std::fs::{File, OpenOptions};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
+
+use tempfile::TempPath;
 
 use crate::error::{Error, Result};
 
-fn io_error(action: &'static str, path: &Path, source: std::io::Error) -> Error {
+/// The error of a failed write to `path`.
+pub(crate) fn write_error(path: &Path, source: std::io::Error) -> Error {
     Error::Io {
-        action,
+        action: "writing",
         path: path.to_path_buf(),
         source,
     }
 }
 
-/// Removes the temporary file unless the write was committed by the rename.
-struct TempGuard {
-    path: PathBuf,
-    armed: bool,
-}
-
-impl Drop for TempGuard {
-    fn drop(&mut self) {
-        if self.armed {
-            let _ = fs::remove_file(&self.path);
-        }
-    }
-}
-
-/// Create a fresh temporary file next to `path` (same directory, so the rename stays on one
-/// file system and is atomic).
-fn create_temp(path: &Path) -> std::io::Result<(File, PathBuf)> {
-    static COUNTER: AtomicU64 = AtomicU64::new(0);
-    let dir = match path.parent() {
+/// The directory `path` is in: its parent, `.` for a bare file name.
+pub fn parent_dir(path: &Path) -> &Path {
+    match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
-    };
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .ok_or_else(|| {
-            std::io::Error::new(
-                std::io::ErrorKind::InvalidInput,
-                "the path does not name a file",
-            )
-        })?;
-    let pid = std::process::id();
-    loop {
-        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-        let tmp = dir.join(format!(".{name}.{pid}.{n}.tmp"));
-        match OpenOptions::new().write(true).create_new(true).open(&tmp) {
-            Ok(f) => return Ok((f, tmp)),
-            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
-            Err(e) => return Err(e),
-        }
     }
 }
 
-/// A file written whole or not at all: rows go to a temporary file in the target's directory
-/// (so the rename stays on one file system and is atomic), which `commit` flushes, syncs and
-/// renames over the target. Dropped uncommitted, the temporary file is removed and an existing
-/// target is left untouched. Errors are `Error::Io { action: "writing", .. }`.
+/// A file written whole or not at all: rows go to a temporary file `.NAME.XXXXXX.tmp` in the
+/// target's directory (so the rename stays on one file system and is atomic), which `commit`
+/// flushes, syncs and renames over the target. Dropped uncommitted, the temporary file is removed
+/// and an existing target is left untouched. Errors are `Error::Io { action: "writing", .. }`.
 pub struct AtomicFile {
     path: PathBuf,
-    guard: TempGuard,
     out: BufWriter<File>,
+    temp: TempPath,
 }
 
 impl AtomicFile {
     /// Start writing `path`.
     pub fn create(path: &Path) -> Result<AtomicFile> {
-        let (file, tmp) = create_temp(path).map_err(|e| io_error("writing", path, e))?;
+        let err = |e| write_error(path, e);
+        let name = path.file_name().ok_or_else(|| {
+            err(std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                "the path does not name a file",
+            ))
+        })?;
+        let mut prefix = OsString::from(".");
+        prefix.push(name);
+        prefix.push(".");
+        // opened with our OpenOptions rather than tempfile's: the target gets the usual mode
+        // (0666 less the umask, not 0600), and an error keeps the system's wording (tempfile's
+        // own opening appends the temporary path to it)
+        let (file, temp) = tempfile::Builder::new()
+            .prefix(&prefix)
+            .suffix(".tmp")
+            .make_in(parent_dir(path), |p| {
+                OpenOptions::new().write(true).create_new(true).open(p)
+            })
+            .map_err(err)?
+            .into_parts();
         Ok(AtomicFile {
             path: path.to_path_buf(),
-            guard: TempGuard {
-                path: tmp,
-                armed: true,
-            },
             out: BufWriter::new(file),
+            temp,
         })
     }
 
     /// The temporary file, for writers that open the file by name (its content is what
     /// `commit` renames over the target; write nothing through [`AtomicFile::writer`] then).
     pub fn temp_path(&self) -> &Path {
-        &self.guard.path
+        &self.temp
     }
 
     /// Where to write.
@@ -95,18 +80,15 @@ impl AtomicFile {
 
     /// The error of a failed write to this file.
     pub fn error(&self, e: std::io::Error) -> Error {
-        io_error("writing", &self.path, e)
+        write_error(&self.path, e)
     }
 
     /// Flush, sync and rename over the target.
     pub fn commit(mut self) -> Result<()> {
-        let path = self.path.clone();
-        let err = |e| io_error("writing", &path, e);
+        let err = |e| write_error(&self.path, e);
         self.out.flush().map_err(err)?;
         self.out.get_ref().sync_all().map_err(err)?;
-        fs::rename(&self.guard.path, &path).map_err(err)?;
-        self.guard.armed = false;
-        Ok(())
+        self.temp.persist(&self.path).map_err(|e| err(e.error))
     }
 }
 
@@ -125,6 +107,7 @@ pub fn write_atomic(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::fs;
     use std::io::ErrorKind;
 
     fn files_in(dir: &Path) -> Vec<String> {
@@ -151,6 +134,36 @@ mod tests {
         write_atomic(&p, |w| w.write_all(b"again\n")).unwrap();
         assert_eq!(fs::read_to_string(&p).unwrap(), "again\n");
         assert_eq!(files_in(dir.path()), ["out.txt"]);
+    }
+
+    #[test]
+    fn the_temporary_file_sits_next_to_the_target() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("out.csv");
+        let file = AtomicFile::create(&p).unwrap();
+        let temp = file.temp_path().to_path_buf();
+        assert_eq!(temp.parent(), Some(dir.path()));
+        let name = temp.file_name().unwrap().to_str().unwrap();
+        assert!(
+            name.starts_with(".out.csv.") && name.ends_with(".tmp"),
+            "{name}"
+        );
+        file.commit().unwrap();
+        assert!(!temp.exists());
+        assert_eq!(files_in(dir.path()), ["out.csv"]);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn the_target_gets_the_usual_mode() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().unwrap();
+        let ours = dir.path().join("ours.txt");
+        let plain = dir.path().join("plain.txt");
+        write_atomic(&ours, |w| w.write_all(b"x")).unwrap();
+        fs::write(&plain, b"x").unwrap();
+        let mode = |p: &Path| fs::metadata(p).unwrap().permissions().mode();
+        assert_eq!(mode(&ours), mode(&plain));
     }
 
     #[test]
@@ -203,6 +216,8 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let p = dir.path().join("no/such/dir/out.csv");
         let e = write_atomic(&p, |w| w.write_all(b"x")).unwrap_err();
+        // the system's message, no temporary path appended to it
+        assert!(!e.to_string().contains(".tmp"), "{e}");
         match &e {
             Error::Io {
                 action,

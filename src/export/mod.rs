@@ -15,10 +15,8 @@ pub mod opensim;
 pub mod report;
 pub mod state;
 
-use std::fs::{self, File, OpenOptions};
 use std::io::{self, BufWriter, Seek, Write};
-use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::path::Path;
 
 pub use cycle::{CycleCurves, average_cycles, cycle_average, write_cycle_csv};
 pub use events::write_events_csv;
@@ -30,6 +28,7 @@ use crate::error::{Error, Result};
 use crate::figure::Landmarks;
 use crate::figure::skeleton::{Clinical, Side, Skeleton};
 use crate::model::body::Body;
+use file::write_error;
 
 /// The export file formats, chosen by the file extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -159,72 +158,14 @@ where
     }
 }
 
-fn io_error(path: &Path, source: io::Error) -> Error {
-    Error::Io {
-        action: "writing",
-        path: path.to_path_buf(),
-        source,
-    }
-}
-
-/// The scratch file that holds the rows until the header can be written; removed on drop.
-struct Spool {
-    path: PathBuf,
-    file: Option<BufWriter<File>>,
-}
-
-impl Spool {
-    fn new(target: &Path) -> io::Result<Spool> {
-        static COUNTER: AtomicU64 = AtomicU64::new(0);
-        let dir = match target.parent() {
-            Some(d) if !d.as_os_str().is_empty() => d,
-            _ => Path::new("."),
-        };
-        let name = target
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .ok_or_else(|| {
-                io::Error::new(io::ErrorKind::InvalidInput, "the path does not name a file")
-            })?;
-        loop {
-            let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-            let path = dir.join(format!(".{name}.{}.{n}.rows.tmp", std::process::id()));
-            match OpenOptions::new()
-                .read(true)
-                .write(true)
-                .create_new(true)
-                .open(&path)
-            {
-                Ok(f) => {
-                    return Ok(Spool {
-                        path,
-                        file: Some(BufWriter::new(f)),
-                    });
-                }
-                Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
-                Err(e) => return Err(e),
-            }
-        }
-    }
-}
-
-impl Drop for Spool {
-    fn drop(&mut self) {
-        self.file = None;
-        let _ = fs::remove_file(&self.path);
-    }
-}
-
 fn run<I, W>(path: &Path, body: &Body, frames: I, mut writer: W) -> Result<()>
 where
     I: IntoIterator<Item = Result<Landmarks>>,
     W: RowWriter,
 {
-    let mut spool = Spool::new(path).map_err(|e| io_error(path, e))?;
-    let out = spool
-        .file
-        .as_mut()
-        .expect("the spool is open until dropped");
+    // the rows wait in an unnamed file in the target's directory, gone when closed
+    let spool = tempfile::tempfile_in(file::parent_dir(path)).map_err(|e| write_error(path, e))?;
+    let mut spool = BufWriter::new(spool);
     let mut rows = 0;
     let mut last_time = f64::NEG_INFINITY;
     for (index, lm) in frames.into_iter().enumerate() {
@@ -245,8 +186,8 @@ where
             clinical: skeleton.clinical(lm.time, lm.step),
             skeleton,
         };
-        writer.row(out, &frame).map_err(|e| match e {
-            RowError::Io(e) => io_error(path, e),
+        writer.row(&mut spool, &frame).map_err(|e| match e {
+            RowError::Io(e) => write_error(path, e),
             RowError::Klaw(e) => e,
         })?;
         rows += 1;
@@ -257,12 +198,9 @@ where
         });
     }
     let mut file = spool
-        .file
-        .take()
-        .expect("the spool is open until dropped")
         .into_inner()
-        .map_err(|e| io_error(path, e.into_error()))?;
-    file.rewind().map_err(|e| io_error(path, e))?;
+        .map_err(|e| write_error(path, e.into_error()))?;
+    file.rewind().map_err(|e| write_error(path, e))?;
     file::write_atomic(path, |out| {
         writer.header(out, rows)?;
         io::copy(&mut file, out)?;
