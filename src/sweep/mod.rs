@@ -4,8 +4,10 @@
 //! deterministic, so the output is byte-identical for any `RAYON_NUM_THREADS`.
 //!
 //! Points are numbered 0.. in product order (the `point` column); a shard `K/N` is the points
-//! with `point mod N = K − 1`. Writing, resuming and merging the output files is [`output`].
+//! with `point mod N = K − 1`. Writing and resuming the output files is [`output`], joining
+//! shards [`merge`].
 pub mod file;
+pub mod merge;
 pub mod output;
 pub mod product;
 pub mod rows;

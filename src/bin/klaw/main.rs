@@ -958,7 +958,7 @@ fn sweep(args: &SweepArgs) -> Result<()> {
 
 fn merge(args: &MergeArgs) -> Result<()> {
     check_output_dir(&args.out)?;
-    let stats = swio::merge(&args.out, &args.inputs, args.allow_missing)?;
+    let stats = klaw::sweep::merge::merge(&args.out, &args.inputs, args.allow_missing)?;
     for path in &stats.cut_off {
         eprintln!(
             "warning: the last line of {} is cut off (an interrupted run?): not merged",
