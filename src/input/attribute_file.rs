@@ -4,13 +4,29 @@ use std::path::Path;
 
 use super::read_text;
 use crate::error::Result;
-use crate::model::attributes;
+use crate::model::attributes::{self, AttributeTable, Attributes};
 
 /// Read a user attribute file (flat TOML `name = number`, user units) into overrides, to be
 /// resolved by `AttributeTable::resolve`.
 pub fn read_attributes(path: &Path) -> Result<BTreeMap<String, f64>> {
     let text = read_text(path)?;
     attributes::parse_overrides(&text, path)
+}
+
+/// The attributes of a walk: the bundled defaults, then the values of the style preset `style`,
+/// then those of the attribute file `path`, name by name, each checked against its range.
+pub fn load_attributes(style: Option<&str>, path: Option<&Path>) -> Result<Attributes> {
+    let table = AttributeTable::builtin();
+    let mut overrides = match style {
+        Some(name) => attributes::style(name)?,
+        None => Default::default(),
+    };
+    let mut source = style.map_or(String::new(), |s| format!("style {s}"));
+    if let Some(p) = path {
+        overrides.extend(read_attributes(p)?);
+        source = p.display().to_string();
+    }
+    table.resolve(&overrides, &source)
 }
 
 #[cfg(test)]

@@ -1,11 +1,12 @@
-//! Input files at the edge of the crate: step schedules and attribute files. No physics here.
+//! Input files at the edge of the crate: step schedules and attribute files, read and turned
+//! into the gaits and attributes of a walk.
 pub mod attribute_file;
 pub mod schedule;
 
 use std::path::Path;
 
-pub use attribute_file::read_attributes;
-pub use schedule::{SCHEDULE_FIELDS, read_schedule};
+pub use attribute_file::{load_attributes, read_attributes};
+pub use schedule::{SCHEDULE_FIELDS, read_schedule, schedule_gaits};
 
 use crate::error::{Error, Result};
 

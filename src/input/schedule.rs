@@ -5,7 +5,9 @@ use serde::Deserialize;
 
 use super::read_text;
 use crate::error::{Error, Result};
-use crate::plan::gait::GaitRequest;
+use crate::model::attributes::Attributes;
+use crate::model::body::Body;
+use crate::plan::gait::{Gait, GaitRequest};
 
 /// The columns (CSV) and keys (TOML) a schedule row may name.
 pub const SCHEDULE_FIELDS: [&str; 3] = ["velocity", "step_length", "step_frequency"];
@@ -56,6 +58,34 @@ pub fn read_schedule(path: &Path) -> Result<Vec<GaitRequest>> {
         return Err(malformed("the schedule has no steps".to_string()));
     }
     Ok(steps)
+}
+
+/// The gait of each of `steps` steps from the rows of the schedule `path`: row i completed
+/// (`GaitRequest::complete`) for step i, the last row held for the steps after the schedule's
+/// end. A row that cannot be completed is `Error::Malformed`, naming the schedule and the step.
+pub fn schedule_gaits(
+    path: &Path,
+    rows: &[GaitRequest],
+    steps: usize,
+    body: &Body,
+    attrs: &Attributes,
+) -> Result<Vec<Gait>> {
+    let mut gaits = rows
+        .iter()
+        .take(steps)
+        .enumerate()
+        .map(|(i, r)| {
+            r.complete(body, attrs).map_err(|e| Error::Malformed {
+                what: "schedule",
+                path: path.to_path_buf(),
+                reason: format!("step {}: {e}", i + 1),
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    if let Some(&last) = gaits.last() {
+        gaits.resize(steps, last);
+    }
+    Ok(gaits)
 }
 
 /// Line and column (1-based) of byte `offset` in `text`.
@@ -306,6 +336,32 @@ mod tests {
         assert!(m.contains("line 1") && m.contains("velocity"), "{m}");
         let m = schedule_error(d, "s.json", "[]");
         assert!(m.contains(".toml") && m.contains(".csv"), "{m}");
+    }
+
+    #[test]
+    fn schedule_gaits_hold_the_last_row_and_name_a_failing_step() {
+        let body = Body::standard(1.8, 80.0).unwrap();
+        let attrs = crate::model::attributes::AttributeTable::builtin().defaults();
+        let p = Path::new("s.toml");
+        let rows = [req(Some(1.2), None, None), req(Some(1.4), None, None)];
+        let g = schedule_gaits(p, &rows, 4, &body, &attrs).unwrap();
+        assert_eq!(g.len(), 4);
+        assert_eq!(g[0].velocity, 1.2);
+        assert_eq!((g[2], g[3]), (g[1], g[1]));
+        assert_eq!(g[1].velocity, 1.4);
+        assert_eq!(schedule_gaits(p, &rows, 1, &body, &attrs).unwrap(), g[..1]);
+        let rows = [req(Some(1.4), None, None), req(Some(9.0), None, None)];
+        let e = schedule_gaits(p, &rows, 3, &body, &attrs).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::Malformed {
+                    what: "schedule",
+                    ..
+                }
+            ) && e.to_string().contains("s.toml: step 2: "),
+            "{e}"
+        );
     }
 
     #[test]
