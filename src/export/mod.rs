@@ -1,11 +1,12 @@
 //! Motion export (issue items 7 and 8): clinical-angle CSV, OpenSim storage (`.mot` / `.sto`) and
 //! BVH, written from a stream of [`Landmarks`]; gait-cycle normalized curves. Axes, signs and
-//! the import recipes are in `docs/export.md`.
+//! the import recipes are in `docs/export.md`. The walk's other files have a writer each: the
+//! engine-state CSV ([`state`]), the gait events ([`events`]) and the JSON report ([`report`]).
 //!
-//! Every writer streams: rows go to a scratch file next to the target while the frames are
-//! converted, then the header (which needs the row count) and the rows are written to the target
-//! by [`file::write_atomic`]. Any error, in a frame or in the file system, leaves no file (and
-//! an existing target untouched).
+//! Every motion writer streams: rows go to a scratch file next to the target while the frames
+//! are converted, then the header (which needs the row count) and the rows are written to the
+//! target by [`file::write_atomic`]. Any error, in a frame or in the file system, leaves no file
+//! (and an existing target untouched); every file of the crate is written through [`file`].
 pub mod bvh;
 pub mod csv;
 pub mod cycle;
