@@ -8,7 +8,7 @@ use std::path::PathBuf;
 
 use klaw::{Options, Simulation};
 
-fn main() -> anyhow::Result<()> {
+fn main() -> Result<(), Box<dyn std::error::Error>> {
     let fps = 100.0;
     let walk = Simulation::default().run()?;
 

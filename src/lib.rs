@@ -57,7 +57,7 @@ pub mod plot;
 // 8, sweeps: many walks over a grid of inputs, their summary rows.
 pub mod sweep;
 // 8, files in and out: atomic writes, frames, events, report, attribute and schedule files.
-pub mod io;
+pub mod input;
 // 9, beside the binary: the library API, the `Simulation` builder and the `Walk` it returns.
 pub mod simulation;
 

@@ -7,7 +7,7 @@ use crate::error::Result;
 
 /// Write the curves as CSV: `cycle_pct` (0…100), then each column as `*_deg`; 101 rows.
 pub fn write_cycle_csv(path: &Path, curves: &CycleCurves) -> Result<()> {
-    crate::io::write_atomic(path, |out| {
+    super::file::write_atomic(path, |out| {
         write!(out, "cycle_pct")?;
         for c in &curves.columns {
             write!(out, ",{c}_deg")?;

@@ -1,29 +1,36 @@
 //! Motion export (issue items 7 and 8): clinical-angle CSV, OpenSim storage (`.mot` / `.sto`) and
 //! BVH, written from a stream of [`Landmarks`]; gait-cycle normalized curves. Axes, signs and
-//! the import recipes are in `docs/export.md`.
+//! the import recipes are in `docs/export.md`. The walk's other files have a writer each: the
+//! engine-state CSV ([`state`]), the gait events ([`events`]) and the JSON report ([`report`]).
 //!
-//! Every writer streams: rows go to a scratch file next to the target while the frames are
-//! converted, then the header (which needs the row count) and the rows are written to the target
-//! by [`crate::io::write_atomic`]. Any error, in a frame or in the file system, leaves no file (and
-//! an existing target untouched).
+//! Every motion writer streams: rows go to a scratch file next to the target while the frames
+//! are converted, then the header (which needs the row count) and the rows are written to the
+//! target by [`file::write_atomic`]. Any error, in a frame or in the file system, leaves no file
+//! (and an existing target untouched); every file of the crate is written through [`file`].
 pub mod bvh;
 pub mod csv;
 pub mod cycle;
+pub mod events;
+pub mod file;
 pub mod opensim;
+pub mod report;
+pub mod state;
 
-use std::fs::{self, File, OpenOptions};
 use std::io::{self, BufWriter, Seek, Write};
-use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::path::Path;
 
 pub use cycle::write_cycle_csv;
+pub use events::write_events_csv;
 pub use opensim::OpenSimModel;
+pub use report::write_report_json;
+pub use state::write_frames_csv;
 
 use crate::error::{Error, Result};
 use crate::figure::Landmarks;
 use crate::figure::clinical::Clinical;
 use crate::figure::skeleton::Skeleton;
 use crate::model::body::Body;
+use file::write_error;
 
 /// The export file formats, chosen by the file extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -153,72 +160,14 @@ where
     }
 }
 
-fn io_error(path: &Path, source: io::Error) -> Error {
-    Error::Io {
-        action: "writing",
-        path: path.to_path_buf(),
-        source,
-    }
-}
-
-/// The scratch file that holds the rows until the header can be written; removed on drop.
-struct Spool {
-    path: PathBuf,
-    file: Option<BufWriter<File>>,
-}
-
-impl Spool {
-    fn new(target: &Path) -> io::Result<Spool> {
-        static COUNTER: AtomicU64 = AtomicU64::new(0);
-        let dir = match target.parent() {
-            Some(d) if !d.as_os_str().is_empty() => d,
-            _ => Path::new("."),
-        };
-        let name = target
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .ok_or_else(|| {
-                io::Error::new(io::ErrorKind::InvalidInput, "the path does not name a file")
-            })?;
-        loop {
-            let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-            let path = dir.join(format!(".{name}.{}.{n}.rows.tmp", std::process::id()));
-            match OpenOptions::new()
-                .read(true)
-                .write(true)
-                .create_new(true)
-                .open(&path)
-            {
-                Ok(f) => {
-                    return Ok(Spool {
-                        path,
-                        file: Some(BufWriter::new(f)),
-                    });
-                }
-                Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
-                Err(e) => return Err(e),
-            }
-        }
-    }
-}
-
-impl Drop for Spool {
-    fn drop(&mut self) {
-        self.file = None;
-        let _ = fs::remove_file(&self.path);
-    }
-}
-
 fn run<I, W>(path: &Path, body: &Body, frames: I, mut writer: W) -> Result<()>
 where
     I: IntoIterator<Item = Result<Landmarks>>,
     W: RowWriter,
 {
-    let mut spool = Spool::new(path).map_err(|e| io_error(path, e))?;
-    let out = spool
-        .file
-        .as_mut()
-        .expect("the spool is open until dropped");
+    // the rows wait in an unnamed file in the target's directory, gone when closed
+    let spool = tempfile::tempfile_in(file::parent_dir(path)).map_err(|e| write_error(path, e))?;
+    let mut spool = BufWriter::new(spool);
     let mut rows = 0;
     let mut last_time = f64::NEG_INFINITY;
     for (index, lm) in frames.into_iter().enumerate() {
@@ -239,8 +188,8 @@ where
             clinical: skeleton.clinical(lm.time, lm.step),
             skeleton,
         };
-        writer.row(out, &frame).map_err(|e| match e {
-            RowError::Io(e) => io_error(path, e),
+        writer.row(&mut spool, &frame).map_err(|e| match e {
+            RowError::Io(e) => write_error(path, e),
             RowError::Klaw(e) => e,
         })?;
         rows += 1;
@@ -251,13 +200,10 @@ where
         });
     }
     let mut file = spool
-        .file
-        .take()
-        .expect("the spool is open until dropped")
         .into_inner()
-        .map_err(|e| io_error(path, e.into_error()))?;
-    file.rewind().map_err(|e| io_error(path, e))?;
-    crate::io::write_atomic(path, |out| {
+        .map_err(|e| write_error(path, e.into_error()))?;
+    file.rewind().map_err(|e| write_error(path, e))?;
+    file::write_atomic(path, |out| {
         writer.header(out, rows)?;
         io::copy(&mut file, out)?;
         Ok(())

@@ -216,7 +216,7 @@ pub fn write_gif(
         path: path.to_path_buf(),
         source: std::io::Error::other(format!("drawing the animation: {reason}")),
     };
-    let file = crate::io::AtomicFile::create(path)?;
+    let file = crate::export::file::AtomicFile::create(path)?;
     let mut views = Vec::with_capacity(frames.len());
     {
         let backend = BitMapBackend::gif(file.temp_path(), options.size, options.frame_delay_ms())

@@ -4,7 +4,7 @@
 //! colours, the file format by extension and the writing of a drawn figure.
 //!
 //! PNG (rendered in memory, encoded here) or SVG, chosen by the file's extension, written
-//! atomically through `io::write_atomic`. Text needs a TrueType font: it is read at run time from
+//! atomically through `write_atomic`. Text needs a TrueType font: it is read at run time from
 //! the file named by `KLAW_FONT` or else from the usual DejaVu Sans locations; without one the
 //! figures are drawn without any text (no titles, tick labels or legends) rather than failing.
 pub mod animation;
@@ -24,7 +24,6 @@ use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::{ColorType, ImageEncoder, ImageError};
 
 use crate::error::{Error, Result};
-use crate::io;
 use crate::model::body::Body;
 use crate::plan::gait::Gait;
 
@@ -192,7 +191,7 @@ pub(crate) fn write_figure<F: Draw>(
                 root.present().map_err(|e| fail(e.to_string()))?;
                 drawn
             };
-            io::write_atomic(path, |out| out.write_all(svg.as_bytes()))?;
+            crate::export::file::write_atomic(path, |out| out.write_all(svg.as_bytes()))?;
             Ok(drawn)
         }
     }
@@ -204,7 +203,7 @@ fn write_png(path: &Path, pixels: &[u8], (w, h): (u32, u32), png: Png) -> Result
         Png::Default => (CompressionType::default(), FilterType::default()),
         Png::Small => (CompressionType::Best, FilterType::Adaptive),
     };
-    io::write_atomic(path, |out| {
+    crate::export::file::write_atomic(path, |out| {
         PngEncoder::new_with_quality(out, compression, filter)
             .write_image(pixels, w, h, ColorType::Rgb8)
             .map_err(|e| match e {

@@ -391,17 +391,17 @@ impl Walk {
 
     /// Write the [`events`](Walk::events) as CSV (`time_s, side, event, step`).
     pub fn write_events(&self, path: impl AsRef<Path>) -> Result<()> {
-        crate::io::write_events_csv(path.as_ref(), &self.events())
+        crate::export::write_events_csv(path.as_ref(), &self.events())
     }
 
     /// Write the [`report`](Walk::report) as JSON.
     pub fn write_report(&self, path: impl AsRef<Path>) -> Result<()> {
-        crate::io::write_report_json(path.as_ref(), &self.report())
+        crate::export::write_report_json(path.as_ref(), &self.report())
     }
 
     /// Write the [`state_frames`](Walk::state_frames) at `fps` as CSV.
     pub fn write_state(&self, path: impl AsRef<Path>, fps: f64) -> Result<()> {
-        crate::io::write_frames_csv(path.as_ref(), &self.state_frames(fps)?)
+        crate::export::write_frames_csv(path.as_ref(), &self.state_frames(fps)?)
     }
 
     /// Write the [`gait_cycle`](Walk::gait_cycle) at `fps` as CSV (`cycle_pct`, then every

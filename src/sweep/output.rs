@@ -1,6 +1,6 @@
 //! Sweep output files: rows streamed, in point order, to a partial file next to the target and
 //! renamed over it when the sweep is done; resuming from what an interrupted or truncated run
-//! left; merging the outputs of shards.
+//! left; reading them back row by row (also for [`super::merge`]).
 //!
 //! - While `klaw sweep --out DIR/NAME` runs, rows go to `DIR/.NAME.partial` as their chunk
 //!   completes, so memory does not grow with the sweep; the target appears whole, by a rename,
@@ -9,9 +9,6 @@
 //!   of an existing target, checks that each was written by this sweep (same columns, same
 //!   inputs for its point, point in this shard, points increasing), and walks only the other
 //!   points. The result is the union, in point order, byte-identical to an uninterrupted run.
-//! - `merge` joins shard outputs in point order (a k-way merge of the sorted files).
-use std::cmp::Reverse;
-use std::collections::BinaryHeap;
 use std::fs::{self, File, OpenOptions};
 use std::io::{BufRead, BufReader, BufWriter, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
@@ -19,7 +16,6 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use crate::error::{Error, Result};
-use crate::io::AtomicFile;
 use crate::sweep::{Format, Shard, Sweep};
 
 /// The partial output of a sweep writing `target`: `.NAME.partial` in the same directory.
@@ -39,7 +35,7 @@ fn io_err<'a>(action: &'static str, path: &'a Path) -> impl Fn(std::io::Error) -
     }
 }
 
-fn malformed(path: &Path, reason: String) -> Error {
+pub(super) fn malformed(path: &Path, reason: String) -> Error {
     Error::Malformed {
         what: "sweep output",
         path: path.to_path_buf(),
@@ -61,7 +57,7 @@ fn comparable(format: Format, header: &[String]) -> Vec<String> {
 /// file's columns and a `point` larger than the one before. A last line without its newline
 /// (cut off by an interruption) is not returned: `cut_off` says so.
 pub struct RowReader {
-    path: PathBuf,
+    pub(super) path: PathBuf,
     format: Format,
     reader: BufReader<File>,
     /// CSV: the header; JSON Lines: the sorted keys of the first row (`None` before it).
@@ -277,82 +273,18 @@ pub fn run_to_file(
         points: shard.points(total, 0).count(),
         ..RunStats::default()
     };
-
-    // the partial file: continued after its last complete row, or started
-    let mut next = 0;
-    let file = if partial.exists() {
-        if !resume {
-            return Err(malformed(
-                &partial,
-                format!(
-                    "an interrupted sweep left this partial output of {}: rerun with --resume to \
-                     continue it, or delete it to start over",
-                    target.display()
-                ),
-            ));
-        }
-        let reader = scan(sweep, shard, &partial, format, |p| {
-            done.insert(p);
-            next = p + 1;
-            stats.kept += 1;
-        })?;
-        let restart = reader.columns().is_none() && format == Format::Csv;
-        let mut file = OpenOptions::new()
-            .write(true)
-            .open(&partial)
-            .map_err(io_err("writing", &partial))?;
-        let keep = if restart { 0 } else { reader.valid_len };
-        file.set_len(keep).map_err(io_err("writing", &partial))?;
-        file.seek(SeekFrom::End(0))
-            .map_err(io_err("writing", &partial))?;
-        if restart {
-            file.write_all(format.header_line(&header).as_bytes())
-                .map_err(io_err("writing", &partial))?;
-        }
-        file
-    } else {
-        let mut file = OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&partial)
-            .map_err(io_err("writing", &partial))?;
-        file.write_all(format.header_line(&header).as_bytes())
-            .map_err(io_err("writing", &partial))?;
-        file
-    };
+    let (file, next) = open_partial(sweep, shard, target, resume, &mut done, &mut stats)?;
     let mut out = BufWriter::new(file);
-
     // the existing target's rows after the partial file's last one are kept too
     let mut existing = None;
     if resume && target.exists() {
-        scan(sweep, shard, target, format, |p| {
-            if p >= next {
-                done.insert(p);
-                stats.kept += 1;
-            }
-        })?;
-        existing = Some(RowReader::open(target, format)?);
+        existing = Some(Existing::open(
+            sweep, shard, target, next, &mut done, &mut stats,
+        )?);
     }
-    let mut pending = None;
-    let mut copy_before = |limit: usize, out: &mut BufWriter<File>| -> Result<()> {
-        let Some(reader) = existing.as_mut() else {
-            return Ok(());
-        };
-        loop {
-            if pending.is_none() {
-                pending = reader.next_row()?;
-            }
-            match &pending {
-                Some((p, line)) if *p < limit => {
-                    if *p >= next {
-                        out.write_all(line.as_bytes())
-                            .map_err(io_err("writing", &partial))?;
-                    }
-                    pending = None;
-                }
-                _ => return Ok(()),
-            }
-        }
+    let mut copy_before = |limit: usize, out: &mut BufWriter<File>| match existing.as_mut() {
+        Some(e) => e.copy_before(limit, out, &partial),
+        None => Ok(()),
     };
 
     let to_run = shard
@@ -400,136 +332,113 @@ pub fn run_to_file(
     Ok(stats)
 }
 
-/// What a merge did.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct MergeStats {
-    pub rows: usize,
-    /// Rows found in more than one input (identical; written once).
-    pub duplicates: usize,
-    /// Points missing between 0 and the largest point found, and the first few of them.
-    pub missing: usize,
-    pub first_missing: Vec<usize>,
-    /// Inputs whose last line was cut off (not merged).
-    pub cut_off: Vec<PathBuf>,
+/// The partial file of `target`, open at its end for the next rows, and the point after its
+/// last complete row: continued (with `resume`: its points are marked in `done` and counted as
+/// kept; a CSV file cut off inside its header starts over), or started with the header.
+fn open_partial(
+    sweep: &Sweep,
+    shard: Shard,
+    target: &Path,
+    resume: bool,
+    done: &mut PointSet,
+    stats: &mut RunStats,
+) -> Result<(File, usize)> {
+    let format = Format::from_path(target)?;
+    let header = sweep.header();
+    let partial = partial_path(target);
+    let write_err = io_err("writing", &partial);
+    if !partial.exists() {
+        let mut file = OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&partial)
+            .map_err(&write_err)?;
+        file.write_all(format.header_line(&header).as_bytes())
+            .map_err(&write_err)?;
+        return Ok((file, 0));
+    }
+    if !resume {
+        return Err(malformed(
+            &partial,
+            format!(
+                "an interrupted sweep left this partial output of {}: rerun with --resume to \
+                 continue it, or delete it to start over",
+                target.display()
+            ),
+        ));
+    }
+    let mut next = 0;
+    let reader = scan(sweep, shard, &partial, format, |p| {
+        done.insert(p);
+        next = p + 1;
+        stats.kept += 1;
+    })?;
+    let restart = reader.columns().is_none() && format == Format::Csv;
+    let mut file = OpenOptions::new()
+        .write(true)
+        .open(&partial)
+        .map_err(&write_err)?;
+    let keep = if restart { 0 } else { reader.valid_len };
+    file.set_len(keep).map_err(&write_err)?;
+    file.seek(SeekFrom::End(0)).map_err(&write_err)?;
+    if restart {
+        file.write_all(format.header_line(&header).as_bytes())
+            .map_err(&write_err)?;
+    }
+    Ok((file, next))
 }
 
-/// Join sweep outputs (typically the shards of one sweep) into `out`, rows in point order,
-/// written whole or not at all. All files must have the format of `out` (by extension) and the
-/// same columns. A point found in several inputs must have the same row in each (a duplicate is
-/// written once and counted); different rows for one point are an error. Points missing below
-/// the largest point found are an error unless `allow_missing` (then counted). Points after the
-/// largest one cannot be detected: the files do not record the sweep's size.
-pub fn merge(out: &Path, inputs: &[PathBuf], allow_missing: bool) -> Result<MergeStats> {
-    let format = Format::from_path(out)?;
-    if inputs.is_empty() {
-        return Err(Error::BadSpec {
-            flag: "merge".into(),
-            reason: "no input files".into(),
-        });
-    }
-    let mut readers = Vec::with_capacity(inputs.len());
-    for path in inputs {
-        if Format::from_path(path)? != format {
-            return Err(malformed(
-                path,
-                format!("its format differs from the output's ({})", out.display()),
-            ));
-        }
-        readers.push(RowReader::open(path, format)?);
-    }
-    let mut heap = BinaryHeap::new();
-    let mut heads: Vec<Option<String>> = vec![None; readers.len()];
-    let mut columns: Option<(Vec<String>, usize)> = None;
-    let mut pull = |i: usize,
-                    readers: &mut Vec<RowReader>,
-                    heap: &mut BinaryHeap<Reverse<(usize, usize)>>,
-                    heads: &mut Vec<Option<String>>|
-     -> Result<()> {
-        if let Some((p, line)) = readers[i].next_row()? {
-            heap.push(Reverse((p, i)));
-            heads[i] = Some(line);
-        }
-        if let Some(c) = readers[i].columns() {
-            match &columns {
-                None => columns = Some((c.to_vec(), i)),
-                Some((first, j)) if first.as_slice() != c => {
-                    return Err(malformed(
-                        &inputs[i],
-                        format!(
-                            "its columns differ from those of {}: not the same sweep",
-                            inputs[*j].display()
-                        ),
-                    ));
-                }
-                _ => {}
+/// The rows of the existing target of a resumed run, copied into the new output in point order
+/// between the rows walked now.
+struct Existing {
+    reader: RowReader,
+    /// A row read but not yet copied: its point is after the last limit.
+    pending: Option<(usize, String)>,
+    /// Rows of points below this one are in the partial file already: not copied.
+    from: usize,
+}
+
+impl Existing {
+    /// The rows of `target` from point `from` on, checked to be this sweep's, their points
+    /// marked in `done` and counted as kept.
+    fn open(
+        sweep: &Sweep,
+        shard: Shard,
+        target: &Path,
+        from: usize,
+        done: &mut PointSet,
+        stats: &mut RunStats,
+    ) -> Result<Existing> {
+        let format = Format::from_path(target)?;
+        scan(sweep, shard, target, format, |p| {
+            if p >= from {
+                done.insert(p);
+                stats.kept += 1;
             }
-        }
-        Ok(())
-    };
-    for i in 0..readers.len() {
-        pull(i, &mut readers, &mut heap, &mut heads)?;
+        })?;
+        Ok(Existing {
+            reader: RowReader::open(target, format)?,
+            pending: None,
+            from,
+        })
     }
-    let mut file = AtomicFile::create(out)?;
-    let mut stats = MergeStats::default();
-    if format == Format::Csv
-        && let Some(c) = readers.iter().find_map(RowReader::columns)
-    {
-        let line = format.header_line(c);
-        file.writer()
-            .write_all(line.as_bytes())
-            .map_err(|e| file.error(e))?;
-    }
-    let mut previous: Option<(usize, String, usize)> = None;
-    while let Some(Reverse((p, i))) = heap.pop() {
-        let line = heads[i].take().unwrap_or_default();
-        match &previous {
-            Some((q, text, j)) if *q == p => {
-                if *text != line {
-                    return Err(malformed(
-                        &inputs[i],
-                        format!(
-                            "point {p} differs from its row in {}: not the same sweep",
-                            inputs[*j].display()
-                        ),
-                    ));
-                }
-                stats.duplicates += 1;
+
+    /// Copy the rows of the points below `limit` to `out`, the writer of `partial`.
+    fn copy_before(&mut self, limit: usize, out: &mut impl Write, partial: &Path) -> Result<()> {
+        loop {
+            if self.pending.is_none() {
+                self.pending = self.reader.next_row()?;
             }
-            _ => {
-                let from = previous.as_ref().map_or(0, |(q, _, _)| q + 1);
-                for m in from..p {
-                    stats.missing += 1;
-                    if stats.first_missing.len() < 10 {
-                        stats.first_missing.push(m);
+            match &self.pending {
+                Some((p, line)) if *p < limit => {
+                    if *p >= self.from {
+                        out.write_all(line.as_bytes())
+                            .map_err(io_err("writing", partial))?;
                     }
+                    self.pending = None;
                 }
-                file.writer()
-                    .write_all(line.as_bytes())
-                    .map_err(|e| file.error(e))?;
-                stats.rows += 1;
-                previous = Some((p, line, i));
+                _ => return Ok(()),
             }
         }
-        pull(i, &mut readers, &mut heap, &mut heads)?;
     }
-    stats.cut_off = readers
-        .iter()
-        .filter(|r| r.cut_off)
-        .map(|r| r.path.clone())
-        .collect();
-    if stats.missing > 0 && !allow_missing {
-        let list: Vec<String> = stats.first_missing.iter().map(|p| p.to_string()).collect();
-        return Err(Error::Malformed {
-            what: "merge of sweep outputs",
-            path: out.to_path_buf(),
-            reason: format!(
-                "{} points are missing (first: {}): is a shard missing or unfinished? \
-                 (--allow-missing writes the rows anyway)",
-                stats.missing,
-                list.join(", ")
-            ),
-        });
-    }
-    file.commit()?;
-    Ok(stats)
 }

@@ -1,0 +1,50 @@
+//! `klaw animate`: a stick-figure animation of a walk as an animated GIF.
+use std::io::Write;
+use std::path::PathBuf;
+
+use clap::Args;
+use klaw::Result;
+use klaw::plot::animation::{self, Options};
+
+use crate::args::GaitArgs;
+use crate::{check_output_dir, font_note};
+
+#[derive(Args)]
+pub(crate) struct AnimateArgs {
+    #[command(flatten)]
+    walk: GaitArgs,
+    /// Animation to write (.gif)
+    #[arg(long, value_name = "FILE.gif", default_value = "walk.gif")]
+    out: PathBuf,
+    /// Frames per second of walk time (also the playback rate), range [1, 100]
+    #[arg(
+        long,
+        value_name = "HZ",
+        default_value_t = 25.0,
+        allow_negative_numbers = true
+    )]
+    fps: f64,
+    /// Image size in pixels, WIDTHxHEIGHT (not --height: that is the body height)
+    #[arg(long, value_name = "WxH", default_value = "900x450")]
+    size: String,
+}
+
+pub(crate) fn run(args: &AnimateArgs) -> Result<()> {
+    let options = Options::new(args.fps, animation::parse_size(&args.size)?)?;
+    animation::check_path(&args.out)?;
+    check_output_dir(&args.out)?;
+    let (walk, title) = args.walk.simulate()?;
+    let summary = animation::animate_walk(&walk, &title, &args.out, &options)?;
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(
+        out,
+        "animation of {title}: {} frames at {} frames/s, {} x {} px: {}{}",
+        summary.frames,
+        options.fps,
+        options.size.0,
+        options.size.1,
+        args.out.display(),
+        font_note()
+    );
+    Ok(())
+}

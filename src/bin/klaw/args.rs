@@ -1,0 +1,169 @@
+//! The gait, body and attribute flags shared by `klaw walk`, `klaw plot` and `klaw animate`.
+use std::path::PathBuf;
+
+use clap::Args;
+use klaw::engine::walker::{Walk, simulate};
+use klaw::{Attributes, Body, Gait, GaitRequest, Result, input};
+
+use crate::{
+    DEFAULT_HEIGHT, DEFAULT_MASS, DEFAULT_STEPS, DEFAULT_VELOCITY, MAX_STEPS, check_count,
+};
+
+/// The gait, body and attribute flags of `klaw walk`, `klaw plot` and `klaw animate`.
+#[derive(Args)]
+pub(crate) struct GaitArgs {
+    /// Walking speed v in m/s, range [0.4, 2.5] [default: 1.4 if no gait flag is given]
+    #[arg(
+        long,
+        value_name = "M/S",
+        allow_negative_numbers = true,
+        long_help = "Walking speed v in m/s; valid range [0.4, 2.5] m/s (attributes velocity_min/max). Given\n\
+            alone, step frequency and step length follow from the normalizing formula:\n\
+            sf = √(15000 · v / H) steps/min, sl = 60 · v / sf. [default: 1.4 when none of\n\
+            --velocity, --step-length, --step-frequency is given]"
+    )]
+    velocity: Option<f64>,
+
+    /// Step length sl in m (heel strike to heel strike of the two feet)
+    #[arg(
+        long,
+        value_name = "M",
+        allow_negative_numbers = true,
+        long_help = "Step length sl in m: the distance the body advances in one step. Its limits are\n\
+            fractions of the leg length (attributes step_length_min/max, by default [0.2, 1.3] leg\n\
+            lengths: [0.1736, 1.1285] m for H = 1.8 m). Given alone, sf = sl / (0.004 · H) and\n\
+            v = sl · sf / 60. [default: from the normalizing formula]"
+    )]
+    step_length: Option<f64>,
+
+    /// Step frequency sf in steps/min, range [50, 182]
+    #[arg(
+        long,
+        value_name = "STEPS/MIN",
+        allow_negative_numbers = true,
+        long_help = "Step frequency sf in steps per minute (each step is 60 / sf s). Valid range [50, 182]\n\
+            steps/min (attributes step_frequency_min/max); walking needs a double-support phase, so\n\
+            sf < 181.75 steps/min. Given alone, sl = 0.004 · sf · H and v = sl · sf / 60. [default:\n\
+            from the normalizing formula]"
+    )]
+    step_frequency: Option<f64>,
+
+    /// Body height H in m, range [1.2, 2.2]
+    #[arg(
+        long,
+        value_name = "M",
+        default_value_t = DEFAULT_HEIGHT,
+        allow_negative_numbers = true,
+        long_help = "Body height H in m; valid range [1.2, 2.2] m. Segment lengths scale with H (Winter's\n\
+            anthropometric table) and H enters the normalizing formula."
+    )]
+    height: f64,
+
+    /// Body mass M in kg, range [25, 200]
+    #[arg(
+        long,
+        value_name = "KG",
+        default_value_t = DEFAULT_MASS,
+        allow_negative_numbers = true,
+        long_help = "Body mass M in kg; valid range [25, 200] kg. Segment masses and inertias scale with M."
+    )]
+    mass: f64,
+
+    /// Number of steps, range [1, 1000000] [default: 10, or the schedule's length]
+    #[arg(
+        long,
+        value_name = "N",
+        long_help = "Number of steps to simulate; valid range [1, 1000000]. With --schedule: the first N rows\n\
+            are used, and if N exceeds the schedule's length the last row is held for the remaining\n\
+            steps. [default: 10, or the schedule's length with --schedule]"
+    )]
+    steps: Option<usize>,
+
+    /// Per-step gait requests from a .toml or .csv file (instead of the gait flags)
+    #[arg(
+        long,
+        value_name = "FILE",
+        conflicts_with_all = ["velocity", "step_length", "step_frequency"],
+        long_help = "Per-step gait requests, one per step, each completed by the normalizing formula like the\n\
+            gait flags (so each row needs at least one value). Either a TOML file of [[step]] tables\n\
+            with any of the keys velocity (m/s), step_length (m), step_frequency (steps/min), or a\n\
+            CSV file (extension .csv) whose header names any of those columns, one row per step,\n\
+            empty cells allowed, # starts a comment line. Cannot be combined with --velocity,\n\
+            --step-length or --step-frequency."
+    )]
+    schedule: Option<PathBuf>,
+
+    /// Locomotion attribute overrides: a TOML file `name = value`
+    #[arg(
+        long,
+        value_name = "FILE",
+        long_help = "Locomotion attribute overrides: a flat TOML file of `name = value` lines in the units of\n\
+            models/attributes.toml (angles in degrees), e.g. `bounciness = 0.5`. Each value is\n\
+            checked against its range; unknown names are an error. Unnamed attributes keep their\n\
+            defaults."
+    )]
+    attributes: Option<PathBuf>,
+
+    /// Style preset: normal, brisk, elderly, march or long-stride
+    #[arg(
+        long,
+        value_name = "NAME",
+        long_help = "Style preset: an attribute file bundled from models/styles/ (normal, brisk, elderly,\n\
+            march, long-stride). --attributes overrides the style's values name by name."
+    )]
+    style: Option<String>,
+}
+
+impl GaitArgs {
+    /// The body of the flags.
+    pub(crate) fn body(&self) -> Result<Body> {
+        Body::standard(self.height, self.mass)
+    }
+
+    /// The defaults, then the style preset's values, then the attribute file's.
+    pub(crate) fn attributes(&self) -> Result<Attributes> {
+        input::load_attributes(self.style.as_deref(), self.attributes.as_deref())
+    }
+
+    /// The gait of every step: the schedule's rows (the last one held) or the flags' one gait.
+    pub(crate) fn gaits(&self, body: &Body, attrs: &Attributes) -> Result<Vec<Gait>> {
+        if let Some(steps) = self.steps {
+            check_count("steps", steps, 1, MAX_STEPS, "steps")?;
+        }
+        match &self.schedule {
+            Some(path) => {
+                let rows = input::read_schedule(path)?;
+                let n = self.steps.unwrap_or(rows.len());
+                check_count("steps", n, 1, MAX_STEPS, "steps")?;
+                input::schedule_gaits(path, &rows, n, body, attrs)
+            }
+            None => {
+                let mut request = GaitRequest {
+                    velocity: self.velocity,
+                    step_length: self.step_length,
+                    step_frequency: self.step_frequency,
+                };
+                if request == GaitRequest::default() {
+                    request.velocity = Some(DEFAULT_VELOCITY);
+                }
+                let gait = request.complete(body, attrs)?;
+                Ok(vec![gait; self.steps.unwrap_or(DEFAULT_STEPS)])
+            }
+        }
+    }
+
+    /// Simulate the walk; also the title line of its parameters.
+    pub(crate) fn simulate(&self) -> Result<(Walk, String)> {
+        let body = self.body()?;
+        let attrs = self.attributes()?;
+        let gaits = self.gaits(&body, &attrs)?;
+        let style = match (&self.style, &self.attributes) {
+            (Some(s), Some(a)) => format!("{s} + {}", a.display()),
+            (Some(s), None) => s.clone(),
+            (None, Some(a)) => a.display().to_string(),
+            (None, None) => "default".to_string(),
+        };
+        let title = klaw::plot::parameters_title(&gaits, &body, &style);
+        Ok((simulate(body, attrs, &gaits)?, title))
+    }
+}

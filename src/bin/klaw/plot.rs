@@ -1,0 +1,45 @@
+//! `klaw plot`: the joint angle curves of a walk over the gait cycle, with the normal ranges.
+use std::io::Write;
+use std::path::PathBuf;
+
+use clap::Args;
+use klaw::analysis::cycle::GaitCycle;
+use klaw::analysis::norms::NormTable;
+use klaw::plot::cycle::write_cycle_figure;
+use klaw::{Result, plot};
+
+use crate::args::GaitArgs;
+use crate::{check_output_dir, font_note};
+
+#[derive(Args)]
+pub(crate) struct PlotArgs {
+    #[command(flatten)]
+    walk: GaitArgs,
+    /// Figure to write: PNG or SVG by the extension
+    #[arg(
+        long,
+        value_name = "FILE.png|FILE.svg",
+        default_value = "plots/gait-cycle.png"
+    )]
+    out: PathBuf,
+}
+
+pub(crate) fn run(args: &PlotArgs) -> Result<()> {
+    plot::figure_format(&args.out)?;
+    check_output_dir(&args.out)?;
+    let (walk, title) = args.walk.simulate()?;
+    let cycle = GaitCycle::from_walk(&walk)?;
+    let norms = NormTable::builtin();
+    let figure = write_cycle_figure(&cycle, &norms, &title, &args.out)?;
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(
+        out,
+        "gait cycle of {title}: mean of {} right / {} left cycles",
+        cycle.cycles.0, cycle.cycles.1
+    );
+    for c in &figure.checks {
+        let _ = writeln!(out, "  {}", c.describe());
+    }
+    let _ = writeln!(out, "plot: {}{}", args.out.display(), font_note());
+    Ok(())
+}

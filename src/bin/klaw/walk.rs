@@ -1,0 +1,252 @@
+//! `klaw walk`: a walk simulated and written as motion, figure, report, state, events and cycle
+//! files.
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use clap::Args;
+use klaw::engine::report::Report;
+use klaw::simulation::stream::{Gather, WalkStream};
+use klaw::{Body, Error, Result, export, plot};
+
+use crate::args::GaitArgs;
+use crate::{DEFAULT_FPS, MAX_FPS, MIN_FPS, check_output_dir, font_note};
+
+/// Frames are held in memory before they are written (≈ 200 bytes each): cap the count.
+const MAX_FRAMES: f64 = 5_000_000.0;
+
+#[derive(Args)]
+pub(crate) struct WalkArgs {
+    #[command(flatten)]
+    gait: GaitArgs,
+
+    /// Output frame rate in frames/s, range [0.001, 10000]
+    #[arg(
+        long,
+        value_name = "HZ",
+        default_value_t = DEFAULT_FPS,
+        allow_negative_numbers = true,
+        long_help = "Frame rate of the CSV output in frames per second; valid range [0.001, 10000]. Frames\n\
+            are sampled from t = 0 to the last heel strike, so a walk of duration T has\n\
+            round(T · fps) + 1 rows."
+    )]
+    fps: f64,
+
+    /// Motion of the whole figure: .csv, .mot/.sto (OpenSim) or .bvh by the extension
+    #[arg(
+        long,
+        value_name = "FILE.csv|.mot|.sto|.bvh",
+        default_value = "walk.csv",
+        long_help = "Motion of the whole figure, one frame per 1/fps, in the format of the extension:\n\
+            .csv: time_s, pelvis_tx/ty/tz_m (pelvis centre), pelvis tilt/list/rotation, and for each\n\
+            side (_r, _l) hip flexion/adduction/rotation, knee flexion, ankle dorsiflexion, mtp\n\
+            dorsiflexion, shoulder flexion/abduction, elbow flexion, lumbar angles, all *_deg with\n\
+            clinical signs;\n\
+            .mot/.sto: OpenSim storage with gait2392 coordinates (see --opensim-model);\n\
+            .bvh: a skeleton for Blender and game engines (Y up, metres; see --in-place).\n\
+            Frames are streamed: a walk of any length runs in bounded memory. docs/export.md has\n\
+            the column and sign tables. Written whole or not at all."
+    )]
+    out: PathBuf,
+
+    /// BVH: keep the root over the origin in the walking direction
+    #[arg(long)]
+    in_place: bool,
+
+    /// .mot/.sto: the OpenSim model whose coordinates are written
+    #[arg(long, value_name = "MODEL", default_value = "gait2392", value_parser = ["gait2392", "rajagopal2015"])]
+    opensim_model: String,
+
+    /// The engine's state per frame (θ1..θ4, w, hip and swing-leg points) as CSV [default: none]
+    #[arg(long, value_name = "FILE.csv")]
+    state_out: Option<PathBuf>,
+
+    /// Gait events (HS, FGM, heel_off, MOM, TO of each foot) at their exact times, as CSV
+    #[arg(long, value_name = "FILE.csv")]
+    events: Option<PathBuf>,
+
+    /// Joint angles over the gait cycle (0..100 %, right heel strike at 0), averaged over the
+    /// steady cycles (all but the first), as CSV
+    #[arg(long, value_name = "FILE.csv")]
+    cycle_out: Option<PathBuf>,
+
+    /// Figure of the walk to write: PNG or SVG by the extension
+    #[arg(
+        long,
+        value_name = "FILE.png|FILE.svg",
+        default_value = "walk.png",
+        long_help = "Figure of the walk to write, 1600 × 1000 px, PNG or SVG by the extension (.png or .svg):\n\
+            a side view of the legs as stick figures every 0.1 s over the ground (metres, equal\n\
+            aspect ratio; blue the right leg, red the left), the hip height against time and the\n\
+            joint angles θ1..θ4 in degrees against time. Titles, tick labels and legends need a\n\
+            TrueType font, read when the program runs from $KLAW_FONT or else DejaVu Sans\n\
+            (/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf); without one the figure is drawn\n\
+            without text. Written whole or not at all, after the CSV and the report."
+    )]
+    plot: PathBuf,
+
+    /// Do not write the figure
+    #[arg(long, conflicts_with = "plot")]
+    no_plot: bool,
+
+    /// Per-step report to write as JSON [default: none]
+    #[arg(
+        long,
+        value_name = "FILE.json",
+        long_help = "Per-step report to write as JSON: target and achieved gait, end-condition errors, and\n\
+            the shooting solves (iterations, residual) of every step. Written whole or not at all.\n\
+            [default: not written]"
+    )]
+    report: Option<PathBuf>,
+}
+
+pub(crate) fn run(args: &WalkArgs) -> Result<()> {
+    let fps = Error::check_range("fps", args.fps, MIN_FPS, MAX_FPS, "frames/s")?;
+    let body = args.gait.body()?;
+    let attrs = args.gait.attributes()?;
+    let gaits = args.gait.gaits(&body, &attrs)?;
+    let format = export::Format::from_path(&args.out)?;
+    let plot = check_outputs(args, gaits.len())?;
+    let gather = Gather {
+        reports: args.report.is_some(),
+        events: args.events.is_some(),
+        state_frames: plot.is_some() || args.state_out.is_some(),
+        clinical: args.cycle_out.is_some(),
+    };
+    if gather.state_frames {
+        // the state frames are kept for the figure: refuse a count that would not fit in memory
+        // (the walk lasts Σ 60 / sf)
+        let duration: f64 = gaits.iter().map(|g| 60.0 / g.step_frequency).sum();
+        Error::check_range(
+            "frame count with --plot or --state-out (duration · fps + 1)",
+            (duration * fps).round() + 1.0,
+            1.0,
+            MAX_FRAMES,
+            "frames; use --no-plot for longer walks",
+        )?;
+    }
+    let mut stream = WalkStream::new(body, attrs, &gaits, fps, gather);
+    export::try_write(&args.out, format, &body, fps, &mut stream, &options(args))?;
+    stream.finish();
+    write_outputs(args, &body, &mut stream, plot)?;
+    print_summary(args, &stream, fps, plot);
+    Ok(())
+}
+
+/// Refuse, before anything is simulated, a cycle output of too short a walk, an unknown figure
+/// format, an output in a missing directory and two outputs to one file; the figure's path
+/// unless --no-plot.
+fn check_outputs(args: &WalkArgs, steps: usize) -> Result<Option<&Path>> {
+    if args.cycle_out.is_some() && steps < 5 {
+        return Err(Error::BadSpec {
+            flag: "cycle-out".into(),
+            reason: format!(
+                "the gait cycle is averaged over the right heel strike to right heel strike \
+                 cycles after the first: at least 5 steps are needed, not {steps}"
+            ),
+        });
+    }
+    let plot = (!args.no_plot).then_some(args.plot.as_path());
+    let outputs = [
+        Some((args.out.as_path(), "--out")),
+        args.report.as_deref().map(|p| (p, "--report")),
+        plot.map(|p| (p, "--plot")),
+        args.state_out.as_deref().map(|p| (p, "--state-out")),
+        args.events.as_deref().map(|p| (p, "--events")),
+        args.cycle_out.as_deref().map(|p| (p, "--cycle-out")),
+    ];
+    let outputs: Vec<(&Path, &str)> = outputs.into_iter().flatten().collect();
+    if let Some(plot) = plot {
+        plot::figure_format(plot)?;
+    }
+    for (i, (path, flag)) in outputs.iter().enumerate() {
+        check_output_dir(path)?;
+        if let Some((_, other)) = outputs[..i].iter().find(|(p, _)| p == path) {
+            return Err(Error::Malformed {
+                what: "output path",
+                path: path.to_path_buf(),
+                reason: format!("{other} and {flag} name the same file"),
+            });
+        }
+    }
+    Ok(plot)
+}
+
+/// The export choices of the flags.
+fn options(args: &WalkArgs) -> export::Options {
+    export::Options {
+        in_place: args.in_place,
+        opensim_model: match args.opensim_model.as_str() {
+            "rajagopal2015" => export::OpenSimModel::Rajagopal2015,
+            _ => export::OpenSimModel::Gait2392,
+        },
+    }
+}
+
+/// Write what the walk gathered besides the motion: report, state, events, cycle and figure.
+fn write_outputs(
+    args: &WalkArgs,
+    body: &Body,
+    stream: &mut WalkStream,
+    plot: Option<&Path>,
+) -> Result<()> {
+    if let Some(path) = &args.report {
+        let report = Report {
+            height: body.height,
+            mass: body.mass,
+            steps: std::mem::take(&mut stream.reports),
+        };
+        export::write_report_json(path, &report)?;
+    }
+    if let Some(path) = &args.state_out {
+        export::write_frames_csv(path, &stream.state_frames)?;
+    }
+    if let Some(path) = &args.events {
+        export::write_events_csv(path, &stream.events)?;
+    }
+    if let Some(path) = &args.cycle_out {
+        let curves =
+            klaw::analysis::cycle::cycle_average(&stream.clinical, &stream.right_heel_strikes, 1)?;
+        export::write_cycle_csv(path, &curves)?;
+    }
+    if let Some(plot) = plot {
+        plot::walk::walk_figure(&stream.state_frames, plot)?;
+    }
+    Ok(())
+}
+
+/// The summary on stdout: the walk, the shooting and every file written.
+fn print_summary(args: &WalkArgs, stream: &WalkStream, fps: f64, plot: Option<&Path>) {
+    let frames = (stream.duration() * fps + 1e-9).floor() as usize + 1;
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(
+        out,
+        "walked {} steps: {:.3} s simulated, {} frames at {} frames/s",
+        stream.steps,
+        stream.duration(),
+        frames,
+        fps
+    );
+    let _ = writeln!(
+        out,
+        "shooting: {} solves, {:.1} iterations per solve on average, {} at most",
+        stream.solves,
+        stream.iterations as f64 / stream.solves.max(1) as f64,
+        stream.max_iterations
+    );
+    let _ = writeln!(out, "motion: {}", args.out.display());
+    for (path, what) in [
+        (&args.state_out, "engine state"),
+        (&args.events, "events"),
+        (&args.cycle_out, "gait cycle"),
+    ] {
+        if let Some(p) = path {
+            let _ = writeln!(out, "{what}: {}", p.display());
+        }
+    }
+    if let Some(path) = &args.report {
+        let _ = writeln!(out, "report: {}", path.display());
+    }
+    if let Some(path) = plot {
+        let _ = writeln!(out, "plot: {}{}", path.display(), font_note());
+    }
+}

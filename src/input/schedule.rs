@@ -1,0 +1,383 @@
+//! Step schedules (`klaw walk --schedule`): one gait request per step, from TOML or CSV.
+use std::path::Path;
+
+use serde::Deserialize;
+
+use super::read_text;
+use crate::error::{Error, Result};
+use crate::model::attributes::Attributes;
+use crate::model::body::Body;
+use crate::plan::gait::{Gait, GaitRequest};
+
+/// The columns (CSV) and keys (TOML) a schedule row may name.
+pub const SCHEDULE_FIELDS: [&str; 3] = ["velocity", "step_length", "step_frequency"];
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TomlStep {
+    velocity: Option<f64>,
+    step_length: Option<f64>,
+    step_frequency: Option<f64>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TomlSchedule {
+    #[serde(default)]
+    step: Vec<TomlStep>,
+}
+
+/// Read a step schedule: one gait request per step, from
+/// - a TOML file (`.toml`): `[[step]]` tables with any of `velocity` (m/s), `step_length` (m),
+///   `step_frequency` (steps/min), no other keys;
+/// - a CSV file (`.csv`): a header naming any subset of those three columns, then one row per
+///   step; empty cells are absent values; lines starting with `#` are comments.
+///
+/// Values are not range-checked here: that is `GaitRequest::complete`'s job.
+pub fn read_schedule(path: &Path) -> Result<Vec<GaitRequest>> {
+    let malformed = |reason: String| Error::Malformed {
+        what: "schedule",
+        path: path.to_path_buf(),
+        reason,
+    };
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let steps = match ext.as_deref() {
+        Some("toml") => parse_schedule_toml(&read_text(path)?).map_err(malformed)?,
+        Some("csv") => parse_schedule_csv(&read_text(path)?).map_err(malformed)?,
+        _ => {
+            return Err(malformed(
+                "unrecognised file extension: a schedule is a .toml file ([[step]] tables) or \
+                 a .csv file (columns velocity, step_length, step_frequency)"
+                    .to_string(),
+            ));
+        }
+    };
+    if steps.is_empty() {
+        return Err(malformed("the schedule has no steps".to_string()));
+    }
+    Ok(steps)
+}
+
+/// The gait of each of `steps` steps from the rows of the schedule `path`: row i completed
+/// (`GaitRequest::complete`) for step i, the last row held for the steps after the schedule's
+/// end. A row that cannot be completed is `Error::Malformed`, naming the schedule and the step.
+pub fn schedule_gaits(
+    path: &Path,
+    rows: &[GaitRequest],
+    steps: usize,
+    body: &Body,
+    attrs: &Attributes,
+) -> Result<Vec<Gait>> {
+    let mut gaits = rows
+        .iter()
+        .take(steps)
+        .enumerate()
+        .map(|(i, r)| {
+            r.complete(body, attrs).map_err(|e| Error::Malformed {
+                what: "schedule",
+                path: path.to_path_buf(),
+                reason: format!("step {}: {e}", i + 1),
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    if let Some(&last) = gaits.last() {
+        gaits.resize(steps, last);
+    }
+    Ok(gaits)
+}
+
+/// Line and column (1-based) of byte `offset` in `text`.
+fn line_col(text: &str, offset: usize) -> (usize, usize) {
+    let offset = offset.min(text.len());
+    let before = text.get(..offset).unwrap_or(text);
+    let line = before.matches('\n').count() + 1;
+    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (line, col)
+}
+
+fn parse_schedule_toml(text: &str) -> std::result::Result<Vec<GaitRequest>, String> {
+    match toml::from_str::<TomlSchedule>(text) {
+        Ok(s) => Ok(s
+            .step
+            .into_iter()
+            .map(|s| GaitRequest {
+                velocity: s.velocity,
+                step_length: s.step_length,
+                step_frequency: s.step_frequency,
+            })
+            .collect()),
+        Err(e) => {
+            let message = e.message().trim_end().to_string();
+            let Some(span) = e.span() else {
+                return Err(message);
+            };
+            let (line, col) = line_col(text, span.start);
+            // the step whose table holds the error: count the `[[step]]` headers above it
+            let step = text
+                .get(..span.start)
+                .unwrap_or(text)
+                .lines()
+                .filter(|l| l.trim_start().starts_with("[[step]]"))
+                .count();
+            let within = if step > 0 {
+                format!(" (step {step})")
+            } else {
+                String::new()
+            };
+            Err(format!("line {line}, column {col}{within}: {message}"))
+        }
+    }
+}
+
+fn parse_schedule_csv(text: &str) -> std::result::Result<Vec<GaitRequest>, String> {
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(true)
+        .trim(csv::Trim::All)
+        .comment(Some(b'#'))
+        .from_reader(text.as_bytes());
+    let csv_err = |e: csv::Error| match e.kind() {
+        csv::ErrorKind::UnequalLengths {
+            pos,
+            expected_len,
+            len,
+        } => {
+            let line = pos
+                .as_ref()
+                .map_or(String::new(), |p| format!(" (line {})", p.line()));
+            format!("{len} cells where the header has {expected_len}{line}")
+        }
+        _ => e.to_string(),
+    };
+    let header = reader
+        .headers()
+        .map_err(|e| format!("header: {}", csv_err(e)))?
+        .clone();
+    let mut columns = Vec::with_capacity(header.len());
+    for (i, name) in header.iter().enumerate() {
+        let Some(field) = SCHEDULE_FIELDS.iter().position(|f| *f == name) else {
+            return Err(format!(
+                "line 1: unknown column `{name}` (column {}); the columns are {}",
+                i + 1,
+                SCHEDULE_FIELDS.join(", ")
+            ));
+        };
+        if columns.contains(&field) {
+            return Err(format!("line 1: column `{name}` appears twice"));
+        }
+        columns.push(field);
+    }
+    if columns.is_empty() {
+        return Err(format!(
+            "line 1: the header names no column; the columns are {}",
+            SCHEDULE_FIELDS.join(", ")
+        ));
+    }
+    let mut steps = Vec::new();
+    for (row, record) in reader.records().enumerate() {
+        let record = record.map_err(|e| format!("row {}: {}", row + 1, csv_err(e)))?;
+        let line = record.position().map_or(row + 2, |p| p.line() as usize);
+        let mut values = [None; 3];
+        for (cell, &field) in record.iter().zip(&columns) {
+            if cell.is_empty() {
+                continue;
+            }
+            let value = cell.parse::<f64>().map_err(|_| {
+                format!(
+                    "row {} (line {line}): {} `{cell}` is not a number",
+                    row + 1,
+                    SCHEDULE_FIELDS[field]
+                )
+            })?;
+            values[field] = Some(value);
+        }
+        steps.push(GaitRequest {
+            velocity: values[0],
+            step_length: values[1],
+            step_frequency: values[2],
+        });
+    }
+    Ok(steps)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::fs;
+    use std::path::PathBuf;
+
+    fn write_file(dir: &Path, name: &str, text: &str) -> PathBuf {
+        let p = dir.join(name);
+        fs::write(&p, text).unwrap();
+        p
+    }
+
+    fn req(v: Option<f64>, sl: Option<f64>, sf: Option<f64>) -> GaitRequest {
+        GaitRequest {
+            velocity: v,
+            step_length: sl,
+            step_frequency: sf,
+        }
+    }
+
+    #[test]
+    fn schedule_toml_round_trip() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = write_file(
+            dir.path(),
+            "s.toml",
+            "# a schedule\n\
+             [[step]]\nvelocity = 1.4\n\n\
+             [[step]]\nstep_length = 0.72\nstep_frequency = 100\n\n\
+             [[step]]\n\n\
+             [[step]]\nvelocity = 1.2\nstep_length = 0.72\nstep_frequency = 100.0\n",
+        );
+        let s = read_schedule(&p).unwrap();
+        assert_eq!(
+            s,
+            [
+                req(Some(1.4), None, None),
+                req(None, Some(0.72), Some(100.0)),
+                req(None, None, None),
+                req(Some(1.2), Some(0.72), Some(100.0)),
+            ]
+        );
+    }
+
+    #[test]
+    fn schedule_csv_round_trip() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = write_file(
+            dir.path(),
+            "s.CSV",
+            "step_frequency, velocity\n\
+             100,\n\
+             # a comment line\n\
+             , 1.4\n\
+             110 ,1.5\n",
+        );
+        let s = read_schedule(&p).unwrap();
+        assert_eq!(
+            s,
+            [
+                req(None, None, Some(100.0)),
+                req(Some(1.4), None, None),
+                req(Some(1.5), None, Some(110.0)),
+            ]
+        );
+        let p = write_file(dir.path(), "one.csv", "step_length\n0.7\n0.75\n");
+        assert_eq!(
+            read_schedule(&p).unwrap(),
+            [req(None, Some(0.7), None), req(None, Some(0.75), None)]
+        );
+    }
+
+    fn schedule_error(dir: &Path, name: &str, text: &str) -> String {
+        let p = write_file(dir, name, text);
+        let e = read_schedule(&p).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::Malformed {
+                    what: "schedule",
+                    ..
+                }
+            ),
+            "{e:?}"
+        );
+        assert_eq!(e.exit_code(), 2);
+        let msg = e.to_string();
+        assert!(msg.contains(name), "{msg}");
+        msg
+    }
+
+    #[test]
+    fn malformed_schedules_name_the_row() {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        let m = schedule_error(d, "a.csv", "velocity,step_length\n1.4,\n1.3,abc\n");
+        assert!(
+            m.contains("row 2") && m.contains("line 3") && m.contains("abc"),
+            "{m}"
+        );
+        assert!(m.contains("step_length"), "{m}");
+        let m = schedule_error(d, "b.csv", "velocity\n1.4\n1.3,0.7\n");
+        assert!(m.contains("row 2") && m.contains("line 3"), "{m}");
+        let m = schedule_error(d, "c.csv", "velocity,speed\n1.4,1\n");
+        assert!(m.contains("line 1") && m.contains("`speed`"), "{m}");
+        let m = schedule_error(d, "d.csv", "velocity,velocity\n1.4,1.4\n");
+        assert!(m.contains("twice"), "{m}");
+        let m = schedule_error(d, "e.csv", "velocity\n");
+        assert!(m.contains("no steps"), "{m}");
+        let m = schedule_error(d, "f.csv", "");
+        assert!(m.contains("line 1") || m.contains("no steps"), "{m}");
+
+        let m = schedule_error(
+            d,
+            "a.toml",
+            "[[step]]\nvelocity = 1.4\n[[step]]\nspeed = 1.2\n",
+        );
+        assert!(
+            m.contains("line 4") && m.contains("step 2") && m.contains("speed"),
+            "{m}"
+        );
+        let m = schedule_error(
+            d,
+            "b.toml",
+            "[[step]]\nvelocity = 1.4\n\n[[step]]\nvelocity = \"fast\"\n",
+        );
+        assert!(m.contains("line 5") && m.contains("step 2"), "{m}");
+        let m = schedule_error(d, "c.toml", "[[step]]\nvelocity = \n");
+        assert!(m.contains("line 2"), "{m}");
+        let m = schedule_error(d, "d.toml", "# nothing\n");
+        assert!(m.contains("no steps"), "{m}");
+        let m = schedule_error(d, "e.toml", "velocity = 1.4\n");
+        assert!(m.contains("line 1") && m.contains("velocity"), "{m}");
+        let m = schedule_error(d, "s.json", "[]");
+        assert!(m.contains(".toml") && m.contains(".csv"), "{m}");
+    }
+
+    #[test]
+    fn schedule_gaits_hold_the_last_row_and_name_a_failing_step() {
+        let body = Body::standard(1.8, 80.0).unwrap();
+        let attrs = crate::model::attributes::AttributeTable::builtin().defaults();
+        let p = Path::new("s.toml");
+        let rows = [req(Some(1.2), None, None), req(Some(1.4), None, None)];
+        let g = schedule_gaits(p, &rows, 4, &body, &attrs).unwrap();
+        assert_eq!(g.len(), 4);
+        assert_eq!(g[0].velocity, 1.2);
+        assert_eq!((g[2], g[3]), (g[1], g[1]));
+        assert_eq!(g[1].velocity, 1.4);
+        assert_eq!(schedule_gaits(p, &rows, 1, &body, &attrs).unwrap(), g[..1]);
+        let rows = [req(Some(1.4), None, None), req(Some(9.0), None, None)];
+        let e = schedule_gaits(p, &rows, 3, &body, &attrs).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::Malformed {
+                    what: "schedule",
+                    ..
+                }
+            ) && e.to_string().contains("s.toml: step 2: "),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn a_missing_schedule_is_an_io_error() {
+        let dir = tempfile::tempdir().unwrap();
+        let e = read_schedule(&dir.path().join("none.toml")).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::Io {
+                    action: "reading",
+                    ..
+                }
+            ),
+            "{e:?}"
+        );
+        assert_eq!(e.exit_code(), 2);
+    }
+}

@@ -1,0 +1,155 @@
+//! Sweep files (`klaw sweep --file`): a flat TOML table of the sweep's entries.
+use std::path::Path;
+
+use super::product::{Axis, Entry, QUANTITIES};
+use super::spec::{parse_spec, parse_styles};
+use crate::error::{Error, Result};
+use crate::model::attributes::AttributeTable;
+
+/// Read a sweep file: a flat TOML table whose keys are the quantities of `klaw sweep`
+/// (`velocity`, `step_length` or `step-length`, …, `steps`) or locomotion attribute names, and
+/// whose values are a number, a string spec (`"0.6:2.0:0.1"`, `"1.5,1.7"`) or an array of numbers.
+/// Entries come in key order (alphabetical).
+pub fn read_sweep_file(path: &Path, table: &AttributeTable) -> Result<Vec<Entry>> {
+    let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
+        action: "reading",
+        path: path.to_path_buf(),
+        source: e,
+    })?;
+    parse_sweep_toml(&text, table).map_err(|reason| Error::Malformed {
+        what: "sweep file",
+        path: path.to_path_buf(),
+        reason,
+    })
+}
+
+/// `read_sweep_file` on text; errors are the reason only.
+pub fn parse_sweep_toml(
+    text: &str,
+    table: &AttributeTable,
+) -> std::result::Result<Vec<Entry>, String> {
+    let doc: toml::Table =
+        toml::from_str(text).map_err(|e| e.to_string().trim_end().to_string())?;
+    let mut entries: Vec<Entry> = Vec::new();
+    for (key, value) in &doc {
+        let axis = Axis::from_name(key, table).ok_or_else(|| {
+            format!(
+                "unknown key `{key}`: a key is one of {} or a locomotion attribute of \
+                 models/attributes.toml",
+                QUANTITIES.join(", ")
+            )
+        })?;
+        if entries.iter().any(|(a, _)| *a == axis) {
+            return Err(format!("`{key}` is given twice (as `{}`)", axis.name()));
+        }
+        let shape = || {
+            format!(
+                "`{key}` must be a number, a string \"START:STOP:STEP\" or \"A,B,C\", or an array \
+                 of numbers"
+            )
+        };
+        let as_number = |v: &toml::Value| match v {
+            toml::Value::Integer(i) => Some(*i as f64),
+            toml::Value::Float(x) => Some(*x),
+            _ => None,
+        };
+        let values = match value {
+            toml::Value::String(spec) if axis == Axis::Style => {
+                parse_styles(spec).map_err(|e| format!("`{key}`: {e}"))?
+            }
+            toml::Value::Array(items) if axis == Axis::Style => {
+                let names: Option<Vec<&str>> = items.iter().map(|v| v.as_str()).collect();
+                let names = names.ok_or_else(|| format!("`{key}` must be style names"))?;
+                parse_styles(&names.join(",")).map_err(|e| format!("`{key}`: {e}"))?
+            }
+            toml::Value::String(spec) => {
+                parse_spec(axis.name(), spec).map_err(|e| format!("`{key}`: {e}"))?
+            }
+            toml::Value::Array(items) => {
+                if items.is_empty() {
+                    return Err(format!("`{key}` is an empty array"));
+                }
+                items
+                    .iter()
+                    .map(|v| as_number(v).ok_or_else(shape))
+                    .collect::<std::result::Result<Vec<_>, _>>()?
+            }
+            v => vec![as_number(v).ok_or_else(shape)?],
+        };
+        if let Some(x) = values.iter().find(|x| !x.is_finite()) {
+            return Err(format!("`{key}`: {x} is not a finite number"));
+        }
+        entries.push((axis, values));
+    }
+    Ok(entries)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn table() -> AttributeTable {
+        AttributeTable::builtin()
+    }
+
+    #[test]
+    fn sweep_file_values_and_keys() {
+        let entries = parse_sweep_toml(
+            "velocity = \"0.6:1.0:0.2\"\nstep-length = 0.7\nheight = [1.5, 1.7]\nsteps = 2\nbounciness = [0.2, 0.5]\n",
+            &table(),
+        )
+        .unwrap();
+        let get = |a: Axis| {
+            entries
+                .iter()
+                .find(|(x, _)| *x == a)
+                .map(|(_, v)| v.clone())
+        };
+        assert_eq!(get(Axis::Velocity), Some(vec![0.6, 0.8, 1.0]));
+        assert_eq!(get(Axis::StepLength), Some(vec![0.7]));
+        assert_eq!(get(Axis::Height), Some(vec![1.5, 1.7]));
+        assert_eq!(get(Axis::Steps), Some(vec![2.0]));
+        assert_eq!(
+            get(Axis::Attribute("bounciness".into())),
+            Some(vec![0.2, 0.5])
+        );
+    }
+
+    #[test]
+    fn malformed_sweep_files_say_what_is_wrong() {
+        for (text, expect) in [
+            ("velocity = ", "velocity"),
+            ("speed = 1.2", "unknown key `speed`"),
+            ("velocity = true", "`velocity` must be a number"),
+            ("velocity = []", "empty array"),
+            ("velocity = [1.0, \"x\"]", "`velocity` must be a number"),
+            ("velocity = \"1:2\"", "START:STOP:STEP"),
+            (
+                "velocity = 1.0\nstep_length = 0.7\nstep-length = 0.8",
+                "given twice",
+            ),
+            ("[velocity]\nx = 1", "`velocity` must be a number"),
+            ("velocity = nan", "not a finite number"),
+        ] {
+            let e = parse_sweep_toml(text, &table()).unwrap_err();
+            assert!(e.contains(expect), "{text:?}: {e}");
+        }
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("bad.toml");
+        std::fs::write(&path, "speed = 1").unwrap();
+        let e = read_sweep_file(&path, &table()).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::Malformed {
+                    what: "sweep file",
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        assert_eq!(e.exit_code(), 2);
+        let e = read_sweep_file(&dir.path().join("none.toml"), &table()).unwrap_err();
+        assert!(matches!(e, Error::Io { .. }), "{e}");
+    }
+}
