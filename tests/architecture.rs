@@ -51,29 +51,52 @@ fn module_of(src: &Path, file: &Path) -> Vec<String> {
     parts
 }
 
-/// Every `crate::a::b…` path in the text outside comments, as its segments.
-fn crate_paths(text: &str) -> Vec<Vec<String>> {
+/// Every `crate::a::b…` path in the text outside comments, as its segments; `super::` paths
+/// are resolved against `module`, the file's own module path (so `super::sibling::x` in
+/// `a::b::c` is `a::b::sibling::x`).
+fn crate_paths(text: &str, module: &[String]) -> Vec<Vec<String>> {
     let mut found = Vec::new();
     for line in text.lines() {
         let code = line.split("//").next().unwrap_or("");
         let mut rest = code;
-        while let Some(i) = rest.find("crate::") {
-            let after = &rest[i + "crate::".len()..];
-            if i > 0 && rest[..i].ends_with(|c: char| c.is_alphanumeric() || c == '_' || c == '$') {
+        while let Some(i) = [rest.find("crate::"), rest.find("super::")]
+            .into_iter()
+            .flatten()
+            .min()
+        {
+            let preceded = rest[..i]
+                .ends_with(|c: char| c.is_alphanumeric() || c == '_' || c == '$' || c == ':');
+            let (mut base, mut after): (Vec<String>, &str) = if rest[i..].starts_with("crate::") {
+                (Vec::new(), &rest[i + "crate::".len()..])
+            } else {
+                let up = module.len().saturating_sub(1);
+                (module[..up].to_vec(), &rest[i + "super::".len()..])
+            };
+            while let Some(more) = after.strip_prefix("super::") {
+                base.pop();
+                after = more;
+            }
+            if preceded {
                 rest = after;
                 continue;
             }
-            let path: Vec<String> = after
-                .split("::")
-                .map(|s| {
-                    s.chars()
-                        .take_while(|c| c.is_alphanumeric() || *c == '_')
-                        .collect::<String>()
-                })
-                .take_while(|s| !s.is_empty() && s.starts_with(|c: char| c.is_lowercase()))
-                .collect();
-            if !path.is_empty() {
-                found.push(path);
+            // segments up to the first that ends the path (`x;`, `x(`, `{a, b}`) or names a type
+            for segment in after.split("::") {
+                let ident: String = segment
+                    .chars()
+                    .take_while(|c| c.is_alphanumeric() || *c == '_')
+                    .collect();
+                if ident.is_empty() || !ident.starts_with(|c: char| c.is_lowercase()) {
+                    break;
+                }
+                let whole = ident.len() == segment.len();
+                base.push(ident);
+                if !whole {
+                    break;
+                }
+            }
+            if !base.is_empty() {
+                found.push(base);
             }
             rest = after;
         }
@@ -95,7 +118,7 @@ fn references() -> Vec<(Vec<String>, Vec<String>)> {
         let text = fs::read_to_string(&file).unwrap();
         // unit tests may build on higher levels (a walk to test a stance formula)
         let code = text.split("#[cfg(test)]").next().unwrap_or("");
-        for path in crate_paths(code) {
+        for path in crate_paths(code, &module) {
             refs.push((module.clone(), path));
         }
     }
@@ -192,15 +215,20 @@ fn modules_of_a_folder_form_no_cycle() {
 
 #[test]
 fn the_reader_finds_paths_in_code_and_not_in_comments() {
-    let text = "use crate::engine::walker::Step; // crate::plot\nlet x = crate::numerics::trig::sin_cos(1.0);";
     let strings = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+    let here = strings(&["engine", "walker", "stance"]);
+    let text = "use crate::engine::walker::Step; // crate::plot\n\
+                let x = crate::numerics::trig::sin_cos(1.0);\n\
+                use super::swing::hip_path; use super::super::step::Step;";
     assert_eq!(
-        crate_paths(text),
+        crate_paths(text, &here),
         vec![
             strings(&["engine", "walker"]),
-            strings(&["numerics", "trig", "sin_cos"])
+            strings(&["numerics", "trig", "sin_cos"]),
+            strings(&["engine", "walker", "swing", "hip_path"]),
+            strings(&["engine", "step"]),
         ]
     );
-    assert!(crate_paths("klaw_crate::x; $crate::y").is_empty());
+    assert!(crate_paths("klaw_crate::x; $crate::y", &here).is_empty());
     assert!(level("dynamics") < level("plan") && level("kinematics") < level("control"));
 }

@@ -4,6 +4,7 @@
 //! D0 + D1 s).
 use nalgebra::Vector2;
 
+use super::{StepPlan, Walker};
 use crate::control::shooting::{self, Memory1, Memory2, SolveReport, Start1, Start2};
 use crate::control::stance::{HipPath, StanceRun, StanceSetup};
 use crate::control::swing::{Subphase, SwingSetup, SwingState, SwingTrial};
@@ -12,7 +13,6 @@ use crate::engine::pose::swing_hip_offset;
 use crate::engine::report::SolveRecord;
 use crate::engine::startup::{tables, with_fallback};
 use crate::engine::trials::Trials;
-use crate::engine::walker::{StepPlan, Walker};
 use crate::error::Result;
 use crate::numerics::ode::Segment;
 

@@ -4,6 +4,7 @@
 use nalgebra::{Vector2, Vector3};
 use std::f64::consts::PI;
 
+use super::{StepPlan, Walker};
 use crate::control::shooting::{self, Memory2, Start2};
 use crate::control::stance::{StanceRun, StanceSetup, StanceState, TerminalStance};
 use crate::control::swing::SwingState;
@@ -11,7 +12,6 @@ use crate::dynamics::impact::{self, ImpactReport};
 use crate::engine::report::SolveRecord;
 use crate::engine::startup::{tables, with_fallback};
 use crate::engine::trials::Trials;
-use crate::engine::walker::{StepPlan, Walker};
 use crate::error::Result;
 use crate::kinematics::pelvis::Side;
 use crate::kinematics::stance_leg::{KneeCurve, StanceLeg};

@@ -2,6 +2,9 @@
 //! shoot the stance, complete the hind leg through double support, find the stance leg's
 //! heel-off, shoot the swing subphases, integrate the work, measure the step, and carry the
 //! state and the warm starts to the next step.
+mod stance;
+mod swing;
+
 use crate::control::shooting::{Memory1, Memory2, Options, SolveReport};
 use crate::control::stance::{StanceRun, StanceState};
 use crate::control::swing::{Subphase, SwingSetup, SwingTrial};
@@ -23,7 +26,7 @@ use crate::plan::gait::Gait;
 // the step records, the walk and the swing hip's velocity at the walker's paths, where the
 // rest of the crate reads them
 pub use crate::engine::step::{Step, Walk};
-pub use crate::engine::swing::swing_hip_vy_end;
+pub use swing::swing_hip_vy_end;
 
 /// Walks step after step, carrying the state and the warm starts.
 pub struct Walker {
@@ -212,14 +215,14 @@ impl Walker {
         let (prev_c, y0, impact) = self.heel_strike(&plan);
         let setup = self.stance_setup(&prev_c, &plan);
         let (stance, stance_solve) = self.solve_stance(&plan, &setup, y0)?;
-        let hips = crate::engine::stance::HipJoints {
+        let hips = stance::HipJoints {
             plan: &plan,
             stance: &stance,
             setup: &setup,
         };
         let toe_off = self.double_support(&plan, &hips)?;
         let stance_leg = self.heel_off(&plan, &hips, prev_c.sole_angle)?;
-        let (hip_path, hip_vy_end) = crate::engine::swing::hip_path(&plan, &stance, &setup);
+        let (hip_path, hip_vy_end) = swing::hip_path(&plan, &stance, &setup);
         let sw = SwingSetup::new(
             self.swing_model,
             &hip_path,
