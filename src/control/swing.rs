@@ -34,15 +34,15 @@ use crate::plan::StepConstraints;
 pub type SwingState = SVector<f64, 4>;
 
 /// Ends of swing1 and swing2 as fractions of the swing (paper).
-pub const SWING1_END: f64 = 0.5;
-pub const SWING2_END: f64 = 0.85;
+pub(crate) const SWING1_END: f64 = 0.5;
+pub(crate) const SWING2_END: f64 = 0.85;
 /// A trial stops when the thigh swings beyond ±100° (a wild guess).
-pub const THETA3_ABORT: f64 = 1.75;
+pub(crate) const THETA3_ABORT: f64 = 1.75;
 
 /// The swing1 knee damper d₁ = 2ζ √(a22 m4 g r4) (N m s/rad) [ours]: the shank swinging about
 /// the knee is a pendulum of inertia a22 = I4 + m4 r4² and stiffness m4 g r4 (small angles), and
 /// d₁ damps it at the ratio ζ.
-pub fn knee_damper(model: &SwingModel, zeta: f64) -> f64 {
+pub(crate) fn knee_damper(model: &SwingModel, zeta: f64) -> f64 {
     let a22 = model.mass_matrix(&Vector2::zeros())[(1, 1)];
     2.0 * zeta * (a22 * model.m4 * model.g * model.r4).sqrt()
 }
@@ -139,12 +139,12 @@ pub enum Subphase {
 /// DOP853's step size there is held at h|λ| ≈ 0.8 by accuracy, while the same stiff mode damps
 /// the local errors away: at 100 times the tolerance swing2's end condition, re-integrated at
 /// 1e-12, is met about as well as at the common tolerance (`examples/evals.rs`).
-pub const SWING2_TOLERANCE_SCALE: f64 = 100.0;
+pub(crate) const SWING2_TOLERANCE_SCALE: f64 = 100.0;
 
 impl Subphase {
     /// The integrator tolerance of this subphase for the walk's tolerance `tol`
     /// ([`SWING2_TOLERANCE_SCALE`]).
-    pub fn tolerance(&self, tol: f64) -> f64 {
+    pub(crate) fn tolerance(&self, tol: f64) -> f64 {
         match self {
             Subphase::Swing2 { .. } => tol * SWING2_TOLERANCE_SCALE,
             _ => tol,
@@ -173,7 +173,7 @@ pub struct SwingForces<'a> {
 
 impl SwingForces<'_> {
     /// Generalized forces (F_θ3, F_θ4).
-    pub fn torques(&self, t: f64, y: &SwingState) -> Vector2<f64> {
+    pub(crate) fn torques(&self, t: f64, y: &SwingState) -> Vector2<f64> {
         match self.sub {
             Subphase::Swing1 { hip, knee } => {
                 // hip: a push that turns into a brake, A (1 − 1.5 s); knee: B s², an extension
@@ -239,7 +239,7 @@ pub struct SwingTrial {
     pub residual: Vector2<f64>,
     pub evaluations: u32,
     /// The integration chose (some of) its own steps rather than following a given mesh.
-    pub adapted: bool,
+    pub(crate) adapted: bool,
 }
 
 impl SwingTrial {
@@ -270,7 +270,7 @@ impl SwingTrial {
 
     /// Complete the dense output of a [`Self::simulate_on`] trial ([`ode::Segment::densify`]);
     /// returns the right-hand-side evaluations.
-    pub fn densify(&mut self, setup: &SwingSetup) -> u32 {
+    pub(crate) fn densify(&mut self, setup: &SwingSetup) -> u32 {
         let sub = self.sub;
         self.segment.densify(|t| SwingForces {
             setup,
@@ -283,7 +283,7 @@ impl SwingTrial {
     /// subphase ([`ode::integrate_on`]): the shooting's residual stays smooth in the unknowns.
     /// The dense output is left out ([`ode::integrate_trial`]): [`Self::densify`] the trial
     /// that is kept.
-    pub fn simulate_on(
+    pub(crate) fn simulate_on(
         setup: &SwingSetup,
         sub: Subphase,
         t0: f64,

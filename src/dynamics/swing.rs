@@ -25,13 +25,17 @@ pub struct SwingModel {
     pub m3: f64,
     pub m4: f64,
     pub l3: f64,
-    pub l4: f64,
+    /// Shank length l4 (m).
+    pub(crate) l4: f64,
     /// Hip to thigh centre of mass (m).
     pub r3: f64,
     /// Knee to shank centre of mass (m).
     pub r4: f64,
-    pub i3: f64,
-    pub i4: f64,
+    /// Thigh moment of inertia about its centre of mass, I3 (kg m²).
+    pub(crate) i3: f64,
+    /// Shank moment of inertia about its centre of mass, I4 (kg m²).
+    pub(crate) i4: f64,
+    /// Gravity (m/s²).
     pub g: f64,
 }
 

@@ -17,8 +17,8 @@
 use std::f64::consts::{FRAC_PI_3, TAU};
 
 use crate::kinematics::foot::{Foot, FootPoints, GUESS_SLACK};
-pub use crate::kinematics::knee_curve::KneeCurve;
-pub use crate::kinematics::leg::{LegPose, leg_points, leg_points_sc};
+pub(crate) use crate::kinematics::knee_curve::KneeCurve;
+pub(crate) use crate::kinematics::leg::{LegPose, leg_points, leg_points_sc};
 use crate::kinematics::leg::{chain, reach};
 use crate::model::body::Body;
 use crate::numerics::roots;
@@ -47,13 +47,15 @@ pub struct StanceLeg {
     pub sole_hs: f64,
     /// Heel strike to foot flat (s).
     pub t_fgm: f64,
-    /// θ5_max (heel-off trigger) and θ6_max (meta-off), rad.
-    pub theta5_max: f64,
+    /// θ5_max, the ankle dorsiflexion that triggers heel-off (rad).
+    pub(crate) theta5_max: f64,
+    /// θ6_max, the metatarsal dorsiflexion at which the foot rolls on about the toe tip
+    /// (meta-off, rad).
     pub theta6_max: f64,
     /// The knee after heel-off: from heel-off to the next heel strike, then (re-anchored there)
     /// to toe-off. `None` until found.
     pub heel_off: Option<KneeCurve>,
-    pub to_toe_off: Option<KneeCurve>,
+    pub(crate) to_toe_off: Option<KneeCurve>,
 }
 
 /// The largest pitch (rad) the rolling foot may take to reach the hip.
@@ -335,7 +337,7 @@ impl StanceLeg {
     }
 
     /// Ankle dorsiflexion of a pose (rad): the shank's in-plane lean relative to the foot.
-    pub fn dorsiflexion(pose: &LegPose) -> f64 {
+    pub(crate) fn dorsiflexion(pose: &LegPose) -> f64 {
         pose.theta3 + pose.theta4 - pose.pitch
     }
 
@@ -412,7 +414,7 @@ impl StanceLeg {
     /// value and rate there, or the flat foot's when the heel is still down, the rate then from
     /// the right) and reaches κ_TO at the actual toe-off `t_toe_off`; `hip(t)` gives the hip
     /// joint and its lateral offset for t ≥ `t_hs_next`.
-    pub fn continue_to_toe_off(
+    pub(crate) fn continue_to_toe_off(
         &mut self,
         hip: impl Fn(f64) -> ([f64; 2], f64),
         t_hs_next: f64,

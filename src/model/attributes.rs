@@ -8,7 +8,7 @@ use std::path::Path;
 use crate::error::{Error, Result};
 
 /// The bundled attribute table.
-pub const BUILTIN_TABLE: &str = include_str!("../../models/attributes.toml");
+pub(crate) const BUILTIN_TABLE: &str = include_str!("../../models/attributes.toml");
 
 /// The bundled style presets (`--style NAME`): attribute files in `models/styles/`.
 pub const STYLES: &[(&str, &str)] = &[
@@ -67,7 +67,7 @@ impl AttributeTable {
 
     /// Parse a table; every attribute the engine reads must be present, with
     /// min ≤ default ≤ max.
-    pub fn parse(text: &str, path: &Path) -> Result<Self> {
+    pub(crate) fn parse(text: &str, path: &Path) -> Result<Self> {
         let malformed = |reason: String| Error::Malformed {
             what: "attribute table",
             path: path.to_path_buf(),
@@ -141,7 +141,7 @@ impl AttributeTable {
 
 /// Read an attribute file: a flat TOML table `name = number` (user units; an optional
 /// `description = "…"` is ignored). Later files override earlier ones.
-pub fn parse_overrides(text: &str, path: &Path) -> Result<BTreeMap<String, f64>> {
+pub(crate) fn parse_overrides(text: &str, path: &Path) -> Result<BTreeMap<String, f64>> {
     let malformed = |reason: String| Error::Malformed {
         what: "attribute file",
         path: path.to_path_buf(),

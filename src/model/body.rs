@@ -6,37 +6,46 @@ use std::path::Path;
 use crate::error::{Error, Result};
 
 /// The table bundled with klaw: Winter's (Dempster's) data as printed in Table B-1.
-pub const BUILTIN_TABLE: &str = include_str!("../../models/body-winter.toml");
+pub(crate) const BUILTIN_TABLE: &str = include_str!("../../models/body-winter.toml");
 
 /// A segment row of the body table (fractions of H and M).
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct SegmentRow {
+pub(crate) struct SegmentRow {
     /// Length as a fraction of body height.
     #[serde(default)]
-    pub length: f64,
+    pub(crate) length: f64,
     /// Mass as a fraction of body mass.
     #[serde(default)]
-    pub mass: f64,
+    pub(crate) mass: f64,
     /// Centre of mass from the proximal end (whole leg: distal end), fraction of the length.
     #[serde(default)]
-    pub r: f64,
+    pub(crate) r: f64,
     /// Radius of gyration about the centre of mass, fraction of the length.
     #[serde(default)]
-    pub gamma: f64,
+    pub(crate) gamma: f64,
 }
 
 /// Foot distances of Table B-1 (fractions of H).
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct FootRow {
-    pub mid_foot: f64,
-    pub toe: f64,
-    pub hind_foot: f64,
-    pub ankle_height: f64,
-    pub heel_to_ankle: f64,
-    pub ankle_to_metatarsal: f64,
-    pub metatarsal_to_toe: f64,
+pub(crate) struct FootRow {
+    /// l5, mid foot: in the table for completeness, the model's foot does not use it.
+    #[expect(dead_code, reason = "a row of Table B-1 the model does not read")]
+    pub(crate) mid_foot: f64,
+    /// l6, toe: in the table for completeness, the model's foot does not use it.
+    #[expect(dead_code, reason = "a row of Table B-1 the model does not read")]
+    pub(crate) toe: f64,
+    /// l8, hind foot: heel to ankle, horizontal.
+    pub(crate) hind_foot: f64,
+    /// l9, ankle to the foot's base with the foot flat.
+    pub(crate) ankle_height: f64,
+    /// l11, heel to ankle.
+    pub(crate) heel_to_ankle: f64,
+    /// l12, ankle to the 1st metatarsal joint.
+    pub(crate) ankle_to_metatarsal: f64,
+    /// l13, 1st metatarsal joint to toe tip.
+    pub(crate) metatarsal_to_toe: f64,
 }
 
 /// Dimensions of the kinematic figure (fractions of H): the upper body and arms that dress the
@@ -60,35 +69,37 @@ pub struct FigureRow {
 /// Bodies a table is valid for.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct Limits {
-    pub height: [f64; 2],
-    pub mass: [f64; 2],
+pub(crate) struct Limits {
+    pub(crate) height: [f64; 2],
+    pub(crate) mass: [f64; 2],
 }
 
 /// A body table as stored in `models/*.toml`.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct BodyTable {
-    pub name: String,
-    pub pelvis: SegmentRow,
-    pub leg: SegmentRow,
-    pub upper_body: SegmentRow,
-    pub thigh: SegmentRow,
-    pub shank: SegmentRow,
-    pub foot: FootRow,
-    pub figure: FigureRow,
-    pub limits: Limits,
+pub(crate) struct BodyTable {
+    /// What the table is and where it comes from.
+    #[expect(dead_code, reason = "the table file's title, for its readers")]
+    pub(crate) name: String,
+    pub(crate) pelvis: SegmentRow,
+    pub(crate) leg: SegmentRow,
+    pub(crate) upper_body: SegmentRow,
+    pub(crate) thigh: SegmentRow,
+    pub(crate) shank: SegmentRow,
+    pub(crate) foot: FootRow,
+    pub(crate) figure: FigureRow,
+    pub(crate) limits: Limits,
 }
 
 impl BodyTable {
     /// The bundled table.
-    pub fn builtin() -> Self {
+    pub(crate) fn builtin() -> Self {
         Self::parse(BUILTIN_TABLE, Path::new("models/body-winter.toml"))
             .expect("the bundled body table parses (tested)")
     }
 
     /// Parse a table from TOML text; `path` only names the source in errors.
-    pub fn parse(text: &str, path: &Path) -> Result<Self> {
+    pub(crate) fn parse(text: &str, path: &Path) -> Result<Self> {
         let table: BodyTable = toml::from_str(text).map_err(|e| Error::Malformed {
             what: "body table",
             path: path.to_path_buf(),
@@ -184,7 +195,7 @@ pub struct Body {
 impl Body {
     /// Scale `table` to height `height` (m) and mass `mass` (kg), checking both against the
     /// table's limits.
-    pub fn new(table: &BodyTable, height: f64, mass: f64) -> Result<Self> {
+    pub(crate) fn new(table: &BodyTable, height: f64, mass: f64) -> Result<Self> {
         let [hmin, hmax] = table.limits.height;
         let [mmin, mmax] = table.limits.mass;
         Error::check_range("height", height, hmin, hmax, "m")?;

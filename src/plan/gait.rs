@@ -8,10 +8,10 @@ use crate::model::attributes::Attributes;
 use crate::model::body::Body;
 
 /// Normalizing constant of eq. 1: metres of step per (step/min · m of body height).
-pub const NORMALIZING_CONSTANT: f64 = 0.004;
+pub(crate) const NORMALIZING_CONSTANT: f64 = 0.004;
 /// Relative tolerance of v = sl · sf / 60 when all three are given: the rounding of user input
 /// (1.4 m/s, 0.78 m, 108 steps/min agree to 0.3 %).
-pub const CONSISTENCY_TOLERANCE: f64 = 0.01;
+pub(crate) const CONSISTENCY_TOLERANCE: f64 = 0.01;
 
 /// What the user asked for: any of v (m/s), sl (m), sf (steps/min).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]

@@ -17,7 +17,7 @@ pub struct Timing {
 impl Timing {
     /// Eq. 2 for a step frequency in steps/min. Fails when double support vanishes
     /// (sf ≥ 181.75: running).
-    pub fn new(step_frequency: f64) -> Result<Self> {
+    pub(crate) fn new(step_frequency: f64) -> Result<Self> {
         let t_step = 60.0 / step_frequency;
         let t_cycle = 2.0 * t_step;
         let t_ds = (-0.16 * step_frequency + 29.08) * t_cycle / 100.0;

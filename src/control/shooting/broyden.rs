@@ -36,7 +36,7 @@ enum Phase {
 /// any trial; that point is returned. Each iteration evaluates the residual exactly once; `init`
 /// once.
 #[derive(Clone, Debug)]
-pub struct Broyden2 {
+pub(crate) struct Broyden2 {
     /// Absolute tolerance on `max |r_i|`.
     tol: f64,
     /// Hard cap on residual evaluations, the one in `init` included.
@@ -100,13 +100,18 @@ impl Broyden2 {
     }
 
     /// Cold start from `x0` with a forward-difference Jacobian (steps `h`, non-zero).
-    pub fn cold(x0: Vector2<f64>, h: Vector2<f64>, tol: f64, max_evaluations: usize) -> Self {
+    pub(crate) fn cold(
+        x0: Vector2<f64>,
+        h: Vector2<f64>,
+        tol: f64,
+        max_evaluations: usize,
+    ) -> Self {
         Self::new(x0, h, None, tol, max_evaluations)
     }
 
     /// Warm start from `x0` with the previous solve's Jacobian. A singular or non-finite
     /// Jacobian is replaced by differences with steps `1e-4 max(1, |x0_i|)`.
-    pub fn warm(
+    pub(crate) fn warm(
         x0: Vector2<f64>,
         jacobian: Matrix2<f64>,
         tol: f64,
@@ -118,22 +123,22 @@ impl Broyden2 {
     }
 
     /// Residual evaluations so far.
-    pub fn evaluations(&self) -> usize {
+    pub(crate) fn evaluations(&self) -> usize {
         self.evaluations
     }
 
     /// The best trial `(x, r)` so far (smallest max-norm).
-    pub fn best(&self) -> Option<(Vector2<f64>, Vector2<f64>)> {
+    pub(crate) fn best(&self) -> Option<(Vector2<f64>, Vector2<f64>)> {
         self.best
     }
 
     /// The current Jacobian estimate.
-    pub fn jacobian(&self) -> Option<Matrix2<f64>> {
+    pub(crate) fn jacobian(&self) -> Option<Matrix2<f64>> {
         self.jacobian
     }
 
     /// The message of the last `Err` returned by the residual, if any.
-    pub fn last_error(&self) -> Option<&str> {
+    pub(crate) fn last_error(&self) -> Option<&str> {
         self.last_error.as_deref()
     }
 

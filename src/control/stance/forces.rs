@@ -21,15 +21,15 @@ pub const THETA1_ABORT: f64 = PI / 3.0;
 /// the subphase.
 #[derive(Clone, Copy, Debug)]
 pub struct StanceForces<'a> {
-    pub setup: &'a StanceSetup,
+    pub(crate) setup: &'a StanceSetup,
     /// Leg torque magnitude τ1 (N m), on for t < 0.4 t_step.
-    pub tau1: f64,
+    pub(crate) tau1: f64,
     /// Leg extension p (m) of the position actuator, blended in over the second half-step.
-    pub p: f64,
-    pub locked: bool,
+    pub(crate) p: f64,
+    pub(crate) locked: bool,
     /// In an integration segment: whether it runs after mid-stance (event 4 has fired), which
     /// picks the hip reference's side; `None`: by the sign of θ1, and no mid-stance event.
-    pub past_mid: Option<bool>,
+    pub(crate) past_mid: Option<bool>,
     /// The leg torque on or off whatever t ([`Self::with_torque`]); `None`: on for
     /// t < 0.4 t_step.
     torque: Option<bool>,
@@ -58,7 +58,7 @@ impl<'a> StanceForces<'a> {
     /// on one side of the switch at 0.4 t_step, and the stages at its end, t = 0.4 t_step, must
     /// see the segment's torque (its limit from inside), not the value past the switch (with
     /// which the step fails its error test, shrinks and keeps an error).
-    pub fn with_torque(mut self, on: bool) -> Self {
+    pub(crate) fn with_torque(mut self, on: bool) -> Self {
         self.torque = Some(on);
         self
     }
@@ -69,7 +69,7 @@ impl<'a> StanceForces<'a> {
     /// integrator step straddles the clamp's kink (after the heel strike the unloaded leg's
     /// servo pulls, and F_w is 0 for the first ≈ 60 ms). The step in which the event fires
     /// continues that side's force smoothly past the crossing, where the event is located.
-    pub fn with_loaded(mut self, loaded: bool) -> Self {
+    pub(crate) fn with_loaded(mut self, loaded: bool) -> Self {
         self.loaded = Some(loaded);
         self
     }
@@ -98,7 +98,7 @@ impl<'a> StanceForces<'a> {
     }
 
     /// Generalized forces Q = (F_w, F_θ1 − F_θ2, F_θ2) at (t, y).
-    pub fn generalized(&self, t: f64, y: &StanceState) -> Vector3<f64> {
+    pub(crate) fn generalized(&self, t: f64, y: &StanceState) -> Vector3<f64> {
         let (s1, c1) = sin_cos(y[1]);
         self.generalized_sc(t, y, s1, c1)
     }
@@ -125,7 +125,7 @@ impl<'a> StanceForces<'a> {
     }
 
     /// q̈ at (t, y).
-    pub fn accelerations(&self, t: f64, y: &StanceState) -> Vector3<f64> {
+    pub(crate) fn accelerations(&self, t: f64, y: &StanceState) -> Vector3<f64> {
         let q = Vector3::new(y[0], y[1], y[2]);
         let qd = Vector3::new(y[3], y[4], y[5]);
         let (s1, c1) = sin_cos(y[1]);

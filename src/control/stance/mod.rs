@@ -19,7 +19,7 @@ mod setup;
 
 pub use forces::{StanceForces, THETA1_ABORT, TORQUE_OFF};
 pub use hip_path::{HIP_PATH_STEP, HipPath, OFFSET_DIFFERENCE_STEP};
-pub use reference::{END_MARGIN, TerminalStance, hip_reference};
+pub(crate) use reference::TerminalStance;
 pub use run::StanceRun;
 pub use setup::StanceSetup;
 
