@@ -41,6 +41,7 @@ pub struct StanceModel {
 }
 
 impl StanceModel {
+    /// The stance model of `body` (Table B-1 values; spec §4).
     pub fn new(body: &Body) -> Self {
         StanceModel {
             m1: body.m1,
@@ -96,7 +97,7 @@ impl StanceModel {
     }
 
     /// Accelerations q̈ = M⁻¹ (Q − b). With `locked` the leg length is held (ẇ = ẅ = 0; the
-    /// paper's locked-leg edit: the w row and column drop out) and q̈[0] = 0.
+    /// paper's locked-leg edit: the w row and column drop out) and q̈\[0\] = 0.
     pub fn accelerations(
         &self,
         q: &Vector3<f64>,

@@ -22,8 +22,11 @@ use crate::numerics::trig::sin_cos;
 /// Inertial parameters of the swing leg.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SwingModel {
+    /// Thigh mass m3 (kg).
     pub m3: f64,
+    /// Shank and foot mass m4 (kg).
     pub m4: f64,
+    /// Thigh length l3 (m).
     pub l3: f64,
     /// Shank length l4 (m).
     pub(crate) l4: f64,
@@ -40,6 +43,7 @@ pub struct SwingModel {
 }
 
 impl SwingModel {
+    /// The swing leg of `body` (Table B-1 values; spec §5).
     pub fn new(body: &Body) -> Self {
         SwingModel {
             m3: body.m3,

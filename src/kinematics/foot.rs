@@ -72,6 +72,7 @@ fn asin(x: f64) -> f64 {
 }
 
 impl Foot {
+    /// The foot of `body` (Table B-1: l8, l9, l12, l13).
     pub fn new(body: &Body) -> Self {
         let (l8, l9, h12) = (body.l8, body.l9, body.ankle_to_metatarsal_horizontal());
         Foot {

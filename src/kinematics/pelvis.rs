@@ -5,7 +5,7 @@
 //! Boundary values are the spec's: rotation +A at right heel strike, 0 at mid-step, −A at left
 //! heel strike; list 0 at heel strike and ±L at mid-step with the stance side up; lateral
 //! displacement 0 at heel strike and ±D at mid-step towards the stance leg. Between them the
-//! spec's half-cosine blends [ours] replace the paper's linear interpolation: rotation
+//! spec's half-cosine blends \[ours\] replace the paper's linear interpolation: rotation
 //! A·cos(π s) has zero rate at both heel strikes, list L·sin(π s) and lateral D·sin(π s) are
 //! C¹ across a heel strike where the stance side changes (s = τ / t_step).
 use std::f64::consts::PI;
@@ -15,7 +15,9 @@ use crate::model::attributes::Attributes;
 /// A side of the body: +1 right, −1 left (the sign of its world z).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 pub enum Side {
+    /// The right side (world z > 0).
     Right,
+    /// The left side (world z < 0).
     Left,
 }
 
@@ -28,6 +30,7 @@ impl Side {
         }
     }
 
+    /// The opposite side.
     pub fn other(self) -> Side {
         match self {
             Side::Right => Side::Left,

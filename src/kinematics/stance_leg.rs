@@ -28,8 +28,12 @@ use crate::numerics::trig::{atan2, sin_cos};
 /// Which foot rule holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FootPhase {
+    /// Heel strike to foot flat (FGM): the foot turns about its heel.
     HeelRocker,
+    /// Foot flat to heel-off: the ankle is fixed on the ground.
     FootFlat,
+    /// Heel-off to toe-off: the knee follows its prescribed curve and the foot rolls about the
+    /// metatarsal joint, then the toe tip.
     Rolling,
 }
 
@@ -37,13 +41,17 @@ pub enum FootPhase {
 /// x positions world x (m).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StanceLeg {
+    /// The foot's dimensions.
     pub foot: Foot,
+    /// Thigh length l3 (m).
     pub l3: f64,
+    /// Shank length l4 (m).
     pub l4: f64,
     /// Flat-foot ankle x.
     pub ankle_x: f64,
-    /// Heel strike time and the sole angle then (toe up +).
+    /// Heel strike time.
     pub t_hs: f64,
+    /// The sole angle φ_hs at heel strike (rad, toe up +).
     pub sole_hs: f64,
     /// Heel strike to foot flat (s).
     pub t_fgm: f64,
@@ -116,6 +124,9 @@ fn first_in(roots: [f64; 2], lo: f64, hi: f64) -> Option<f64> {
 }
 
 impl StanceLeg {
+    /// The stance leg of `body` whose flat foot's ankle is at `ankle_x`, striking at `t_hs` with
+    /// sole angle `sole_hs`, flat at `t_hs + t_fgm`, with the foot rules' limits θ5_max and
+    /// θ6_max (rad); its knee curves are found later ([`Self::find_heel_off`]).
     pub fn new(
         body: &Body,
         ankle_x: f64,
@@ -221,7 +232,7 @@ impl StanceLeg {
 
     /// The heel rocker's sole angle when the straight leg cannot reach the hip with the rule's
     /// (the caller tests that, the hip being behind the ankle): the smallest angle at which it
-    /// can [ours]: the telescopic leg is longer than the anatomical one just after heel strike
+    /// can \[ours\]: the telescopic leg is longer than the anatomical one just after heel strike
     /// (w* > l1 at most speeds, spec §7 "known geometric tension"), so the foot comes down as
     /// the hip passes over it. Bisection to 1e-12 rad (the knee is acos of the leg's extension
     /// there, so the bisection's last bits set it), steered by the closed form

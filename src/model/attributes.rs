@@ -45,12 +45,20 @@ pub fn style(name: &str) -> Result<BTreeMap<String, f64>> {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct AttributeSpec {
+    /// The attribute's symbol in the paper or the spec (δ_hs, κ_hs, ε, …).
     pub symbol: String,
+    /// The user's unit of `default`, `min`, `max` and of attribute files: "deg" and "%" are
+    /// converted to radians and fractions by [`AttributeTable::resolve`], the others are kept.
     pub unit: String,
+    /// The default value, in `unit`.
     pub default: f64,
+    /// The smallest valid value, in `unit`.
     pub min: f64,
+    /// The largest valid value, in `unit`.
     pub max: f64,
+    /// What the attribute sets.
     pub doc: String,
+    /// Where the default and the range come from (paper, spec §, gait norms) or why.
     pub source: String,
 }
 

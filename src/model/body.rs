@@ -61,8 +61,11 @@ pub struct FigureRow {
     pub neck: f64,
     /// Chin to top of the head.
     pub head: f64,
+    /// Shoulder to elbow.
     pub upper_arm: f64,
+    /// Elbow to wrist.
     pub forearm: f64,
+    /// Wrist to finger tip.
     pub hand: f64,
 }
 
@@ -157,36 +160,53 @@ impl BodyTable {
 /// r4 from the knee), `i_i` moments of inertia about the centre of mass, I = m (γ l)².
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Body {
+    /// Body height H (m).
     pub height: f64,
+    /// Body mass M (kg).
     pub mass: f64,
-    /// Pelvis width, hip joint to hip joint.
+    /// l0, pelvis width, hip joint to hip joint (m).
     pub l0: f64,
-    /// Whole leg, l3 + l4.
+    /// l1, whole leg, ankle to hip: l3 + l4 (m).
     pub l1: f64,
+    /// l2, upper body (head, arms and trunk), hip to the top of the head (m).
     pub l2: f64,
+    /// l3, thigh, hip to knee (m).
     pub l3: f64,
+    /// l4, shank (the foot included), knee to ankle (m).
     pub l4: f64,
-    /// Hind foot: heel to ankle, horizontal.
+    /// l8, hind foot: heel to ankle, horizontal (m).
     pub l8: f64,
-    /// Ankle height with the foot flat.
+    /// l9, ankle height with the foot flat (m).
     pub l9: f64,
-    /// Heel to ankle, √(l8² + l9²).
+    /// l11, heel to ankle, √(l8² + l9²) (m).
     pub l11: f64,
-    /// Ankle to 1st metatarsal joint.
+    /// l12, ankle to 1st metatarsal joint (m).
     pub l12: f64,
-    /// 1st metatarsal joint to toe tip.
+    /// l13, 1st metatarsal joint to toe tip (m).
     pub l13: f64,
+    /// m1, whole leg: m3 + m4 (kg).
     pub m1: f64,
+    /// m2, upper body: head, arms and trunk (kg).
     pub m2: f64,
+    /// m3, thigh (kg).
     pub m3: f64,
+    /// m4, shank and foot (kg).
     pub m4: f64,
+    /// r1, the whole leg's centre of mass from the ankle (m).
     pub r1: f64,
+    /// r2, the upper body's centre of mass from the hip (m).
     pub r2: f64,
+    /// r3, the thigh's centre of mass from the hip (m).
     pub r3: f64,
+    /// r4, the shank's centre of mass from the knee (m).
     pub r4: f64,
+    /// I1, the whole leg's moment of inertia about its centre of mass, m1 (γ1 l1)² (kg m²).
     pub i1: f64,
+    /// I2, the upper body's moment of inertia about its centre of mass (kg m²).
     pub i2: f64,
+    /// I3, the thigh's moment of inertia about its centre of mass (kg m²).
     pub i3: f64,
+    /// I4, the shank's moment of inertia about its centre of mass (kg m²).
     pub i4: f64,
     /// The kinematic figure's dimensions, in metres (the table's fractions × H).
     pub figure: FigureRow,

@@ -1,6 +1,6 @@
 //! Minimization of a smooth function of one variable on an interval: Brent's method (R. P.
 //! Brent, *Algorithms for Minimization without Derivatives*, 1973, ch. 5) from the least of
-//! uniform samples, and the candidates for every local minimum ([`minima`]).
+//! uniform samples, and the candidates for every local minimum (`minima`).
 //!
 //! Not argmin's `BrentOpt`: it starts from its own golden-section point (one more evaluation per
 //! search, where ours starts from the sample already evaluated), stops at a bracket of

@@ -1,13 +1,13 @@
 //! Bracketed one-dimensional root finding: the sign change of a function, or the point where a
 //! predicate changes, inside a bracket the search keeps (so it cannot diverge).
-//! - [`illinois`]: regula falsi with the Illinois modification, for continuous functions: the
+//! - `illinois`: regula falsi with the Illinois modification, for continuous functions: the
 //!   integrator's events, the actuators' power crossings, heel-off (the terminal stance's and
 //!   the virtual stance leg's) and the terminal stance's end pitch;
-//! - [`bisect`]: bisection, for predicates (the gait events, the foot's pitch limits), which give
+//! - `bisect`: bisection, for predicates (the gait events, the foot's pitch limits), which give
 //!   only a side and no value to interpolate;
-//! - [`bisect_steered`], [`bisect_with_guess`]: the same bisection with its decisions taken from
+//! - `bisect_steered`, `bisect_with_guess`: the same bisection with its decisions taken from
 //!   a closed-form guess away from it (the foot's pitch limits, the heel rocker's sole angle);
-//! - [`scan`]: sampling for the first bracket of a change that, once on, stays on (heel-off).
+//! - `scan`: sampling for the first bracket of a change that, once on, stays on (heel-off).
 
 /// Shrink the bracket [a, b] of a sign change of `g` (`ga`, `gb` its values at the ends, of
 /// opposite signs, or `gb` zero) until it is at most `tol` wide or `max_evaluations` are spent;

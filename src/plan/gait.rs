@@ -16,19 +16,22 @@ pub(crate) const CONSISTENCY_TOLERANCE: f64 = 0.01;
 /// What the user asked for: any of v (m/s), sl (m), sf (steps/min).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct GaitRequest {
+    /// Velocity v (m/s).
     pub velocity: Option<f64>,
+    /// Step length sl (m).
     pub step_length: Option<f64>,
+    /// Step frequency sf (steps/min).
     pub step_frequency: Option<f64>,
 }
 
 /// A complete, checked gait: v = sl · sf / 60.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Gait {
-    /// m/s
+    /// Velocity v (m/s).
     pub velocity: f64,
-    /// m
+    /// Step length sl (m).
     pub step_length: f64,
-    /// steps/min
+    /// Step frequency sf (steps/min).
     pub step_frequency: f64,
 }
 

@@ -29,7 +29,7 @@ enum Phase {
 /// decrease, Armijo factor 1e-4), otherwise the step is halved, up to `max_halvings` times
 /// (2 when `J` is no longer a fresh difference Jacobian); when halving fails with a stale `J`,
 /// `J` is refreshed by differences once more. Every finite trial, accepted or not, updates `J`
-/// by Broyden's rank-1 formula in unknowns scaled by the Jacobian's column norms [ours],
+/// by Broyden's rank-1 formula in unknowns scaled by the Jacobian's column norms \[ours\],
 /// `J += (dr - J dx) (W dx)^T / (dx^T W dx)`, `W = diag(|J e_k|²)`, invariant under rescaling
 /// the unknowns. A failed trial (non-finite or `Err`) counts as a rejection (a failed difference
 /// trial is retried with the opposite, then halved step). Converged when `max |r_i| <= tol` at

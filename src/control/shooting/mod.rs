@@ -16,11 +16,11 @@
 //! A non-finite residual, or an `Err` from the residual, is a failed trial: the solvers step back
 //! toward the last good point and never panic.
 //!
-//! The two solvers are [`argmin`] solvers ([`BisectionSecant`], [`Broyden2`]); [`solve1`] and
-//! [`solve2`] drive them directly (without the `Executor`) for the engine and return the best
+//! The two solvers are [`argmin`] solvers (`BisectionSecant`, `Broyden2`); `solve1` and
+//! `solve2` drive them directly (without the `Executor`) for the engine and return the best
 //! point, a [`SolveReport`] and a memory for the next step's warm start:
-//! - `bisection_secant`: [`BisectionSecant`], the paper's 1-D scheme;
-//! - `broyden`: [`Broyden2`], the 2-D secant method;
+//! - `bisection_secant`: `BisectionSecant`, the paper's 1-D scheme;
+//! - `broyden`: `Broyden2`, the 2-D secant method;
 //! - `warm_start`: what a solve remembers ([`Memory1`], [`Memory2`]) and how the next one starts
 //!   from it ([`Start1`], [`Start2`]), extrapolated along the step sequence.
 

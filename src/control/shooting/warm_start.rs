@@ -1,4 +1,4 @@
-//! Warm starts of the shooting solves (KLAW 1989 §4.1 [ours]): what a solve remembers for the
+//! Warm starts of the shooting solves (KLAW 1989 §4.1 \[ours\]): what a solve remembers for the
 //! next step's solve of the same phase, how a solve starts, and the extrapolation of the
 //! remembered solutions along the step sequence.
 use nalgebra::{Matrix2, Vector2};

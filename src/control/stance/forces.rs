@@ -41,6 +41,9 @@ pub struct StanceForces<'a> {
 }
 
 impl<'a> StanceForces<'a> {
+    /// The forces of a trial with magnitudes τ1 (N m) and p (m), on the telescopic leg or, when
+    /// `locked`, the locked one (spec §4 subphases); the leg torque by its switch-off time, the
+    /// hip reference's side by the sign of θ1, no clamp event.
     pub fn new(setup: &'a StanceSetup, tau1: f64, p: f64, locked: bool) -> Self {
         StanceForces {
             setup,
@@ -141,7 +144,7 @@ impl<'a> StanceForces<'a> {
 }
 
 /// Events: 0 lock / release, 1 |θ1| too large, 2 leg collapsed, 3 the leg force's clamp engages
-/// or lets go ([`StanceForces::with_loaded`]), 4 mid-stance (θ1 rising through 0, where the hip
+/// or lets go (`StanceForces::with_loaded`), 4 mid-stance (θ1 rising through 0, where the hip
 /// reference changes from the bounce to the virtual leg and its curvature jumps: the
 /// integration and the hip table break there).
 impl Phase<6, 5> for StanceForces<'_> {

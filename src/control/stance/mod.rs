@@ -5,7 +5,7 @@
 //!
 //! - `setup`: what one step's stance keeps between shooting trials ([`StanceSetup`]);
 //! - `reference`: the hip height reference, the spec §4 bounce up to mid-stance and the
-//!   virtual leg's from there (spec §7, [`TerminalStance`]);
+//!   virtual leg's from there (spec §7, `TerminalStance`);
 //! - `forces`: the forces, the right-hand side and the events ([`StanceForces`]);
 //! - `run`: one trial integration and its dense record ([`StanceRun`]);
 //! - `hip_path`: the hip's acceleration tabulated for the swing ([`HipPath`]).

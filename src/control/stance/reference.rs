@@ -9,7 +9,7 @@ use crate::numerics::trig::{sin_cos, small_sin_cos};
 
 use super::StanceSetup;
 
-/// The hip height reference and its derivative with respect to θ1 [ours]:
+/// The hip height reference and its derivative with respect to θ1 \[ours\]:
 /// - up to mid-stance (θ1 < 0), spec §4: y_ref = ȳ(u) + e cos²(πu/2), u = sin θ1 / sin θ1^−
 ///   clipped to [−1, 1], ȳ blending the two heel-strike heights with a half-sine (ȳ = y_hs in a
 ///   steady gait): the bounce e = ε·E gives the loading response;
@@ -54,7 +54,7 @@ pub(super) fn hip_reference_sc(
 }
 
 /// The virtual stance leg from mid-stance to heel strike (spec §7), as the telescopic leg's
-/// length W(θ1) from the pivot P (the flat foot's ankle) to the pelvis centre C [ours]. The knee
+/// length W(θ1) from the pivot P (the flat foot's ankle) to the pelvis centre C \[ours\]. The knee
 /// stays at its mid-stance flexion κ0, so the stance hip joint J is the leg's mid-stance reach
 /// a0 from the ankle A in space, and √(a0² − dz²) in the leg's plane (dz: the lateral offset):
 /// - foot flat (A = P) while the ankle's dorsiflexion, the lean of the shank (the ankle–J line's
@@ -95,12 +95,12 @@ pub(crate) struct TerminalStance {
 }
 
 /// m of the margin m (1 − x)² above y_hs that the reference keeps between heel-off (x = 0) and
-/// heel strike (x = 1) (m) [ours]: with less the tracking hip dipped under y_hs just before heel
+/// heel strike (x = 1) (m) \[ours\]: with less the tracking hip dipped under y_hs just before heel
 /// strike in slow walks of tall bodies.
 pub(crate) const END_MARGIN: f64 = 1e-2;
 
 /// How far past heel strike (in s and u, where heel strike is 1) the pitch and the pelvis's
-/// offsets continue their formulas before they are held [ours]: held at heel strike itself, the
+/// offsets continue their formulas before they are held \[ours\]: held at heel strike itself, the
 /// reference's slope jumps where every converged trial ends, and the integrator's last steps
 /// straddling that kink shrink geometrically. Not far: at 2 m/s the leg no longer reaches the
 /// hip at 1.5.

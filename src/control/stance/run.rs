@@ -15,7 +15,9 @@ const CLAMP_EVENTS: usize = 8;
 /// The dense record of one stance trial.
 #[derive(Clone, Debug)]
 pub struct StanceRun {
+    /// Leg torque magnitude τ1 of the trial (N m).
     pub tau1: f64,
+    /// Leg extension p of the position actuator (m).
     pub p: f64,
     /// Integration segments with their subphase (`true` = locked leg).
     pub segments: Vec<(Segment<6>, bool)>,

@@ -6,6 +6,7 @@ use super::TerminalStance;
 /// Everything about one step's stance that does not change between shooting trials.
 #[derive(Clone, Copy, Debug)]
 pub struct StanceSetup {
+    /// The stance model of the body.
     pub model: StanceModel,
     /// Leg length l1 (m).
     pub(crate) l1: f64,
@@ -25,6 +26,7 @@ pub struct StanceSetup {
     pub(crate) w_end: f64,
     /// Hip height at the step's heel strike (m).
     pub y_start: f64,
+    /// Hip height at the next heel strike, y_hs of the step's constraints (m).
     pub y_end: f64,
     /// Bounce e of the hip reference (m).
     pub(crate) bounce: f64,

@@ -1,6 +1,6 @@
 //! Integration of one (sub)phase by an explicit Runge–Kutta pair with dense output ([`Method`]):
 //! Hairer's DOP853, the Dormand–Prince 8(5,3) pair with its 7th-order dense output (Hairer,
-//! Nørsett & Wanner, *Solving ODEs I*, II.10), for every phase of the walk ([`METHOD`]), or the
+//! Nørsett & Wanner, *Solving ODEs I*, II.10), for every phase of the walk (`METHOD`), or the
 //! Dormand–Prince 5(4) pair with its 4th-order dense output (II.5–II.6: DOPRI5, the same method
 //! and step control as `ode_solvers::Dopri5`). Written for fixed-size states: the stages live on
 //! the stack, the right-hand side is called through a generic (inlined), and the only allocation
@@ -54,9 +54,13 @@ impl<P: Phase<N, K>, const N: usize, const K: usize> Phase<N, K> for &P {
 /// The dense solution of one integration, valid on [t0, t1] (its dense output: `dense.rs`).
 #[derive(Clone, Debug)]
 pub struct Segment<const N: usize> {
+    /// Start time (s).
     pub t0: f64,
+    /// End time (s): the end asked for, or the event's time.
     pub t1: f64,
+    /// State at t0.
     pub y0: SVector<f64, N>,
+    /// State at t1.
     pub y1: SVector<f64, N>,
     steps: Vec<DenseStep<N>>,
     /// Stages of the steps without their dense output, one per step (empty when every step
@@ -67,6 +71,7 @@ pub struct Segment<const N: usize> {
 /// How an integration ended.
 #[derive(Clone, Debug)]
 pub struct Outcome<const N: usize> {
+    /// The dense solution from t0 to where the integration stopped.
     pub segment: Segment<N>,
     /// The event that stopped it, if any, at `segment.t1`.
     pub event: Option<usize>,
