@@ -63,9 +63,9 @@ pub struct Foot {
     heel_lowest: f64,
 }
 
-/// `x.asin()`, without libm's domain-error path (its NaN for |x| > 1 costs ≈ 40 instructions
-/// more: errno and the floating-point exception): the closed forms below take the asin of
-/// ratios that are often out of range (the floor out of the foot's reach).
+/// `x.asin()`, without libm's domain-error path (errno and the floating-point exception before
+/// its NaN for |x| > 1): the closed forms below take the asin of ratios that are often out of
+/// range (the floor out of the foot's reach).
 #[inline]
 fn asin(x: f64) -> f64 {
     if x.abs() <= 1.0 { x.asin() } else { f64::NAN }
@@ -252,8 +252,7 @@ impl Foot {
 /// range when `ok` holds, or fails, everywhere. `ok` changes at most once on the range (the
 /// heights it compares are monotonic there), so when the guess lies inside the range, the
 /// guess moved [`GUESS_SLACK`] to the good side where `ok` holds and 1e-12 further to the bad
-/// side where it fails is the boundary to 1e-12, in two evaluations of `ok` (the steered
-/// bisection took ≈ 40 halvings to end where bisection alone does); else
+/// side where it fails is the boundary to 1e-12, in two evaluations of `ok`; else
 /// [`roots::bisect_with_guess`].
 fn boundary(ok: impl Fn(f64) -> bool, lo: f64, below: bool, guess: f64) -> f64 {
     let hi = std::f64::consts::FRAC_PI_3;
@@ -280,10 +279,9 @@ fn boundary(ok: impl Fn(f64) -> bool, lo: f64, below: bool, guess: f64) -> f64 {
 /// Within this distance (rad) of a closed-form boundary [`roots::bisect_steered`] evaluates its
 /// predicate: the closed forms are exact to ≈ 1e-15 rad, and 2e-13 rad moves a foot point by
 /// ≈ 2e-14 m, still far more than the round-off of the heights and distances the predicates
-/// compare (≈ 1e-17 m). The bisection stops at 1e-12 rad, so its last midpoints fall within it
-/// ≈ 0.3 times a call (1e-11 before: ≈ 5 evaluations of the predicate a call, two `sin_cos`
-/// each). [`boundary`] returns the guess moved by it to the good side, where the predicate is
-/// checked.
+/// compare (≈ 1e-17 m). The bisection stops at 1e-12 rad, so few of its last midpoints fall
+/// within it (each costs an evaluation). [`boundary`] returns the guess moved by it to the good
+/// side, where the predicate is checked.
 pub(crate) const GUESS_SLACK: f64 = 2e-13;
 
 #[cfg(test)]

@@ -383,7 +383,7 @@ impl StanceLeg {
         };
         let t_from = t_from.max(self.t_hs + self.t_fgm);
         // a scan every ≈ 20 ms (the trigger, once on, stays on until toe-off), then the Illinois
-        // method to 1e-9 s (the hip moves ≤ 3e-9 m; bisection took 25 poses, this ≈ 6)
+        // method to 1e-9 s (the hip moves ≤ 3e-9 m; it needs far fewer poses than bisection)
         const SCAN: usize = 24;
         let points = (1..=SCAN).map(|k| t_from + (t_to - t_from) * k as f64 / SCAN as f64);
         // (an error ends the scan as the trigger does, and is returned)
