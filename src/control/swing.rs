@@ -2,7 +2,7 @@
 //! subphases, one trial integration of each, and their end-condition residuals.
 //!
 //! - swing1 [0, ½ t_swing]: hip torque A (1 − 1.5 s) and knee torque B s² − d₁ θ̇4, s the
-//!   fraction of swing1 [ours]; end conditions θ3 = θ3*, tibia vertical (θ3 + θ4 = 0, i.e.
+//!   fraction of swing1 \[ours\]; end conditions θ3 = θ3*, tibia vertical (θ3 + θ4 = 0, i.e.
 //!   x_ankle = x_knee). Constant torques whip the shank forward late and put the toe under the
 //!   ground (over the grid of examples/grid.rs); a hip push that turns into a brake and a knee
 //!   extension that grows late keep the knee flexed while the foot passes under the hip. The
@@ -13,7 +13,7 @@
 //!   quadratic reference θ4_ref = θ4(t1) + (κ_hs − θ4(t1)) u², u = (t − t1)/(t2 − t1), from its
 //!   swing1-end angle (at rate 0) to κ_hs at t2, through a servo
 //!   −k_k (θ4 − θ4_ref) − d_k (θ̇4 − θ̇4_ref), plus the unknown constant knee torque C found so
-//!   that θ4 first reaches κ_hs at t2 [ours]; then the knee locks. The knee is still extending at
+//!   that θ4 first reaches κ_hs at t2 \[ours\]; then the knee locks. The knee is still extending at
 //!   t2 (the reference's rate 2 (κ_hs − θ4(t1))/(t2 − t1)), so the crossing is transversal and
 //!   the residual monotone in C. A constant or a decaying knee torque alone leaves no such root
 //!   at slow speeds: the knee, handed over extending fast, either crosses early or turns back
@@ -34,15 +34,15 @@ use crate::plan::StepConstraints;
 pub type SwingState = SVector<f64, 4>;
 
 /// Ends of swing1 and swing2 as fractions of the swing (paper).
-pub const SWING1_END: f64 = 0.5;
-pub const SWING2_END: f64 = 0.85;
+pub(crate) const SWING1_END: f64 = 0.5;
+pub(crate) const SWING2_END: f64 = 0.85;
 /// A trial stops when the thigh swings beyond ±100° (a wild guess).
-pub const THETA3_ABORT: f64 = 1.75;
+pub(crate) const THETA3_ABORT: f64 = 1.75;
 
-/// The swing1 knee damper d₁ = 2ζ √(a22 m4 g r4) (N m s/rad) [ours]: the shank swinging about
+/// The swing1 knee damper d₁ = 2ζ √(a22 m4 g r4) (N m s/rad) \[ours\]: the shank swinging about
 /// the knee is a pendulum of inertia a22 = I4 + m4 r4² and stiffness m4 g r4 (small angles), and
 /// d₁ damps it at the ratio ζ.
-pub fn knee_damper(model: &SwingModel, zeta: f64) -> f64 {
+pub(crate) fn knee_damper(model: &SwingModel, zeta: f64) -> f64 {
     let a22 = model.mass_matrix(&Vector2::zeros())[(1, 1)];
     2.0 * zeta * (a22 * model.m4 * model.g * model.r4).sqrt()
 }
@@ -50,19 +50,24 @@ pub fn knee_damper(model: &SwingModel, zeta: f64) -> f64 {
 /// Everything about one swing that does not change between trials.
 #[derive(Clone, Copy, Debug)]
 pub struct SwingSetup<'a> {
+    /// The swing leg's model.
     pub model: SwingModel,
     /// The swing-side hip's acceleration over the swing (the stance's hip moved by the
     /// determinants of gait), tabulated.
     pub hip_path: &'a HipPath,
     /// The swing-side hip's vertical velocity at heel strike (m/s).
     pub hip_vy_end: f64,
-    /// Toe-off, end of swing1, knee lock, heel strike (s from the step's start).
+    /// Toe-off, t_ds (s from the step's start).
     pub t_off: f64,
+    /// End of swing1, t_ds + 0.5 t_swing (s).
     pub t1: f64,
+    /// Knee lock, the end of swing2: t_ds + 0.85 t_swing (s).
     pub t2: f64,
+    /// Heel strike, t_step (s).
     pub t_end: f64,
-    /// θ3* and κ_hs.
+    /// θ3*, the thigh's angle at heel strike (rad).
     pub theta3_target: f64,
+    /// κ_hs, the knee's flexion at heel strike, where it locks (rad).
     pub kappa_hs: f64,
     /// Heel ahead of the hip at heel strike, x_heel − x_hip = sl/2 − l8 (m).
     pub heel_ahead: f64,
@@ -70,11 +75,13 @@ pub struct SwingSetup<'a> {
     pub landing_velocity: f64,
     /// Swing1 knee damper d₁ (N m s/rad).
     pub d_swing1: f64,
-    /// Swing2 knee servo (N m/rad, N m s/rad).
+    /// Swing2 knee servo's spring (N m/rad).
     pub k_k: f64,
+    /// Swing2 knee servo's damper (N m s/rad).
     pub d_k: f64,
-    /// Swing2 hip servo.
+    /// Swing2 hip servo's spring k_h (N m/rad).
     pub k_h: f64,
+    /// Swing2 hip servo's damper d_h (N m s/rad).
     pub d_h: f64,
 }
 
@@ -82,7 +89,7 @@ impl<'a> SwingSetup<'a> {
     /// The swing of a step with constraints `c` (timing, θ3*, κ_hs, where the heel lands) hanging
     /// from `hip_path`, the servos' gains from the attributes: k = a (2π f_h)², d = 2ζ a (2π f_h)
     /// with a = a11, a22 of the leg at heel strike, and the swing1 knee damper
-    /// [`knee_damper`].
+    /// `knee_damper`.
     pub fn new(
         model: SwingModel,
         hip_path: &'a HipPath,
@@ -119,38 +126,47 @@ impl<'a> SwingSetup<'a> {
 /// Which subphase, with its torque magnitudes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Subphase {
+    /// Toe-off to 0.5 t_swing (spec §5): the thigh is brought to θ3* with the tibia vertical.
     Swing1 {
+        /// Hip torque magnitude A (N m): A (1 − 1.5 s), s the fraction of swing1.
         hip: f64,
+        /// Knee torque magnitude B (N m): B s², braked by the knee damper.
         knee: f64,
     },
-    /// `knee_start`: θ4 at the start of swing2, where the knee reference starts.
+    /// 0.5 to 0.85 t_swing: the knee extends to κ_hs under its servo, the hip servo holds θ3*.
     Swing2 {
+        /// Constant knee torque (N m) added to the servo's.
         knee: f64,
+        /// θ4 at the start of swing2, where the knee reference starts (rad).
         knee_start: f64,
     },
+    /// 0.85 t_swing to heel strike, the knee locked: the heel lands at t_step.
     Swing3 {
+        /// Hip torque at the start of swing3 (N m).
         hip: f64,
+        /// The hip torque's change over swing3 (N m), linear in time.
         ramp: f64,
     },
 }
 
-/// How much looser swing2 integrates than the other phases [ours]. Its servos make the leg
+/// How much looser swing2 integrates than the other phases \[ours\]. Its servos make the leg
 /// stiff — the coupled knee and hip servo have an eigenvalue ≈ −190 /s (default walk) — and
 /// DOP853's step size there is held at h|λ| ≈ 0.8 by accuracy, while the same stiff mode damps
 /// the local errors away: at 100 times the tolerance swing2's end condition, re-integrated at
 /// 1e-12, is met about as well as at the common tolerance (`examples/evals.rs`).
-pub const SWING2_TOLERANCE_SCALE: f64 = 100.0;
+pub(crate) const SWING2_TOLERANCE_SCALE: f64 = 100.0;
 
 impl Subphase {
     /// The integrator tolerance of this subphase for the walk's tolerance `tol`
     /// ([`SWING2_TOLERANCE_SCALE`]).
-    pub fn tolerance(&self, tol: f64) -> f64 {
+    pub(crate) fn tolerance(&self, tol: f64) -> f64 {
         match self {
             Subphase::Swing2 { .. } => tol * SWING2_TOLERANCE_SCALE,
             _ => tol,
         }
     }
 
+    /// The subphase's name: `swing1`, `swing2` or `swing3`.
     pub fn name(&self) -> &'static str {
         match self {
             Subphase::Swing1 { .. } => "swing1",
@@ -163,7 +179,9 @@ impl Subphase {
 /// The swing leg under one subphase's torques.
 #[derive(Clone, Copy, Debug)]
 pub struct SwingForces<'a> {
+    /// The swing's constants.
     pub setup: &'a SwingSetup<'a>,
+    /// The subphase and its torque magnitudes.
     pub sub: Subphase,
     /// The hip path's piece the integration is on ([`HipPath::acceleration_on`]), so that its
     /// stages at a break see the piece's acceleration, not the next one's; `None`: the piece
@@ -173,7 +191,7 @@ pub struct SwingForces<'a> {
 
 impl SwingForces<'_> {
     /// Generalized forces (F_θ3, F_θ4).
-    pub fn torques(&self, t: f64, y: &SwingState) -> Vector2<f64> {
+    pub(crate) fn torques(&self, t: f64, y: &SwingState) -> Vector2<f64> {
         match self.sub {
             Subphase::Swing1 { hip, knee } => {
                 // hip: a push that turns into a brake, A (1 − 1.5 s); knee: B s², an extension
@@ -234,12 +252,16 @@ impl Phase<4, 2> for SwingForces<'_> {
 /// One trial of one subphase.
 #[derive(Clone, Debug)]
 pub struct SwingTrial {
+    /// The subphase and the magnitudes tried.
     pub sub: Subphase,
+    /// The dense solution over the subphase (or up to where the trial stopped).
     pub segment: Segment<4>,
+    /// End-condition residual (spec §5; one component for swing2 and swing3, the second 0).
     pub residual: Vector2<f64>,
+    /// Right-hand-side evaluations spent.
     pub evaluations: u32,
     /// The integration chose (some of) its own steps rather than following a given mesh.
-    pub adapted: bool,
+    pub(crate) adapted: bool,
 }
 
 impl SwingTrial {
@@ -270,7 +292,7 @@ impl SwingTrial {
 
     /// Complete the dense output of a [`Self::simulate_on`] trial ([`ode::Segment::densify`]);
     /// returns the right-hand-side evaluations.
-    pub fn densify(&mut self, setup: &SwingSetup) -> u32 {
+    pub(crate) fn densify(&mut self, setup: &SwingSetup) -> u32 {
         let sub = self.sub;
         self.segment.densify(|t| SwingForces {
             setup,
@@ -283,7 +305,7 @@ impl SwingTrial {
     /// subphase ([`ode::integrate_on`]): the shooting's residual stays smooth in the unknowns.
     /// The dense output is left out ([`ode::integrate_trial`]): [`Self::densify`] the trial
     /// that is kept.
-    pub fn simulate_on(
+    pub(crate) fn simulate_on(
         setup: &SwingSetup,
         sub: Subphase,
         t0: f64,

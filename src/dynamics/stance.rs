@@ -23,24 +23,25 @@ use crate::numerics::trig::sin_cos;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StanceModel {
     /// Leg mass m1 = m3 + m4 (kg).
-    pub m1: f64,
+    pub(crate) m1: f64,
     /// Upper-body mass m2 (kg).
     pub m2: f64,
     /// Leg centre of mass from the ankle, r1 (m).
-    pub r1: f64,
+    pub(crate) r1: f64,
     /// Leg moment of inertia about the ankle, J1 = m1 r1² + I1 (kg m²).
-    pub j1: f64,
+    pub(crate) j1: f64,
     /// Hip to upper-body centre of mass, a = r2 (m).
     pub a: f64,
     /// Upper-body moment of inertia about its centre of mass, I2 (kg m²).
-    pub i2: f64,
+    pub(crate) i2: f64,
     /// Ankle pivot height l9 (m).
-    pub l9: f64,
+    pub(crate) l9: f64,
     /// Gravity (m/s²).
     pub g: f64,
 }
 
 impl StanceModel {
+    /// The stance model of `body` (Table B-1 values; spec §4).
     pub fn new(body: &Body) -> Self {
         StanceModel {
             m1: body.m1,
@@ -55,7 +56,7 @@ impl StanceModel {
     }
 
     /// Upper-body moment of inertia about the hip, J2 = m2 a² + I2.
-    pub fn trunk_inertia(&self) -> f64 {
+    pub(crate) fn trunk_inertia(&self) -> f64 {
         self.m2 * self.a * self.a + self.i2
     }
 
@@ -96,7 +97,7 @@ impl StanceModel {
     }
 
     /// Accelerations q̈ = M⁻¹ (Q − b). With `locked` the leg length is held (ẇ = ẅ = 0; the
-    /// paper's locked-leg edit: the w row and column drop out) and q̈[0] = 0.
+    /// paper's locked-leg edit: the w row and column drop out) and q̈\[0\] = 0.
     pub fn accelerations(
         &self,
         q: &Vector3<f64>,

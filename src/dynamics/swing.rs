@@ -22,20 +22,28 @@ use crate::numerics::trig::sin_cos;
 /// Inertial parameters of the swing leg.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SwingModel {
+    /// Thigh mass m3 (kg).
     pub m3: f64,
+    /// Shank and foot mass m4 (kg).
     pub m4: f64,
+    /// Thigh length l3 (m).
     pub l3: f64,
-    pub l4: f64,
+    /// Shank length l4 (m).
+    pub(crate) l4: f64,
     /// Hip to thigh centre of mass (m).
     pub r3: f64,
     /// Knee to shank centre of mass (m).
     pub r4: f64,
-    pub i3: f64,
-    pub i4: f64,
+    /// Thigh moment of inertia about its centre of mass, I3 (kg m²).
+    pub(crate) i3: f64,
+    /// Shank moment of inertia about its centre of mass, I4 (kg m²).
+    pub(crate) i4: f64,
+    /// Gravity (m/s²).
     pub g: f64,
 }
 
 impl SwingModel {
+    /// The swing leg of `body` (Table B-1 values; spec §5).
     pub fn new(body: &Body) -> Self {
         SwingModel {
             m3: body.m3,

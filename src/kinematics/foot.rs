@@ -7,7 +7,7 @@ use crate::numerics::trig::sin_cos;
 
 /// Rotate a foot-frame vector (x forward, y up, foot flat) by the pitch p (heel up +).
 #[inline]
-pub fn pitch(v: [f64; 2], p: f64) -> [f64; 2] {
+pub(crate) fn pitch(v: [f64; 2], p: f64) -> [f64; 2] {
     rotate(v, sin_cos(p))
 }
 
@@ -28,9 +28,9 @@ fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
 /// Heel, metatarsal joint and toe tip.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FootPoints {
-    pub heel: [f64; 2],
-    pub meta: [f64; 2],
-    pub toe: [f64; 2],
+    pub(crate) heel: [f64; 2],
+    pub(crate) meta: [f64; 2],
+    pub(crate) toe: [f64; 2],
 }
 
 impl FootPoints {
@@ -50,7 +50,7 @@ pub struct Foot {
     /// Ankle to metatarsal joint, horizontal (foot flat).
     pub h12: f64,
     /// Metatarsal joint to toe tip.
-    pub l13: f64,
+    pub(crate) l13: f64,
     /// |(l8, l9)| and atan2(l9, l8) (the heel's reach in [`Self::min_pitch_closed_form`]), and
     /// |(h12, l9)| and atan2(l9, h12) (the metatarsal joint's in
     /// [`Self::max_pitch_closed_form`]), and the toe tip's there with the toe in line (θ6 = 0):
@@ -63,15 +63,16 @@ pub struct Foot {
     heel_lowest: f64,
 }
 
-/// `x.asin()`, without libm's domain-error path (its NaN for |x| > 1 costs ≈ 40 instructions
-/// more: errno and the floating-point exception): the closed forms below take the asin of
-/// ratios that are often out of range (the floor out of the foot's reach).
+/// `x.asin()`, without libm's domain-error path (errno and the floating-point exception before
+/// its NaN for |x| > 1): the closed forms below take the asin of ratios that are often out of
+/// range (the floor out of the foot's reach).
 #[inline]
 fn asin(x: f64) -> f64 {
     if x.abs() <= 1.0 { x.asin() } else { f64::NAN }
 }
 
 impl Foot {
+    /// The foot of `body` (Table B-1: l8, l9, l12, l13).
     pub fn new(body: &Body) -> Self {
         let (l8, l9, h12) = (body.l8, body.l9, body.ankle_to_metatarsal_horizontal());
         Foot {
@@ -103,7 +104,7 @@ impl Foot {
 
     /// Foot points for an ankle at `ankle`, foot pitch `p` (heel up +) and toe dorsiflexion θ6.
     #[inline]
-    pub fn points(&self, ankle: [f64; 2], p: f64, theta6: f64) -> FootPoints {
+    pub(crate) fn points(&self, ankle: [f64; 2], p: f64, theta6: f64) -> FootPoints {
         let sc = sin_cos(p);
         // the toe's pitch p − θ6 is p itself with the toe in line (stance, most of the swing)
         let toe_sc = if theta6 == 0.0 {
@@ -117,7 +118,12 @@ impl Foot {
     /// [`Self::points`] from the (sin, cos) of the pitch p and of the toe's pitch p − θ6, for
     /// callers that have them already.
     #[inline]
-    pub fn points_sc(&self, ankle: [f64; 2], sc: (f64, f64), toe_sc: (f64, f64)) -> FootPoints {
+    pub(crate) fn points_sc(
+        &self,
+        ankle: [f64; 2],
+        sc: (f64, f64),
+        toe_sc: (f64, f64),
+    ) -> FootPoints {
         let meta = add(ankle, rotate([self.h12, -self.l9], sc));
         FootPoints {
             heel: add(ankle, rotate([-self.l8, -self.l9], sc)),
@@ -130,7 +136,7 @@ impl Foot {
     /// its ankle at height `ankle_y` and toe angle θ6 stay at or above `floor` (both heights fall
     /// monotonically with the pitch on [−π/2, π/3]).
     /// By bisection, steered by [`Self::max_pitch_closed_form`].
-    pub fn max_pitch(&self, ankle_y: f64, theta6: f64, floor: f64) -> f64 {
+    pub(crate) fn max_pitch(&self, ankle_y: f64, theta6: f64, floor: f64) -> f64 {
         let meta = |p: f64| ankle_y + pitch([self.h12, -self.l9], p)[1];
         boundary(
             |p| {
@@ -164,7 +170,7 @@ impl Foot {
     /// height `ankle_y` (the heel's height l8 sin p − l9 cos p rises with p from its lowest
     /// point, p = −atan(l8/l9) with the heel straight under the ankle, up to π/3).
     /// By bisection, steered by [`Self::min_pitch_closed_form`].
-    pub fn min_pitch(&self, ankle_y: f64) -> f64 {
+    pub(crate) fn min_pitch(&self, ankle_y: f64) -> f64 {
         boundary(
             |p| ankle_y + pitch([-self.l8, -self.l9], p)[1] >= 0.0,
             self.heel_lowest,
@@ -184,7 +190,7 @@ impl Foot {
     /// it keeps the heel on or above the ground and the toe on or above `floor`; otherwise the
     /// rule clamped into the range where both hold (the floor drops to the ground when both
     /// cannot hold).
-    pub fn clear_pitch(
+    pub(crate) fn clear_pitch(
         &self,
         rule: f64,
         ankle: [f64; 2],
@@ -221,7 +227,7 @@ impl Foot {
     /// [`Self::rolling_ankle`] and the foot's [`Self::points`] there, each sine and cosine
     /// computed once (the same numbers: the toe's pitch p − θ6 is 0 while rolling about M, and
     /// `sin_cos(0)` is (0, 1)). Returns the ankle, θ6 and the points.
-    pub fn rolling_points(
+    pub(crate) fn rolling_points(
         &self,
         meta_x: f64,
         p: f64,
@@ -246,8 +252,7 @@ impl Foot {
 /// range when `ok` holds, or fails, everywhere. `ok` changes at most once on the range (the
 /// heights it compares are monotonic there), so when the guess lies inside the range, the
 /// guess moved [`GUESS_SLACK`] to the good side where `ok` holds and 1e-12 further to the bad
-/// side where it fails is the boundary to 1e-12, in two evaluations of `ok` (the steered
-/// bisection took ≈ 40 halvings to end where bisection alone does); else
+/// side where it fails is the boundary to 1e-12, in two evaluations of `ok`; else
 /// [`roots::bisect_with_guess`].
 fn boundary(ok: impl Fn(f64) -> bool, lo: f64, below: bool, guess: f64) -> f64 {
     let hi = std::f64::consts::FRAC_PI_3;
@@ -274,10 +279,9 @@ fn boundary(ok: impl Fn(f64) -> bool, lo: f64, below: bool, guess: f64) -> f64 {
 /// Within this distance (rad) of a closed-form boundary [`roots::bisect_steered`] evaluates its
 /// predicate: the closed forms are exact to ≈ 1e-15 rad, and 2e-13 rad moves a foot point by
 /// ≈ 2e-14 m, still far more than the round-off of the heights and distances the predicates
-/// compare (≈ 1e-17 m). The bisection stops at 1e-12 rad, so its last midpoints fall within it
-/// ≈ 0.3 times a call (1e-11 before: ≈ 5 evaluations of the predicate a call, two `sin_cos`
-/// each). [`boundary`] returns the guess moved by it to the good side, where the predicate is
-/// checked.
+/// compare (≈ 1e-17 m). The bisection stops at 1e-12 rad, so few of its last midpoints fall
+/// within it (each costs an evaluation). [`boundary`] returns the guess moved by it to the good
+/// side, where the predicate is checked.
 pub(crate) const GUESS_SLACK: f64 = 2e-13;
 
 #[cfg(test)]

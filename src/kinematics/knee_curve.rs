@@ -4,27 +4,28 @@
 /// κ_TO at toe-off"): the cubic Hermite from (κ0, κ̇0) at t0 to (κ_TO, κ̇_TO) at t_to.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct KneeCurve {
+    /// Where the curve starts: heel-off, or the next heel strike where it is re-anchored (s).
     pub t0: f64,
-    pub kappa0: f64,
-    pub rate0: f64,
-    pub t_to: f64,
-    pub kappa_to: f64,
-    pub rate_to: f64,
+    pub(crate) kappa0: f64,
+    pub(crate) rate0: f64,
+    pub(crate) t_to: f64,
+    pub(crate) kappa_to: f64,
+    pub(crate) rate_to: f64,
 }
 
-/// The knee's rate at toe-off as a multiple of its mean rate from heel-off [ours]: the knee
+/// The knee's rate at toe-off as a multiple of its mean rate from heel-off \[ours\]: the knee
 /// stays nearly straight after heel-off and folds in pre-swing, as in human gait (Perry: ≈ 5° at
 /// 40 % of the cycle, 35–40° at toe-off, still flexing), while the foot rolls up and the ankle
 /// plantarflexes.
-pub const TOE_OFF_KNEE_RATE: f64 = 2.0;
+pub(crate) const TOE_OFF_KNEE_RATE: f64 = 2.0;
 
 impl KneeCurve {
     /// The curve from (κ0, κ̇0) at t0 to κ_TO at t_to, reaching it at TOE_OFF_KNEE_RATE × the
-    /// mean rate. A start rate below −κ0 / (t_to − t0) is raised to it [ours]: the cubic then
+    /// mean rate. A start rate below −κ0 / (t_to − t0) is raised to it \[ours\]: the cubic then
     /// starts no steeper down than the line to a straight knee at toe-off and cannot swing
     /// through hyperextension (a flat-foot knee that straightens into heel-off has an unbounded
     /// rate, the acos of a distance at its maximum).
-    pub fn new(t0: f64, kappa0: f64, rate0: f64, t_to: f64, kappa_to: f64) -> Self {
+    pub(crate) fn new(t0: f64, kappa0: f64, rate0: f64, t_to: f64, kappa_to: f64) -> Self {
         KneeCurve {
             t0,
             kappa0,
@@ -36,7 +37,7 @@ impl KneeCurve {
     }
 
     /// Value and rate at t.
-    pub fn at(&self, t: f64) -> (f64, f64) {
+    pub(crate) fn at(&self, t: f64) -> (f64, f64) {
         let d = self.t_to - self.t0;
         let s = (t - self.t0) / d;
         let (p0, m0, p1, m1) = (self.kappa0, self.rate0 * d, self.kappa_to, self.rate_to * d);

@@ -12,20 +12,20 @@ use crate::numerics::trig::{atan2, sin_cos};
 pub struct LegPose {
     /// Knee in the leg's plane, unfolded: x, and the in-plane height above the ankle added to the
     /// ankle's height (equal to the world height when the leg has no lateral offset).
-    pub knee: [f64; 2],
-    pub ankle: [f64; 2],
-    pub foot: FootPoints,
+    pub(crate) knee: [f64; 2],
+    pub(crate) ankle: [f64; 2],
+    pub(crate) foot: FootPoints,
     /// Thigh from the in-plane downward vertical (knee ahead −), rad.
-    pub theta3: f64,
+    pub(crate) theta3: f64,
     /// Knee flexion, rad.
-    pub theta4: f64,
+    pub(crate) theta4: f64,
     /// (sin, cos) of θ3 and of the shank's θ3 + θ4 (for [`leg_points_sc`] and the figure).
-    pub sin_cos: [(f64, f64); 2],
+    pub(crate) sin_cos: [(f64, f64); 2],
     /// Foot pitch (heel up +) and toe dorsiflexion θ6, rad.
     pub pitch: f64,
-    pub theta6: f64,
+    pub(crate) theta6: f64,
     /// By how much the straight leg falls short of the hip (m; 0 when the hip is reachable).
-    pub gap: f64,
+    pub(crate) gap: f64,
 }
 
 /// Knee and ankle (x, world y) of a leg hanging from a hip joint at `hip` with in-plane thigh
@@ -33,7 +33,7 @@ pub struct LegPose {
 /// sin φ = dz / (in-plane drop), so that the ankle sits `dz` to the side of the hip. Also
 /// returns the (sin, cos) of θ3 and of the shank's θ3 + θ4 it used (the figure places the leg
 /// in 3-D with them).
-pub fn leg_points(
+pub(crate) fn leg_points(
     hip: [f64; 2],
     dz: f64,
     theta3: f64,
@@ -47,7 +47,7 @@ pub fn leg_points(
 }
 
 /// [`leg_points`] from the (sin, cos) of θ3 and of θ3 + θ4 (a pose that has them already).
-pub fn leg_points_sc(
+pub(crate) fn leg_points_sc(
     hip: [f64; 2],
     dz: f64,
     [(s3, c3), (ss, cs)]: [(f64, f64); 2],

@@ -5,7 +5,7 @@
 //! Boundary values are the spec's: rotation +A at right heel strike, 0 at mid-step, −A at left
 //! heel strike; list 0 at heel strike and ±L at mid-step with the stance side up; lateral
 //! displacement 0 at heel strike and ±D at mid-step towards the stance leg. Between them the
-//! spec's half-cosine blends [ours] replace the paper's linear interpolation: rotation
+//! spec's half-cosine blends \[ours\] replace the paper's linear interpolation: rotation
 //! A·cos(π s) has zero rate at both heel strikes, list L·sin(π s) and lateral D·sin(π s) are
 //! C¹ across a heel strike where the stance side changes (s = τ / t_step).
 use std::f64::consts::PI;
@@ -15,19 +15,22 @@ use crate::model::attributes::Attributes;
 /// A side of the body: +1 right, −1 left (the sign of its world z).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 pub enum Side {
+    /// The right side (world z > 0).
     Right,
+    /// The left side (world z < 0).
     Left,
 }
 
 impl Side {
     /// +1 for the right side, −1 for the left (world z points to the right).
-    pub fn sign(self) -> f64 {
+    pub(crate) fn sign(self) -> f64 {
         match self {
             Side::Right => 1.0,
             Side::Left => -1.0,
         }
     }
 
+    /// The opposite side.
     pub fn other(self) -> Side {
         match self {
             Side::Right => Side::Left,
@@ -36,7 +39,7 @@ impl Side {
     }
 
     /// The stance side of step `index`: step 0 stands on the right leg.
-    pub fn of_step(index: usize) -> Side {
+    pub(crate) fn of_step(index: usize) -> Side {
         if index.is_multiple_of(2) {
             Side::Right
         } else {
@@ -44,7 +47,7 @@ impl Side {
         }
     }
 
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             Side::Right => "right",
             Side::Left => "left",
@@ -52,7 +55,7 @@ impl Side {
     }
 
     /// The suffix of column and coordinate names: `r` or `l`.
-    pub fn suffix(self) -> &'static str {
+    pub(crate) fn suffix(self) -> &'static str {
         match self {
             Side::Right => "r",
             Side::Left => "l",
@@ -64,31 +67,31 @@ impl Side {
 /// centre (m, world z), with their time derivatives.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PelvisMotion {
-    pub rotation: f64,
-    pub list: f64,
-    pub lateral: f64,
-    pub rotation_rate: f64,
-    pub list_rate: f64,
-    pub lateral_rate: f64,
+    pub(crate) rotation: f64,
+    pub(crate) list: f64,
+    pub(crate) lateral: f64,
+    pub(crate) rotation_rate: f64,
+    pub(crate) list_rate: f64,
+    pub(crate) lateral_rate: f64,
 }
 
 /// Amplitudes of the determinants and the geometry they act on.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Determinants {
     /// Rotation amplitude A (rad).
-    pub rotation: f64,
+    pub(crate) rotation: f64,
     /// List amplitude L (rad).
-    pub list: f64,
+    pub(crate) list: f64,
     /// Lateral displacement amplitude D (m).
-    pub lateral: f64,
+    pub(crate) lateral: f64,
     /// Half the pelvis width, l0/2 (m).
-    pub half_width: f64,
+    pub(crate) half_width: f64,
     /// Half the step width (m): each ankle's |z|.
-    pub half_step_width: f64,
+    pub(crate) half_step_width: f64,
 }
 
 impl Determinants {
-    pub fn new(attrs: &Attributes, l0: f64) -> Self {
+    pub(crate) fn new(attrs: &Attributes, l0: f64) -> Self {
         Determinants {
             rotation: attrs.pelvic_rotation,
             list: attrs.pelvic_list,
@@ -99,7 +102,7 @@ impl Determinants {
     }
 
     /// The pelvis at time τ of a step of duration `t_step` standing on `stance`.
-    pub fn at(&self, stance: Side, tau: f64, t_step: f64) -> PelvisMotion {
+    pub(crate) fn at(&self, stance: Side, tau: f64, t_step: f64) -> PelvisMotion {
         let sign = stance.sign();
         // not clamped: the sinusoids continue smoothly past the step's ends, so that finite
         // differences there see the true derivatives
@@ -119,7 +122,7 @@ impl Determinants {
     /// The hip joint of `side` relative to the pelvis centre (m, world axes), for pelvic rotation
     /// and list (tilt turns about the hip axis and moves neither hip):
     /// R_y(rot) R_x(−list) (0, 0, ±l0/2).
-    pub fn hip_offset(&self, side: Side, p: &PelvisMotion) -> [f64; 3] {
+    pub(crate) fn hip_offset(&self, side: Side, p: &PelvisMotion) -> [f64; 3] {
         let h = side.sign() * self.half_width;
         let (sl, cl) = crate::numerics::trig::sin_cos(p.list);
         let (sr, cr) = crate::numerics::trig::sin_cos(p.rotation);
@@ -127,12 +130,12 @@ impl Determinants {
     }
 
     /// World z of the ankle of `side`.
-    pub fn ankle_z(&self, side: Side) -> f64 {
+    pub(crate) fn ankle_z(&self, side: Side) -> f64 {
         side.sign() * self.half_step_width
     }
 
     /// Lateral offset Δz from the ankle of `side` to its hip joint (m) at pelvis state `p`.
-    pub fn lateral_offset(&self, side: Side, p: &PelvisMotion) -> f64 {
+    pub(crate) fn lateral_offset(&self, side: Side, p: &PelvisMotion) -> f64 {
         p.lateral + self.hip_offset(side, p)[2] - self.ankle_z(side)
     }
 }
@@ -143,7 +146,7 @@ impl Determinants {
     /// step time τ, in closed form (the determinants are sinusoids in τ); `None` when the fold
     /// is degenerate (a lateral offset as long as the leg), where the caller differences
     /// numerically.
-    pub fn swing_offset_acceleration(
+    pub(crate) fn swing_offset_acceleration(
         &self,
         stance: Side,
         tau: f64,
@@ -193,7 +196,7 @@ impl Determinants {
 /// √(a1² − d²)"): a leg whose hip–ankle line has in-plane length `d_v` and lateral offset `dz`
 /// spans only √(d_v² − dz²) vertically, so in the leg's own plane the hip sits
 /// d_v − √(d_v² − dz²) higher than in the world.
-pub fn fold_height(d_v: f64, dz: f64) -> f64 {
+pub(crate) fn fold_height(d_v: f64, dz: f64) -> f64 {
     d_v - (d_v * d_v - dz * dz).max(0.0).sqrt()
 }
 

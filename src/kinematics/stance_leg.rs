@@ -17,8 +17,8 @@
 use std::f64::consts::{FRAC_PI_3, TAU};
 
 use crate::kinematics::foot::{Foot, FootPoints, GUESS_SLACK};
-pub use crate::kinematics::knee_curve::KneeCurve;
-pub use crate::kinematics::leg::{LegPose, leg_points, leg_points_sc};
+pub(crate) use crate::kinematics::knee_curve::KneeCurve;
+pub(crate) use crate::kinematics::leg::{LegPose, leg_points, leg_points_sc};
 use crate::kinematics::leg::{chain, reach};
 use crate::model::body::Body;
 use crate::numerics::roots;
@@ -28,8 +28,12 @@ use crate::numerics::trig::{atan2, sin_cos};
 /// Which foot rule holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FootPhase {
+    /// Heel strike to foot flat (FGM): the foot turns about its heel.
     HeelRocker,
+    /// Foot flat to heel-off: the ankle is fixed on the ground.
     FootFlat,
+    /// Heel-off to toe-off: the knee follows its prescribed curve and the foot rolls about the
+    /// metatarsal joint, then the toe tip.
     Rolling,
 }
 
@@ -37,23 +41,29 @@ pub enum FootPhase {
 /// x positions world x (m).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StanceLeg {
+    /// The foot's dimensions.
     pub foot: Foot,
+    /// Thigh length l3 (m).
     pub l3: f64,
+    /// Shank length l4 (m).
     pub l4: f64,
     /// Flat-foot ankle x.
     pub ankle_x: f64,
-    /// Heel strike time and the sole angle then (toe up +).
+    /// Heel strike time.
     pub t_hs: f64,
+    /// The sole angle φ_hs at heel strike (rad, toe up +).
     pub sole_hs: f64,
     /// Heel strike to foot flat (s).
     pub t_fgm: f64,
-    /// θ5_max (heel-off trigger) and θ6_max (meta-off), rad.
-    pub theta5_max: f64,
+    /// θ5_max, the ankle dorsiflexion that triggers heel-off (rad).
+    pub(crate) theta5_max: f64,
+    /// θ6_max, the metatarsal dorsiflexion at which the foot rolls on about the toe tip
+    /// (meta-off, rad).
     pub theta6_max: f64,
     /// The knee after heel-off: from heel-off to the next heel strike, then (re-anchored there)
     /// to toe-off. `None` until found.
     pub heel_off: Option<KneeCurve>,
-    pub to_toe_off: Option<KneeCurve>,
+    pub(crate) to_toe_off: Option<KneeCurve>,
 }
 
 /// The largest pitch (rad) the rolling foot may take to reach the hip.
@@ -114,6 +124,9 @@ fn first_in(roots: [f64; 2], lo: f64, hi: f64) -> Option<f64> {
 }
 
 impl StanceLeg {
+    /// The stance leg of `body` whose flat foot's ankle is at `ankle_x`, striking at `t_hs` with
+    /// sole angle `sole_hs`, flat at `t_hs + t_fgm`, with the foot rules' limits θ5_max and
+    /// θ6_max (rad); its knee curves are found later ([`Self::find_heel_off`]).
     pub fn new(
         body: &Body,
         ankle_x: f64,
@@ -219,7 +232,7 @@ impl StanceLeg {
 
     /// The heel rocker's sole angle when the straight leg cannot reach the hip with the rule's
     /// (the caller tests that, the hip being behind the ankle): the smallest angle at which it
-    /// can [ours]: the telescopic leg is longer than the anatomical one just after heel strike
+    /// can \[ours\]: the telescopic leg is longer than the anatomical one just after heel strike
     /// (w* > l1 at most speeds, spec §7 "known geometric tension"), so the foot comes down as
     /// the hip passes over it. Bisection to 1e-12 rad (the knee is acos of the leg's extension
     /// there, so the bisection's last bits set it), steered by the closed form
@@ -335,7 +348,7 @@ impl StanceLeg {
     }
 
     /// Ankle dorsiflexion of a pose (rad): the shank's in-plane lean relative to the foot.
-    pub fn dorsiflexion(pose: &LegPose) -> f64 {
+    pub(crate) fn dorsiflexion(pose: &LegPose) -> f64 {
         pose.theta3 + pose.theta4 - pose.pitch
     }
 
@@ -370,7 +383,7 @@ impl StanceLeg {
         };
         let t_from = t_from.max(self.t_hs + self.t_fgm);
         // a scan every ≈ 20 ms (the trigger, once on, stays on until toe-off), then the Illinois
-        // method to 1e-9 s (the hip moves ≤ 3e-9 m; bisection took 25 poses, this ≈ 6)
+        // method to 1e-9 s (the hip moves ≤ 3e-9 m; it needs far fewer poses than bisection)
         const SCAN: usize = 24;
         let points = (1..=SCAN).map(|k| t_from + (t_to - t_from) * k as f64 / SCAN as f64);
         // (an error ends the scan as the trigger does, and is returned)
@@ -412,7 +425,7 @@ impl StanceLeg {
     /// value and rate there, or the flat foot's when the heel is still down, the rate then from
     /// the right) and reaches κ_TO at the actual toe-off `t_toe_off`; `hip(t)` gives the hip
     /// joint and its lateral offset for t ≥ `t_hs_next`.
-    pub fn continue_to_toe_off(
+    pub(crate) fn continue_to_toe_off(
         &mut self,
         hip: impl Fn(f64) -> ([f64; 2], f64),
         t_hs_next: f64,

@@ -8,7 +8,7 @@ use std::path::Path;
 use crate::error::{Error, Result};
 
 /// The bundled attribute table.
-pub const BUILTIN_TABLE: &str = include_str!("../../models/attributes.toml");
+pub(crate) const BUILTIN_TABLE: &str = include_str!("../../models/attributes.toml");
 
 /// The bundled style presets (`--style NAME`): attribute files in `models/styles/`.
 pub const STYLES: &[(&str, &str)] = &[
@@ -45,12 +45,20 @@ pub fn style(name: &str) -> Result<BTreeMap<String, f64>> {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct AttributeSpec {
+    /// The attribute's symbol in the paper or the spec (δ_hs, κ_hs, ε, …).
     pub symbol: String,
+    /// The user's unit of `default`, `min`, `max` and of attribute files: "deg" and "%" are
+    /// converted to radians and fractions by [`AttributeTable::resolve`], the others are kept.
     pub unit: String,
+    /// The default value, in `unit`.
     pub default: f64,
+    /// The smallest valid value, in `unit`.
     pub min: f64,
+    /// The largest valid value, in `unit`.
     pub max: f64,
+    /// What the attribute sets.
     pub doc: String,
+    /// Where the default and the range come from (paper, spec §, gait norms) or why.
     pub source: String,
 }
 
@@ -67,7 +75,7 @@ impl AttributeTable {
 
     /// Parse a table; every attribute the engine reads must be present, with
     /// min ≤ default ≤ max.
-    pub fn parse(text: &str, path: &Path) -> Result<Self> {
+    pub(crate) fn parse(text: &str, path: &Path) -> Result<Self> {
         let malformed = |reason: String| Error::Malformed {
             what: "attribute table",
             path: path.to_path_buf(),
@@ -141,7 +149,7 @@ impl AttributeTable {
 
 /// Read an attribute file: a flat TOML table `name = number` (user units; an optional
 /// `description = "…"` is ignored). Later files override earlier ones.
-pub fn parse_overrides(text: &str, path: &Path) -> Result<BTreeMap<String, f64>> {
+pub(crate) fn parse_overrides(text: &str, path: &Path) -> Result<BTreeMap<String, f64>> {
     let malformed = |reason: String| Error::Malformed {
         what: "attribute file",
         path: path.to_path_buf(),

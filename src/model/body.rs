@@ -6,37 +6,46 @@ use std::path::Path;
 use crate::error::{Error, Result};
 
 /// The table bundled with klaw: Winter's (Dempster's) data as printed in Table B-1.
-pub const BUILTIN_TABLE: &str = include_str!("../../models/body-winter.toml");
+pub(crate) const BUILTIN_TABLE: &str = include_str!("../../models/body-winter.toml");
 
 /// A segment row of the body table (fractions of H and M).
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct SegmentRow {
+pub(crate) struct SegmentRow {
     /// Length as a fraction of body height.
     #[serde(default)]
-    pub length: f64,
+    pub(crate) length: f64,
     /// Mass as a fraction of body mass.
     #[serde(default)]
-    pub mass: f64,
+    pub(crate) mass: f64,
     /// Centre of mass from the proximal end (whole leg: distal end), fraction of the length.
     #[serde(default)]
-    pub r: f64,
+    pub(crate) r: f64,
     /// Radius of gyration about the centre of mass, fraction of the length.
     #[serde(default)]
-    pub gamma: f64,
+    pub(crate) gamma: f64,
 }
 
 /// Foot distances of Table B-1 (fractions of H).
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct FootRow {
-    pub mid_foot: f64,
-    pub toe: f64,
-    pub hind_foot: f64,
-    pub ankle_height: f64,
-    pub heel_to_ankle: f64,
-    pub ankle_to_metatarsal: f64,
-    pub metatarsal_to_toe: f64,
+pub(crate) struct FootRow {
+    /// l5, mid foot: in the table for completeness, the model's foot does not use it.
+    #[expect(dead_code, reason = "a row of Table B-1 the model does not read")]
+    pub(crate) mid_foot: f64,
+    /// l6, toe: in the table for completeness, the model's foot does not use it.
+    #[expect(dead_code, reason = "a row of Table B-1 the model does not read")]
+    pub(crate) toe: f64,
+    /// l8, hind foot: heel to ankle, horizontal.
+    pub(crate) hind_foot: f64,
+    /// l9, ankle to the foot's base with the foot flat.
+    pub(crate) ankle_height: f64,
+    /// l11, heel to ankle.
+    pub(crate) heel_to_ankle: f64,
+    /// l12, ankle to the 1st metatarsal joint.
+    pub(crate) ankle_to_metatarsal: f64,
+    /// l13, 1st metatarsal joint to toe tip.
+    pub(crate) metatarsal_to_toe: f64,
 }
 
 /// Dimensions of the kinematic figure (fractions of H): the upper body and arms that dress the
@@ -52,43 +61,48 @@ pub struct FigureRow {
     pub neck: f64,
     /// Chin to top of the head.
     pub head: f64,
+    /// Shoulder to elbow.
     pub upper_arm: f64,
+    /// Elbow to wrist.
     pub forearm: f64,
+    /// Wrist to finger tip.
     pub hand: f64,
 }
 
 /// Bodies a table is valid for.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct Limits {
-    pub height: [f64; 2],
-    pub mass: [f64; 2],
+pub(crate) struct Limits {
+    pub(crate) height: [f64; 2],
+    pub(crate) mass: [f64; 2],
 }
 
 /// A body table as stored in `models/*.toml`.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct BodyTable {
-    pub name: String,
-    pub pelvis: SegmentRow,
-    pub leg: SegmentRow,
-    pub upper_body: SegmentRow,
-    pub thigh: SegmentRow,
-    pub shank: SegmentRow,
-    pub foot: FootRow,
-    pub figure: FigureRow,
-    pub limits: Limits,
+pub(crate) struct BodyTable {
+    /// What the table is and where it comes from.
+    #[expect(dead_code, reason = "the table file's title, for its readers")]
+    pub(crate) name: String,
+    pub(crate) pelvis: SegmentRow,
+    pub(crate) leg: SegmentRow,
+    pub(crate) upper_body: SegmentRow,
+    pub(crate) thigh: SegmentRow,
+    pub(crate) shank: SegmentRow,
+    pub(crate) foot: FootRow,
+    pub(crate) figure: FigureRow,
+    pub(crate) limits: Limits,
 }
 
 impl BodyTable {
     /// The bundled table.
-    pub fn builtin() -> Self {
+    pub(crate) fn builtin() -> Self {
         Self::parse(BUILTIN_TABLE, Path::new("models/body-winter.toml"))
             .expect("the bundled body table parses (tested)")
     }
 
     /// Parse a table from TOML text; `path` only names the source in errors.
-    pub fn parse(text: &str, path: &Path) -> Result<Self> {
+    pub(crate) fn parse(text: &str, path: &Path) -> Result<Self> {
         let table: BodyTable = toml::from_str(text).map_err(|e| Error::Malformed {
             what: "body table",
             path: path.to_path_buf(),
@@ -146,36 +160,53 @@ impl BodyTable {
 /// r4 from the knee), `i_i` moments of inertia about the centre of mass, I = m (γ l)².
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Body {
+    /// Body height H (m).
     pub height: f64,
+    /// Body mass M (kg).
     pub mass: f64,
-    /// Pelvis width, hip joint to hip joint.
+    /// l0, pelvis width, hip joint to hip joint (m).
     pub l0: f64,
-    /// Whole leg, l3 + l4.
+    /// l1, whole leg, ankle to hip: l3 + l4 (m).
     pub l1: f64,
+    /// l2, upper body (head, arms and trunk), hip to the top of the head (m).
     pub l2: f64,
+    /// l3, thigh, hip to knee (m).
     pub l3: f64,
+    /// l4, shank (the foot included), knee to ankle (m).
     pub l4: f64,
-    /// Hind foot: heel to ankle, horizontal.
+    /// l8, hind foot: heel to ankle, horizontal (m).
     pub l8: f64,
-    /// Ankle height with the foot flat.
+    /// l9, ankle height with the foot flat (m).
     pub l9: f64,
-    /// Heel to ankle, √(l8² + l9²).
+    /// l11, heel to ankle, √(l8² + l9²) (m).
     pub l11: f64,
-    /// Ankle to 1st metatarsal joint.
+    /// l12, ankle to 1st metatarsal joint (m).
     pub l12: f64,
-    /// 1st metatarsal joint to toe tip.
+    /// l13, 1st metatarsal joint to toe tip (m).
     pub l13: f64,
+    /// m1, whole leg: m3 + m4 (kg).
     pub m1: f64,
+    /// m2, upper body: head, arms and trunk (kg).
     pub m2: f64,
+    /// m3, thigh (kg).
     pub m3: f64,
+    /// m4, shank and foot (kg).
     pub m4: f64,
+    /// r1, the whole leg's centre of mass from the ankle (m).
     pub r1: f64,
+    /// r2, the upper body's centre of mass from the hip (m).
     pub r2: f64,
+    /// r3, the thigh's centre of mass from the hip (m).
     pub r3: f64,
+    /// r4, the shank's centre of mass from the knee (m).
     pub r4: f64,
+    /// I1, the whole leg's moment of inertia about its centre of mass, m1 (γ1 l1)² (kg m²).
     pub i1: f64,
+    /// I2, the upper body's moment of inertia about its centre of mass (kg m²).
     pub i2: f64,
+    /// I3, the thigh's moment of inertia about its centre of mass (kg m²).
     pub i3: f64,
+    /// I4, the shank's moment of inertia about its centre of mass (kg m²).
     pub i4: f64,
     /// The kinematic figure's dimensions, in metres (the table's fractions × H).
     pub figure: FigureRow,
@@ -184,7 +215,7 @@ pub struct Body {
 impl Body {
     /// Scale `table` to height `height` (m) and mass `mass` (kg), checking both against the
     /// table's limits.
-    pub fn new(table: &BodyTable, height: f64, mass: f64) -> Result<Self> {
+    pub(crate) fn new(table: &BodyTable, height: f64, mass: f64) -> Result<Self> {
         let [hmin, hmax] = table.limits.height;
         let [mmin, mmax] = table.limits.mass;
         Error::check_range("height", height, hmin, hmax, "m")?;

@@ -5,7 +5,7 @@ use std::f64::consts::PI;
 
 /// Terms of every [`Chebyshev`] series (its interpolation nodes, and the degree + 1 of its
 /// polynomial).
-pub const TERMS: usize = 20;
+pub(crate) const TERMS: usize = 20;
 
 /// A function on [lo, hi] interpolated at the Chebyshev nodes: the series Σ′ c_j T_j(y),
 /// y = (2x − lo − hi)/(hi − lo) (the first term halved; Press et al., *Numerical Recipes*, §5.8:
@@ -17,7 +17,7 @@ pub const TERMS: usize = 20;
 /// coefficients c_j fall fast (a function smooth on the interval): the large coefficients of
 /// T_j's high powers multiply small c_j.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Chebyshev {
+pub(crate) struct Chebyshev {
     lo: f64,
     hi: f64,
     /// y = (x − mid) · scale: the interval's midpoint and 2 / (hi − lo), kept so that an
@@ -32,7 +32,7 @@ pub struct Chebyshev {
 /// Σ a_k y^k by Estrin's scheme: pairs a_{2i} + a_{2i+1} y, then pairs of those with y², y⁴,
 /// y⁸, y¹⁶ (twenty terms).
 #[inline(always)]
-pub fn estrin(a: &[f64; TERMS], y: f64) -> f64 {
+pub(crate) fn estrin(a: &[f64; TERMS], y: f64) -> f64 {
     const _: () = assert!(TERMS == 20);
     let y2 = y * y;
     let y4 = y2 * y2;
@@ -45,7 +45,7 @@ pub fn estrin(a: &[f64; TERMS], y: f64) -> f64 {
 
 impl Chebyshev {
     /// The zero function on [0, 1].
-    pub const ZERO: Chebyshev = Chebyshev {
+    pub(crate) const ZERO: Chebyshev = Chebyshev {
         lo: 0.0,
         hi: 1.0,
         mid: 0.5,
@@ -55,7 +55,7 @@ impl Chebyshev {
     };
 
     /// The series interpolating `f` at the [`TERMS`] Chebyshev nodes of [lo, hi].
-    pub fn fit(f: impl Fn(f64) -> f64, lo: f64, hi: f64) -> Self {
+    pub(crate) fn fit(f: impl Fn(f64) -> f64, lo: f64, hi: f64) -> Self {
         const N: usize = TERMS;
         let (mid, half) = (0.5 * (hi + lo), 0.5 * (hi - lo));
         // c_j = (2/N) Σ_k f(x_k) T_j(y_k), y_k = cos(π (k + ½)/N), T_j by its recurrence
@@ -98,19 +98,19 @@ impl Chebyshev {
 
     /// The interval's lower end.
     #[inline]
-    pub fn lo(&self) -> f64 {
+    pub(crate) fn lo(&self) -> f64 {
         self.lo
     }
 
     /// The interval's upper end.
     #[inline]
-    pub fn hi(&self) -> f64 {
+    pub(crate) fn hi(&self) -> f64 {
         self.hi
     }
 
     /// f(x) and f′(x) ([`estrin`]).
     #[inline]
-    pub fn eval(&self, x: f64) -> (f64, f64) {
+    pub(crate) fn eval(&self, x: f64) -> (f64, f64) {
         let y = (x - self.mid) * self.scale;
         (estrin(&self.a, y), estrin(&self.da, y) * self.scale)
     }

@@ -1,6 +1,6 @@
 //! Minimization of a smooth function of one variable on an interval: Brent's method (R. P.
 //! Brent, *Algorithms for Minimization without Derivatives*, 1973, ch. 5) from the least of
-//! uniform samples, and the candidates for every local minimum ([`minima`]).
+//! uniform samples, and the candidates for every local minimum (`minima`).
 //!
 //! Not argmin's `BrentOpt`: it starts from its own golden-section point (one more evaluation per
 //! search, where ours starts from the sample already evaluated), stops at a bracket of
@@ -92,7 +92,7 @@ fn brent(
 /// one bracket, from its least), the ends included. The least candidate in a sub-interval whose
 /// ends are samples is its minimum, for minima that the samples see as local minima
 /// ([`least_in`]). At a smooth minimum the value's error is f″ δ² / 2, δ = 1e-5 (b − a).
-pub fn minima(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> Vec<(f64, f64)> {
+pub(crate) fn minima(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> Vec<(f64, f64)> {
     const NOISE: f64 = 1e-12;
     let mut found = samples(&f, a, b - a, n);
     let value = |k: usize| found[k].1;
@@ -124,7 +124,7 @@ pub fn minima(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> Vec<(f64, f64
 }
 
 /// The least of `candidates` (x, value) with x in [lo, hi] (to 1e-9 of the interval): (value, x).
-pub fn least_in(candidates: &[(f64, f64)], lo: f64, hi: f64) -> (f64, f64) {
+pub(crate) fn least_in(candidates: &[(f64, f64)], lo: f64, hi: f64) -> (f64, f64) {
     let slack = 1e-9 * (hi - lo);
     candidates
         .iter()

@@ -1,13 +1,13 @@
 //! Bracketed one-dimensional root finding: the sign change of a function, or the point where a
 //! predicate changes, inside a bracket the search keeps (so it cannot diverge).
-//! - [`illinois`]: regula falsi with the Illinois modification, for continuous functions: the
+//! - `illinois`: regula falsi with the Illinois modification, for continuous functions: the
 //!   integrator's events, the actuators' power crossings, heel-off (the terminal stance's and
 //!   the virtual stance leg's) and the terminal stance's end pitch;
-//! - [`bisect`]: bisection, for predicates (the gait events, the foot's pitch limits), which give
+//! - `bisect`: bisection, for predicates (the gait events, the foot's pitch limits), which give
 //!   only a side and no value to interpolate;
-//! - [`bisect_steered`], [`bisect_with_guess`]: the same bisection with its decisions taken from
+//! - `bisect_steered`, `bisect_with_guess`: the same bisection with its decisions taken from
 //!   a closed-form guess away from it (the foot's pitch limits, the heel rocker's sole angle);
-//! - [`scan`]: sampling for the first bracket of a change that, once on, stays on (heel-off).
+//! - `scan`: sampling for the first bracket of a change that, once on, stays on (heel-off).
 
 /// Shrink the bracket [a, b] of a sign change of `g` (`ga`, `gb` its values at the ends, of
 /// opposite signs, or `gb` zero) until it is at most `tol` wide or `max_evaluations` are spent;
@@ -16,7 +16,7 @@
 /// regula falsi method for computing the root of an equation", BIT 11, 1971): the value at the
 /// end that stays twice is halved, so it converges superlinearly (order ≈ 1.44) where bisection
 /// gains one bit an evaluation.
-pub fn illinois(
+pub(crate) fn illinois(
     g: impl Fn(f64) -> f64,
     (mut a, mut ga): (f64, f64),
     (mut b, mut gb): (f64, f64),
@@ -65,7 +65,7 @@ pub fn illinois(
 /// spacing of the times); returns the last (good, bad). Each step is decided by `ok` at the
 /// midpoint. For the gait events' times (`analysis/events.rs`, to 1e-9 s) and the foot's pitch
 /// limits without a guess (`kinematics/foot.rs`, to 1e-12 rad).
-pub fn bisect(ok: impl Fn(f64) -> bool, good: f64, bad: f64, tol: f64) -> (f64, f64) {
+pub(crate) fn bisect(ok: impl Fn(f64) -> bool, good: f64, bad: f64, tol: f64) -> (f64, f64) {
     halve(ok, good, bad, tol, None)
 }
 
@@ -75,7 +75,7 @@ pub fn bisect(ok: impl Fn(f64) -> bool, good: f64, bad: f64, tol: f64) -> (f64, 
 /// few evaluations instead of ≈ 40; the ends are checked (`ok` at the last good point, not at the
 /// last bad one), and the last good point is returned when they pass. None for a NaN guess or
 /// failed ends. For the foot's pitch limits (`kinematics/foot.rs`).
-pub fn bisect_steered(
+pub(crate) fn bisect_steered(
     ok: impl Fn(f64) -> bool,
     good: f64,
     bad: f64,
@@ -93,7 +93,7 @@ pub fn bisect_steered(
 /// The last good point of [`bisect_steered`], or of [`bisect`] where the guess is off or NaN:
 /// the end of bisecting `ok` whatever the guess. For the foot's pitch limits and the heel
 /// rocker's sole angle (`kinematics/foot.rs`, `kinematics/stance_leg.rs`).
-pub fn bisect_with_guess(
+pub(crate) fn bisect_with_guess(
     ok: impl Fn(f64) -> bool,
     good: f64,
     bad: f64,
@@ -137,7 +137,7 @@ fn halve(
 
 /// What [`scan`] found: the last point that did not hit, with the value there (None at the
 /// start), and the first that did, with its value.
-pub type Scanned<T> = ((f64, Option<T>), (f64, T));
+pub(crate) type Scanned<T> = ((f64, Option<T>), (f64, T));
 
 /// The first of `points` (in order, after `from`) at which `hit` holds of `f`'s value, and the
 /// point before it (`from` for the first) with `f`'s value there (None at `from`, which is not
@@ -146,7 +146,7 @@ pub type Scanned<T> = ((f64, Option<T>), (f64, T));
 /// order and no further than the first hit (an error can count as a hit, to stop the scan).
 /// For heel-off: `StanceLeg::find_heel_off` (24 samples, then [`illinois`]) and the gait events
 /// (1 ms steps, then [`bisect`]).
-pub fn scan<T>(
+pub(crate) fn scan<T>(
     from: f64,
     points: impl IntoIterator<Item = f64>,
     f: impl Fn(f64) -> T,

@@ -2,7 +2,7 @@
 
 /// smoothstep(x) = 3x² − 2x³ on [0, 1], clamped: the cubic Hermite blend from 0 to 1 with zero
 /// slope at both ends.
-pub fn smoothstep(x: f64) -> f64 {
+pub(crate) fn smoothstep(x: f64) -> f64 {
     let x = x.clamp(0.0, 1.0);
     x * x * (3.0 - 2.0 * x)
 }

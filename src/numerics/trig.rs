@@ -31,7 +31,7 @@ const C6: f64 = -1.135_964_755_778_819_482_65e-11;
 
 /// (sin x, cos x).
 #[inline]
-pub fn sin_cos(x: f64) -> (f64, f64) {
+pub(crate) fn sin_cos(x: f64) -> (f64, f64) {
     // |x| < π/4 (the stance leg, the trunk, the thigh): the reduction's n is 0 and r is x
     // itself, so the kernels alone give the same bits, without the reduction's five dependent
     // operations in front of them (a right-hand side waits for its sines)
@@ -140,7 +140,7 @@ fn atan_positive(t: f64) -> f64 {
 /// infinite) takes the same path and gives libm's ±0 and ±π; only when |y / x| is not finite —
 /// x = ±0, y infinite, or a NaN — libm's `atan2` answers (its ±π/2 and NaN conventions).
 #[inline]
-pub fn atan2(y: f64, x: f64) -> f64 {
+pub(crate) fn atan2(y: f64, x: f64) -> f64 {
     let t = (y / x).abs();
     if !t.is_finite() {
         return y.atan2(x);
@@ -301,7 +301,7 @@ mod tests {
 /// sin x and cos x by their Taylor polynomials to x⁵ and x⁶, for small angles such as the
 /// pelvis's (|x| ≤ 0.2 rad: errors ≤ x⁷/5040 = 2.5e-9 and x⁸/40320 = 6e-11), at a fraction of
 /// the cost of [`sin_cos`].
-pub fn small_sin_cos(x: f64) -> (f64, f64) {
+pub(crate) fn small_sin_cos(x: f64) -> (f64, f64) {
     let x2 = x * x;
     (
         x * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0)),

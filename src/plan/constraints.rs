@@ -14,7 +14,9 @@ use crate::model::GRAVITY;
 /// stance ankle pivot (x = 0, y = l9); heights are absolute (ground at y = 0).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct StepConstraints {
+    /// The step's completed gait (eq. 1).
     pub gait: Gait,
+    /// The step's state-phase timings (eq. 2).
     pub timing: Timing,
     /// θ1*: stance leg angle at the end of the step (rad, hip ahead of the ankle +).
     pub theta1: f64,

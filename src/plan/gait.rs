@@ -8,27 +8,30 @@ use crate::model::attributes::Attributes;
 use crate::model::body::Body;
 
 /// Normalizing constant of eq. 1: metres of step per (step/min · m of body height).
-pub const NORMALIZING_CONSTANT: f64 = 0.004;
+pub(crate) const NORMALIZING_CONSTANT: f64 = 0.004;
 /// Relative tolerance of v = sl · sf / 60 when all three are given: the rounding of user input
 /// (1.4 m/s, 0.78 m, 108 steps/min agree to 0.3 %).
-pub const CONSISTENCY_TOLERANCE: f64 = 0.01;
+pub(crate) const CONSISTENCY_TOLERANCE: f64 = 0.01;
 
 /// What the user asked for: any of v (m/s), sl (m), sf (steps/min).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct GaitRequest {
+    /// Velocity v (m/s).
     pub velocity: Option<f64>,
+    /// Step length sl (m).
     pub step_length: Option<f64>,
+    /// Step frequency sf (steps/min).
     pub step_frequency: Option<f64>,
 }
 
 /// A complete, checked gait: v = sl · sf / 60.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Gait {
-    /// m/s
+    /// Velocity v (m/s).
     pub velocity: f64,
-    /// m
+    /// Step length sl (m).
     pub step_length: f64,
-    /// steps/min
+    /// Step frequency sf (steps/min).
     pub step_frequency: f64,
 }
 

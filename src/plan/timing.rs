@@ -6,18 +6,22 @@ use crate::error::{Error, Result};
 /// State-phase timings of one step (s), KLAW 1989 eq. 2.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Timing {
+    /// One step, heel strike to heel strike: t_step = 60 / sf.
     pub t_step: f64,
+    /// The gait cycle, two steps: t_cycle = 2 t_step.
     pub t_cycle: f64,
     /// Double support: t_ds = (−0.16 sf + 29.08) · t_cycle / 100.
     pub t_ds: f64,
+    /// Stance, heel strike to toe-off: t_stance = t_step + t_ds.
     pub t_stance: f64,
+    /// Swing, toe-off to heel strike: t_swing = t_step − t_ds.
     pub t_swing: f64,
 }
 
 impl Timing {
     /// Eq. 2 for a step frequency in steps/min. Fails when double support vanishes
     /// (sf ≥ 181.75: running).
-    pub fn new(step_frequency: f64) -> Result<Self> {
+    pub(crate) fn new(step_frequency: f64) -> Result<Self> {
         let t_step = 60.0 / step_frequency;
         let t_cycle = 2.0 * t_step;
         let t_ds = (-0.16 * step_frequency + 29.08) * t_cycle / 100.0;

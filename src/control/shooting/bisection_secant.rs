@@ -51,7 +51,7 @@ enum Kind {
 /// when a step no longer moves `x`, after `max_failures` consecutive failed trials or when the
 /// evaluation budget is spent. Each iteration evaluates the residual exactly once; `init` once.
 #[derive(Clone, Debug)]
-pub struct BisectionSecant {
+pub(crate) struct BisectionSecant {
     /// Absolute tolerance on `|r|`.
     tol: f64,
     /// Hard cap on residual evaluations, the one in `init` included.
@@ -127,30 +127,30 @@ impl BisectionSecant {
 
     /// Cold start from `x0`; `dx` (non-zero) is the scale of the unknown: the first trial after
     /// `x0` is `x0 + dx`.
-    pub fn cold(x0: f64, dx: f64, tol: f64, max_evaluations: usize) -> Self {
+    pub(crate) fn cold(x0: f64, dx: f64, tol: f64, max_evaluations: usize) -> Self {
         Self::new(x0, dx, None, tol, max_evaluations)
     }
 
     /// Warm start from `x0` with the slope `dr/dx` remembered from the previous solve. If the
     /// slope is zero or not finite, the first trial probes `x0 + 1e-4 max(1, |x0|)` instead.
-    pub fn warm(x0: f64, slope: f64, tol: f64, max_evaluations: usize) -> Self {
+    pub(crate) fn warm(x0: f64, slope: f64, tol: f64, max_evaluations: usize) -> Self {
         let dx = FALLBACK_REL_STEP * x0.abs().max(1.0);
         Self::new(x0, dx, Some(slope), tol, max_evaluations)
     }
 
     /// Residual evaluations so far.
-    pub fn evaluations(&self) -> usize {
+    pub(crate) fn evaluations(&self) -> usize {
         self.evaluations
     }
 
     /// The best sample `(x, r)` so far (smallest `|r|`).
-    pub fn best(&self) -> Option<(f64, f64)> {
+    pub(crate) fn best(&self) -> Option<(f64, f64)> {
         self.best.map(|p| (p.x, p.f))
     }
 
     /// The latest slope estimate `dr/dx`: the secant through the two best samples, else the
     /// remembered warm-start slope, else NaN.
-    pub fn slope(&self) -> f64 {
+    pub(crate) fn slope(&self) -> f64 {
         match (self.best, self.second) {
             (Some(a), Some(b)) if a.x != b.x => (b.f - a.f) / (b.x - a.x),
             _ => self.warm_slope.unwrap_or(f64::NAN),
@@ -158,7 +158,7 @@ impl BisectionSecant {
     }
 
     /// The message of the last `Err` returned by the residual, if any.
-    pub fn last_error(&self) -> Option<&str> {
+    pub(crate) fn last_error(&self) -> Option<&str> {
         self.last_error.as_deref()
     }
 

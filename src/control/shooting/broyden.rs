@@ -29,14 +29,14 @@ enum Phase {
 /// decrease, Armijo factor 1e-4), otherwise the step is halved, up to `max_halvings` times
 /// (2 when `J` is no longer a fresh difference Jacobian); when halving fails with a stale `J`,
 /// `J` is refreshed by differences once more. Every finite trial, accepted or not, updates `J`
-/// by Broyden's rank-1 formula in unknowns scaled by the Jacobian's column norms [ours],
+/// by Broyden's rank-1 formula in unknowns scaled by the Jacobian's column norms \[ours\],
 /// `J += (dr - J dx) (W dx)^T / (dx^T W dx)`, `W = diag(|J e_k|²)`, invariant under rescaling
 /// the unknowns. A failed trial (non-finite or `Err`) counts as a rejection (a failed difference
 /// trial is retried with the opposite, then halved step). Converged when `max |r_i| <= tol` at
 /// any trial; that point is returned. Each iteration evaluates the residual exactly once; `init`
 /// once.
 #[derive(Clone, Debug)]
-pub struct Broyden2 {
+pub(crate) struct Broyden2 {
     /// Absolute tolerance on `max |r_i|`.
     tol: f64,
     /// Hard cap on residual evaluations, the one in `init` included.
@@ -100,13 +100,18 @@ impl Broyden2 {
     }
 
     /// Cold start from `x0` with a forward-difference Jacobian (steps `h`, non-zero).
-    pub fn cold(x0: Vector2<f64>, h: Vector2<f64>, tol: f64, max_evaluations: usize) -> Self {
+    pub(crate) fn cold(
+        x0: Vector2<f64>,
+        h: Vector2<f64>,
+        tol: f64,
+        max_evaluations: usize,
+    ) -> Self {
         Self::new(x0, h, None, tol, max_evaluations)
     }
 
     /// Warm start from `x0` with the previous solve's Jacobian. A singular or non-finite
     /// Jacobian is replaced by differences with steps `1e-4 max(1, |x0_i|)`.
-    pub fn warm(
+    pub(crate) fn warm(
         x0: Vector2<f64>,
         jacobian: Matrix2<f64>,
         tol: f64,
@@ -118,22 +123,22 @@ impl Broyden2 {
     }
 
     /// Residual evaluations so far.
-    pub fn evaluations(&self) -> usize {
+    pub(crate) fn evaluations(&self) -> usize {
         self.evaluations
     }
 
     /// The best trial `(x, r)` so far (smallest max-norm).
-    pub fn best(&self) -> Option<(Vector2<f64>, Vector2<f64>)> {
+    pub(crate) fn best(&self) -> Option<(Vector2<f64>, Vector2<f64>)> {
         self.best
     }
 
     /// The current Jacobian estimate.
-    pub fn jacobian(&self) -> Option<Matrix2<f64>> {
+    pub(crate) fn jacobian(&self) -> Option<Matrix2<f64>> {
         self.jacobian
     }
 
     /// The message of the last `Err` returned by the residual, if any.
-    pub fn last_error(&self) -> Option<&str> {
+    pub(crate) fn last_error(&self) -> Option<&str> {
         self.last_error.as_deref()
     }
 

@@ -16,11 +16,11 @@
 //! A non-finite residual, or an `Err` from the residual, is a failed trial: the solvers step back
 //! toward the last good point and never panic.
 //!
-//! The two solvers are [`argmin`] solvers ([`BisectionSecant`], [`Broyden2`]); [`solve1`] and
-//! [`solve2`] drive them directly (without the `Executor`) for the engine and return the best
+//! The two solvers are [`argmin`] solvers (`BisectionSecant`, `Broyden2`); `solve1` and
+//! `solve2` drive them directly (without the `Executor`) for the engine and return the best
 //! point, a [`SolveReport`] and a memory for the next step's warm start:
-//! - `bisection_secant`: [`BisectionSecant`], the paper's 1-D scheme;
-//! - `broyden`: [`Broyden2`], the 2-D secant method;
+//! - `bisection_secant`: `BisectionSecant`, the paper's 1-D scheme;
+//! - `broyden`: `Broyden2`, the 2-D secant method;
 //! - `warm_start`: what a solve remembers ([`Memory1`], [`Memory2`]) and how the next one starts
 //!   from it ([`Start1`], [`Start2`]), extrapolated along the step sequence.
 
@@ -32,15 +32,15 @@ mod bisection_secant;
 mod broyden;
 mod warm_start;
 
-pub use bisection_secant::BisectionSecant;
-pub use broyden::Broyden2;
+pub(crate) use bisection_secant::BisectionSecant;
+pub(crate) use broyden::Broyden2;
 pub use warm_start::{Memory1, Memory2, Start1, Start2, step_ratio};
 
 use warm_start::extrapolate;
 
 /// Invalid solver parameters, or a start point where nothing can be done.
 #[derive(Debug, Error, Clone, PartialEq)]
-pub enum ShootingError {
+pub(crate) enum ShootingError {
     /// The tolerance must be a non-negative number.
     #[error("shooting: tolerance must be non-negative, got {0}")]
     BadTolerance(f64),
@@ -54,11 +54,11 @@ pub enum ShootingError {
 
 /// Options of [`solve1`] and [`solve2`].
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Options {
+pub(crate) struct Options {
     /// Absolute tolerance on the residual: converged when `max |r_i| <= tol`.
-    pub tol: f64,
+    pub(crate) tol: f64,
     /// Hard cap on residual evaluations (trial integrations, finite-difference trials included).
-    pub max_iterations: usize,
+    pub(crate) max_iterations: usize,
 }
 
 impl Default for Options {
@@ -126,7 +126,7 @@ where
 /// evaluations, at most `opts.max_iterations`) and the memory for a warm start. Not converging
 /// is not an error (`converged == false`). `Err` for invalid options or start, or when the
 /// residual returned `Err` at the start point (nothing to step back to).
-pub fn solve1<R: Fn(f64) -> Result<f64, String>>(
+pub(crate) fn solve1<R: Fn(f64) -> Result<f64, String>>(
     residual: R,
     start: Start1,
     opts: &Options,
@@ -195,7 +195,7 @@ pub fn solve1<R: Fn(f64) -> Result<f64, String>>(
 /// evaluations, difference trials included, at most `opts.max_iterations`) and the memory for a
 /// warm start. Not converging is not an error (`converged == false`). `Err` for invalid
 /// options or start, or when the residual returned `Err` at the start point.
-pub fn solve2<R: Fn(Vector2<f64>) -> Result<Vector2<f64>, String>>(
+pub(crate) fn solve2<R: Fn(Vector2<f64>) -> Result<Vector2<f64>, String>>(
     residual: R,
     start: Start2,
     opts: &Options,

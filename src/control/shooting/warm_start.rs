@@ -1,4 +1,4 @@
-//! Warm starts of the shooting solves (KLAW 1989 §4.1 [ours]): what a solve remembers for the
+//! Warm starts of the shooting solves (KLAW 1989 §4.1 \[ours\]): what a solve remembers for the
 //! next step's solve of the same phase, how a solve starts, and the extrapolation of the
 //! remembered solutions along the step sequence.
 use nalgebra::{Matrix2, Vector2};
@@ -10,26 +10,26 @@ pub(super) const FALLBACK_REL_STEP: f64 = 1e-4;
 #[derive(Clone, Copy, Debug)]
 pub struct Memory1 {
     /// The returned point.
-    pub x: f64,
+    pub(crate) x: f64,
     /// The last secant slope estimate `dr/dx` (NaN if none was formed).
     pub slope: f64,
     /// The points returned by the two solves before this one (NaN if none).
-    pub earlier: [f64; 2],
+    pub(crate) earlier: [f64; 2],
     /// The step ratio λ to extrapolate with (`extrapolate`; NaN: from `earlier`).
-    pub ratio: f64,
+    pub(crate) ratio: f64,
 }
 
 /// What a 2-D solve remembers: the solution and the last Broyden Jacobian.
 #[derive(Clone, Copy, Debug)]
 pub struct Memory2 {
     /// The returned point.
-    pub x: Vector2<f64>,
+    pub(crate) x: Vector2<f64>,
     /// The last Jacobian estimate (NaN entries if none was formed).
     pub jacobian: Matrix2<f64>,
     /// The points returned by the two solves before this one (NaN if none).
-    pub earlier: [Vector2<f64>; 2],
+    pub(crate) earlier: [Vector2<f64>; 2],
     /// The step ratio λ to extrapolate with (`extrapolate`; NaN: from `earlier`).
-    pub ratio: f64,
+    pub(crate) ratio: f64,
 }
 
 /// The next solution predicted from the last three of a sequence converging geometrically:
@@ -76,7 +76,12 @@ pub fn step_ratio<const D: usize>(x: [f64; D], earlier: [[f64; D]; 2]) -> f64 {
 #[derive(Clone, Copy, Debug)]
 pub enum Start1 {
     /// From `x0`, with `dx` the scale of the unknown (the first trial is `x0 + dx`).
-    Cold { x0: f64, dx: f64 },
+    Cold {
+        /// The first guess.
+        x0: f64,
+        /// The scale of the unknown: the second trial's step.
+        dx: f64,
+    },
     /// From the previous solve's memory: a Newton-like step with the remembered slope.
     Warm(Memory1),
 }
@@ -85,7 +90,12 @@ pub enum Start1 {
 #[derive(Clone, Copy, Debug)]
 pub enum Start2 {
     /// From `x0` with a forward-difference Jacobian, step `h[i]` for unknown `i`.
-    Cold { x0: Vector2<f64>, h: Vector2<f64> },
+    Cold {
+        /// The first guess.
+        x0: Vector2<f64>,
+        /// The finite-difference steps, one per unknown.
+        h: Vector2<f64>,
+    },
     /// From the previous solve's memory: its point and Jacobian, no finite-difference trials.
     Warm(Memory2),
 }

@@ -21,15 +21,15 @@ pub const THETA1_ABORT: f64 = PI / 3.0;
 /// the subphase.
 #[derive(Clone, Copy, Debug)]
 pub struct StanceForces<'a> {
-    pub setup: &'a StanceSetup,
+    pub(crate) setup: &'a StanceSetup,
     /// Leg torque magnitude τ1 (N m), on for t < 0.4 t_step.
-    pub tau1: f64,
+    pub(crate) tau1: f64,
     /// Leg extension p (m) of the position actuator, blended in over the second half-step.
-    pub p: f64,
-    pub locked: bool,
+    pub(crate) p: f64,
+    pub(crate) locked: bool,
     /// In an integration segment: whether it runs after mid-stance (event 4 has fired), which
     /// picks the hip reference's side; `None`: by the sign of θ1, and no mid-stance event.
-    pub past_mid: Option<bool>,
+    pub(crate) past_mid: Option<bool>,
     /// The leg torque on or off whatever t ([`Self::with_torque`]); `None`: on for
     /// t < 0.4 t_step.
     torque: Option<bool>,
@@ -41,6 +41,9 @@ pub struct StanceForces<'a> {
 }
 
 impl<'a> StanceForces<'a> {
+    /// The forces of a trial with magnitudes τ1 (N m) and p (m), on the telescopic leg or, when
+    /// `locked`, the locked one (spec §4 subphases); the leg torque by its switch-off time, the
+    /// hip reference's side by the sign of θ1, no clamp event.
     pub fn new(setup: &'a StanceSetup, tau1: f64, p: f64, locked: bool) -> Self {
         StanceForces {
             setup,
@@ -58,7 +61,7 @@ impl<'a> StanceForces<'a> {
     /// on one side of the switch at 0.4 t_step, and the stages at its end, t = 0.4 t_step, must
     /// see the segment's torque (its limit from inside), not the value past the switch (with
     /// which the step fails its error test, shrinks and keeps an error).
-    pub fn with_torque(mut self, on: bool) -> Self {
+    pub(crate) fn with_torque(mut self, on: bool) -> Self {
         self.torque = Some(on);
         self
     }
@@ -69,7 +72,7 @@ impl<'a> StanceForces<'a> {
     /// integrator step straddles the clamp's kink (after the heel strike the unloaded leg's
     /// servo pulls, and F_w is 0 for the first ≈ 60 ms). The step in which the event fires
     /// continues that side's force smoothly past the crossing, where the event is located.
-    pub fn with_loaded(mut self, loaded: bool) -> Self {
+    pub(crate) fn with_loaded(mut self, loaded: bool) -> Self {
         self.loaded = Some(loaded);
         self
     }
@@ -98,7 +101,7 @@ impl<'a> StanceForces<'a> {
     }
 
     /// Generalized forces Q = (F_w, F_θ1 − F_θ2, F_θ2) at (t, y).
-    pub fn generalized(&self, t: f64, y: &StanceState) -> Vector3<f64> {
+    pub(crate) fn generalized(&self, t: f64, y: &StanceState) -> Vector3<f64> {
         let (s1, c1) = sin_cos(y[1]);
         self.generalized_sc(t, y, s1, c1)
     }
@@ -125,7 +128,7 @@ impl<'a> StanceForces<'a> {
     }
 
     /// q̈ at (t, y).
-    pub fn accelerations(&self, t: f64, y: &StanceState) -> Vector3<f64> {
+    pub(crate) fn accelerations(&self, t: f64, y: &StanceState) -> Vector3<f64> {
         let q = Vector3::new(y[0], y[1], y[2]);
         let qd = Vector3::new(y[3], y[4], y[5]);
         let (s1, c1) = sin_cos(y[1]);
@@ -141,7 +144,7 @@ impl<'a> StanceForces<'a> {
 }
 
 /// Events: 0 lock / release, 1 |θ1| too large, 2 leg collapsed, 3 the leg force's clamp engages
-/// or lets go ([`StanceForces::with_loaded`]), 4 mid-stance (θ1 rising through 0, where the hip
+/// or lets go (`StanceForces::with_loaded`), 4 mid-stance (θ1 rising through 0, where the hip
 /// reference changes from the bounce to the virtual leg and its curvature jumps: the
 /// integration and the hip table break there).
 impl Phase<6, 5> for StanceForces<'_> {

@@ -84,7 +84,7 @@ impl HipPath {
 
     /// [`Self::new`] with the offset's acceleration where `offset_acceleration(t)` gives it (in
     /// closed form); elsewhere the offset is differenced as in [`Self::new`].
-    pub fn with_offset_acceleration(
+    pub(crate) fn with_offset_acceleration(
         run: &StanceRun,
         setup: &StanceSetup,
         t0: f64,

@@ -5,7 +5,7 @@
 //!
 //! - `setup`: what one step's stance keeps between shooting trials ([`StanceSetup`]);
 //! - `reference`: the hip height reference, the spec §4 bounce up to mid-stance and the
-//!   virtual leg's from there (spec §7, [`TerminalStance`]);
+//!   virtual leg's from there (spec §7, `TerminalStance`);
 //! - `forces`: the forces, the right-hand side and the events ([`StanceForces`]);
 //! - `run`: one trial integration and its dense record ([`StanceRun`]);
 //! - `hip_path`: the hip's acceleration tabulated for the swing ([`HipPath`]).
@@ -19,7 +19,7 @@ mod setup;
 
 pub use forces::{StanceForces, THETA1_ABORT, TORQUE_OFF};
 pub use hip_path::{HIP_PATH_STEP, HipPath, OFFSET_DIFFERENCE_STEP};
-pub use reference::{END_MARGIN, TerminalStance, hip_reference};
+pub(crate) use reference::TerminalStance;
 pub use run::StanceRun;
 pub use setup::StanceSetup;
 

@@ -9,13 +9,14 @@ use crate::numerics::trig::{sin_cos, small_sin_cos};
 
 use super::StanceSetup;
 
-/// The hip height reference and its derivative with respect to θ1 [ours]:
+/// The hip height reference and its derivative with respect to θ1 \[ours\]:
 /// - up to mid-stance (θ1 < 0), spec §4: y_ref = ȳ(u) + e cos²(πu/2), u = sin θ1 / sin θ1^−
 ///   clipped to [−1, 1], ȳ blending the two heel-strike heights with a half-sine (ȳ = y_hs in a
 ///   steady gait): the bounce e = ε·E gives the loading response;
 /// - from mid-stance (θ1 ≥ 0), spec §7 "replace y_ref": the pelvis centre where the virtual leg
 ///   puts it with its knee held at the mid-stance value, l9 + W(θ1) cos θ1 ([`TerminalStance`]).
-pub fn hip_reference(s: &StanceSetup, theta1: f64) -> (f64, f64) {
+#[cfg(test)]
+pub(crate) fn hip_reference(s: &StanceSetup, theta1: f64) -> (f64, f64) {
     let (s1, c1) = sin_cos(theta1);
     hip_reference_sc(s, s1, c1, 1.0 / s.theta1_start.sin(), theta1 >= 0.0)
 }
@@ -53,7 +54,7 @@ pub(super) fn hip_reference_sc(
 }
 
 /// The virtual stance leg from mid-stance to heel strike (spec §7), as the telescopic leg's
-/// length W(θ1) from the pivot P (the flat foot's ankle) to the pelvis centre C [ours]. The knee
+/// length W(θ1) from the pivot P (the flat foot's ankle) to the pelvis centre C \[ours\]. The knee
 /// stays at its mid-stance flexion κ0, so the stance hip joint J is the leg's mid-stance reach
 /// a0 from the ankle A in space, and √(a0² − dz²) in the leg's plane (dz: the lateral offset):
 /// - foot flat (A = P) while the ankle's dorsiflexion, the lean of the shank (the ankle–J line's
@@ -74,32 +75,32 @@ pub(super) fn hip_reference_sc(
 /// Heel-off comes no later than at 0.7 sin θ1*, since the heel must rise before heel strike
 /// (w* > l1). A reference: `kinematics::stance_leg` is the exact figure.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TerminalStance {
+pub(crate) struct TerminalStance {
     /// a0: hip joint to ankle with the knee at κ0 (m).
-    pub reach: f64,
+    pub(crate) reach: f64,
     /// M relative to the pivot (m).
-    pub meta: [f64; 2],
+    pub(crate) meta: [f64; 2],
     /// Foot pitch at heel strike p_hs (rad), and c of the pitch's shape
     /// s⁴ (1 + c (s − 1)), c ∈ [−4, 1] (monotone, ≥ 0; end rate 4 + c).
-    pub pitch_end: f64,
-    pub end_rate: f64,
+    pub(crate) pitch_end: f64,
+    pub(crate) end_rate: f64,
     /// sin θ_ho, sin θ1*.
-    pub sin_heel_off: f64,
-    pub sin_end: f64,
+    pub(crate) sin_heel_off: f64,
+    pub(crate) sin_end: f64,
     /// The determinants of gait (with the step's list), which move the hip joint.
-    pub pelvis: Determinants,
+    pub(crate) pelvis: Determinants,
     /// W as a function of sin θ1 in Chebyshev series, on [0, sin θ_ho] (foot flat) and from
     /// there to where the pitch is held ([`PAST_END`]): what [`Self::length`] evaluates.
     table: [Chebyshev; 2],
 }
 
 /// m of the margin m (1 − x)² above y_hs that the reference keeps between heel-off (x = 0) and
-/// heel strike (x = 1) (m) [ours]: with less the tracking hip dipped under y_hs just before heel
+/// heel strike (x = 1) (m) \[ours\]: with less the tracking hip dipped under y_hs just before heel
 /// strike in slow walks of tall bodies.
-pub const END_MARGIN: f64 = 1e-2;
+pub(crate) const END_MARGIN: f64 = 1e-2;
 
 /// How far past heel strike (in s and u, where heel strike is 1) the pitch and the pelvis's
-/// offsets continue their formulas before they are held [ours]: held at heel strike itself, the
+/// offsets continue their formulas before they are held \[ours\]: held at heel strike itself, the
 /// reference's slope jumps where every converged trial ends, and the integrator's last steps
 /// straddling that kink shrink geometrically. Not far: at 2 m/s the leg no longer reaches the
 /// hip at 1.5.
@@ -113,7 +114,7 @@ impl TerminalStance {
     /// `y_mid`: the pelvis centre's reference height at mid-stance; `det`: the determinants
     /// (with the step's list); `end`: θ1* and w*; `(l3, l4, l9, h12)`: thigh, shank, ankle
     /// height and ankle to M (foot flat); `theta5_max`: the heel-off dorsiflexion.
-    pub fn new(
+    pub(crate) fn new(
         y_mid: f64,
         det: &Determinants,
         (theta1_end, w_end): (f64, f64),
@@ -267,7 +268,7 @@ impl TerminalStance {
     /// for two Estrin sums, a fraction of the formula's cost (the stance right-hand side
     /// evaluates it at every stage). Outside the table (θ1 < 0, or the pitch held), the formula
     /// itself.
-    pub fn length(&self, s1: f64, c1: f64) -> (f64, f64) {
+    pub(crate) fn length(&self, s1: f64, c1: f64) -> (f64, f64) {
         let [flat, heel_off] = &self.table;
         let piece = if s1 < flat.lo() || s1 > heel_off.hi() {
             return self.exact_length(s1, c1);
@@ -281,7 +282,7 @@ impl TerminalStance {
     }
 
     /// W(θ1) and dW/dθ1 from sin θ1, cos θ1 (θ1 ≥ 0), by the formula above.
-    pub fn exact_length(&self, s1: f64, c1: f64) -> (f64, f64) {
+    pub(crate) fn exact_length(&self, s1: f64, c1: f64) -> (f64, f64) {
         let span = self.sin_end - self.sin_heel_off;
         let s = ((s1 - self.sin_heel_off) / span).min(PAST_END);
         let c = self.end_rate;

@@ -15,7 +15,9 @@ const CLAMP_EVENTS: usize = 8;
 /// The dense record of one stance trial.
 #[derive(Clone, Debug)]
 pub struct StanceRun {
+    /// Leg torque magnitude τ1 of the trial (N m).
     pub tau1: f64,
+    /// Leg extension p of the position actuator (m).
     pub p: f64,
     /// Integration segments with their subphase (`true` = locked leg).
     pub segments: Vec<(Segment<6>, bool)>,
@@ -59,7 +61,7 @@ impl StanceRun {
     /// same start time, or shifted when the segment starts at an event), when the subphases
     /// agree. The dense output is left out ([`ode::integrate_trial`]): [`Self::densify`] the
     /// trial that is kept.
-    pub fn simulate_on(
+    pub(crate) fn simulate_on(
         setup: &StanceSetup,
         y0: StanceState,
         tau1: f64,
@@ -136,7 +138,7 @@ impl StanceRun {
 
     /// Complete the dense output of a [`Self::simulate_on`] trial ([`ode::Segment::densify`]);
     /// returns the right-hand-side evaluations.
-    pub fn densify(&mut self, setup: &StanceSetup) -> u32 {
+    pub(crate) fn densify(&mut self, setup: &StanceSetup) -> u32 {
         let (tau1, p, t_off) = (self.tau1, self.p, TORQUE_OFF * setup.t_step);
         self.segments
             .iter_mut()
@@ -147,13 +149,8 @@ impl StanceRun {
             .sum()
     }
 
-    /// End time of the record (t_step unless aborted).
-    pub fn t_end(&self) -> f64 {
-        self.segments.last().map_or(0.0, |(s, _)| s.t1)
-    }
-
     /// The state and subphase at time t.
-    pub fn state(&self, t: f64) -> (StanceState, bool) {
+    pub(crate) fn state(&self, t: f64) -> (StanceState, bool) {
         let i = self
             .segments
             .partition_point(|(s, _)| s.t1 < t)
@@ -164,14 +161,17 @@ impl StanceRun {
 
     /// Hip position at t (relative to the stance ankle's x): [`Self::hip`]`[0]` without the
     /// dynamics.
-    pub fn hip_position(&self, setup: &StanceSetup, t: f64) -> [f64; 2] {
+    pub(crate) fn hip_position(&self, setup: &StanceSetup, t: f64) -> [f64; 2] {
         let (y, _) = self.state(t);
         setup.model.hip(&Vector3::new(y[0], y[1], y[2]))
     }
 
     /// The hip acceleration as a function of t: [`Self::hip`]`[2]` with the step's constants
     /// (the hip reference's sin θ1^±) computed once and one `sin_cos` of θ1 per call.
-    pub fn hip_acceleration<'a>(&'a self, setup: &'a StanceSetup) -> impl Fn(f64) -> [f64; 2] + 'a {
+    pub(crate) fn hip_acceleration<'a>(
+        &'a self,
+        setup: &'a StanceSetup,
+    ) -> impl Fn(f64) -> [f64; 2] + 'a {
         let forces =
             [false, true].map(|locked| StanceForces::new(setup, self.tau1, self.p, locked));
         move |t| {

@@ -6,27 +6,30 @@ use super::TerminalStance;
 /// Everything about one step's stance that does not change between shooting trials.
 #[derive(Clone, Copy, Debug)]
 pub struct StanceSetup {
+    /// The stance model of the body.
     pub model: StanceModel,
     /// Leg length l1 (m).
-    pub l1: f64,
+    pub(crate) l1: f64,
     /// Leg axis spring and damper (N/m, N s/m).
-    pub k_w: f64,
-    pub d_w: f64,
+    pub(crate) k_w: f64,
+    pub(crate) d_w: f64,
     /// Balance spring and damper (N m/rad, N m s/rad) and the forward-lean reference (rad).
-    pub k_2: f64,
-    pub d_2: f64,
-    pub theta2_ref: f64,
+    pub(crate) k_2: f64,
+    pub(crate) d_2: f64,
+    pub(crate) theta2_ref: f64,
+    /// The step's duration t_step (s).
     pub t_step: f64,
     /// |θ1| at the start of the step (the previous step's θ1*) and θ1* at its end.
-    pub theta1_start: f64,
-    pub theta1_end: f64,
+    pub(crate) theta1_start: f64,
+    pub(crate) theta1_end: f64,
     /// w* at the end of the step.
-    pub w_end: f64,
-    /// Hip heights at the two heel strikes (m).
+    pub(crate) w_end: f64,
+    /// Hip height at the step's heel strike (m).
     pub y_start: f64,
+    /// Hip height at the next heel strike, y_hs of the step's constraints (m).
     pub y_end: f64,
     /// Bounce e of the hip reference (m).
-    pub bounce: f64,
+    pub(crate) bounce: f64,
     /// The virtual leg's reference from mid-stance on.
-    pub terminal: TerminalStance,
+    pub(crate) terminal: TerminalStance,
 }

@@ -160,14 +160,18 @@ fn dop853_dense<P: Phase<N, K>, const N: usize, const K: usize>(
 
 impl<const N: usize> Segment<N> {
     /// Whether [`Self::state`] is available everywhere (else [`Self::densify`] first).
-    pub fn is_dense(&self) -> bool {
+    #[cfg(test)]
+    pub(crate) fn is_dense(&self) -> bool {
         self.pending.is_empty()
     }
 
     /// Complete the dense output that [`super::integrate_trial`] left out: three evaluations
     /// per step of the right-hand side `phase_at(t)` gives for the step starting at t (the phase
     /// of the integration that made it). Returns the evaluations.
-    pub fn densify<P: Phase<N, K>, const K: usize>(&mut self, phase_at: impl Fn(f64) -> P) -> u32 {
+    pub(crate) fn densify<P: Phase<N, K>, const K: usize>(
+        &mut self,
+        phase_at: impl Fn(f64) -> P,
+    ) -> u32 {
         let mut evaluations = 0;
         for (step, k) in self.steps.iter_mut().zip(&self.pending) {
             if !step.ready {
@@ -181,7 +185,7 @@ impl<const N: usize> Segment<N> {
 
     /// The accepted steps (start, end), in order, within [t0, t1]: on each, the dense output is
     /// one polynomial.
-    pub fn steps(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
+    pub(crate) fn steps(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
         self.steps
             .iter()
             .map(|s| (s.t.max(self.t0), (s.t + s.h).min(self.t1)))

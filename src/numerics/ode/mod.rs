@@ -1,6 +1,6 @@
 //! Integration of one (sub)phase by an explicit Runge–Kutta pair with dense output ([`Method`]):
 //! Hairer's DOP853, the Dormand–Prince 8(5,3) pair with its 7th-order dense output (Hairer,
-//! Nørsett & Wanner, *Solving ODEs I*, II.10), for every phase of the walk ([`METHOD`]), or the
+//! Nørsett & Wanner, *Solving ODEs I*, II.10), for every phase of the walk (`METHOD`), or the
 //! Dormand–Prince 5(4) pair with its 4th-order dense output (II.5–II.6: DOPRI5, the same method
 //! and step control as `ode_solvers::Dopri5`). Written for fixed-size states: the stages live on
 //! the stack, the right-hand side is called through a generic (inlined), and the only allocation
@@ -29,7 +29,7 @@ use dense::{DenseStep, Stages};
 pub const TOLERANCE: f64 = 5e-8;
 
 /// How precisely event times are located (s).
-pub const EVENT_TIME_TOLERANCE: f64 = 1e-13;
+pub(crate) const EVENT_TIME_TOLERANCE: f64 = 1e-13;
 
 /// A right-hand side with up to `K` event functions. Event `k` fires when `events(t, y)[k]`
 /// goes from positive to ≤ 0.
@@ -54,9 +54,13 @@ impl<P: Phase<N, K>, const N: usize, const K: usize> Phase<N, K> for &P {
 /// The dense solution of one integration, valid on [t0, t1] (its dense output: `dense.rs`).
 #[derive(Clone, Debug)]
 pub struct Segment<const N: usize> {
+    /// Start time (s).
     pub t0: f64,
+    /// End time (s): the end asked for, or the event's time.
     pub t1: f64,
+    /// State at t0.
     pub y0: SVector<f64, N>,
+    /// State at t1.
     pub y1: SVector<f64, N>,
     steps: Vec<DenseStep<N>>,
     /// Stages of the steps without their dense output, one per step (empty when every step
@@ -67,6 +71,7 @@ pub struct Segment<const N: usize> {
 /// How an integration ended.
 #[derive(Clone, Debug)]
 pub struct Outcome<const N: usize> {
+    /// The dense solution from t0 to where the integration stopped.
     pub segment: Segment<N>,
     /// The event that stopped it, if any, at `segment.t1`.
     pub event: Option<usize>,
@@ -79,7 +84,7 @@ pub struct Outcome<const N: usize> {
 impl<const N: usize> Outcome<N> {
     /// This integration followed by `next`, which starts where this one ends: one segment,
     /// the evaluations added, `next`'s event.
-    pub fn then(mut self, next: Outcome<N>) -> Outcome<N> {
+    pub(crate) fn then(mut self, next: Outcome<N>) -> Outcome<N> {
         debug_assert!(self.segment.t1 == next.segment.t0);
         let (a, b) = (&mut self.segment, &next.segment);
         if !a.pending.is_empty() || !b.pending.is_empty() {
@@ -103,17 +108,8 @@ impl<const N: usize> Outcome<N> {
     }
 }
 
-/// Integrate `phase` from (t0, y0) to t1, stopping at the first event.
-pub fn integrate<P: Phase<N, K>, const N: usize, const K: usize>(
-    phase: &P,
-    t0: f64,
-    y0: SVector<f64, N>,
-    t1: f64,
-) -> Result<Outcome<N>, String> {
-    integrate_with(phase, t0, y0, t1, TOLERANCE)
-}
-
-/// [`integrate`] with relative and absolute tolerance `tol`.
+/// Integrate `phase` from (t0, y0) to t1 with relative and absolute tolerance `tol`, stopping at
+/// the first event.
 pub fn integrate_with<P: Phase<N, K>, const N: usize, const K: usize>(
     phase: &P,
     t0: f64,
@@ -164,7 +160,7 @@ pub fn integrate_on<P: Phase<N, K>, const N: usize, const K: usize>(
 /// [`integrate_on`] for a shooting trial: DOP853's dense output is left out (the three extra
 /// evaluations of each step) except on an event's step, where the event is located; the trial
 /// the shooting keeps gets it by [`Segment::densify`], the others never need it.
-pub fn integrate_trial<P: Phase<N, K>, const N: usize, const K: usize>(
+pub(crate) fn integrate_trial<P: Phase<N, K>, const N: usize, const K: usize>(
     phase: &P,
     t0: f64,
     y0: SVector<f64, N>,
@@ -187,7 +183,7 @@ pub enum Method {
 
 /// The method of [`integrate_on`]: DOP853, whose longer steps take fewer evaluations than
 /// Dopri5's in every phase of the walk (docs/engine.md, "Speed").
-pub const METHOD: Method = Method::Dop853;
+pub(crate) const METHOD: Method = Method::Dop853;
 
 /// [`integrate_on`] by `method`.
 pub fn integrate_by<P: Phase<N, K>, const N: usize, const K: usize>(
@@ -209,7 +205,7 @@ mod problems {
     use nalgebra::SVector;
 
     /// Harmonic oscillator x'' = −x from (1, 0): x = cos t, the first zero at π/2.
-    pub struct Oscillator;
+    pub(crate) struct Oscillator;
     impl Phase<2, 1> for Oscillator {
         fn rhs(&self, _t: f64, y: &SVector<f64, 2>) -> SVector<f64, 2> {
             SVector::<f64, 2>::new(y[1], -y[0])
@@ -220,7 +216,7 @@ mod problems {
     }
 
     /// A damped oscillator x'' = −ω² x − 0.1 x' with parameter ω.
-    pub struct Damped(pub f64);
+    pub(crate) struct Damped(pub f64);
     impl Phase<2, 0> for Damped {
         fn rhs(&self, _t: f64, y: &SVector<f64, 2>) -> SVector<f64, 2> {
             SVector::<f64, 2>::new(y[1], -self.0 * self.0 * y[0] - 0.1 * y[1])
@@ -229,7 +225,7 @@ mod problems {
 
     /// y1' = y1 cos t, y2' = −2t y2 from (1, 1): y1 = exp(sin t), y2 = exp(−t²), a
     /// non-autonomous system (every stage's time matters).
-    pub struct Exponentials;
+    pub(crate) struct Exponentials;
     impl Phase<2, 0> for Exponentials {
         fn rhs(&self, t: f64, y: &SVector<f64, 2>) -> SVector<f64, 2> {
             SVector::<f64, 2>::new(y[0] * t.cos(), -2.0 * t * y[1])
@@ -237,7 +233,7 @@ mod problems {
     }
 
     /// [`Exponentials`]' solution.
-    pub fn exact(t: f64) -> SVector<f64, 2> {
+    pub(crate) fn exact(t: f64) -> SVector<f64, 2> {
         SVector::<f64, 2>::new(t.sin().exp(), (-t * t).exp())
     }
 }
