@@ -23,10 +23,10 @@ use crate::figure::skeleton::Side;
 
 /// Frame rate at which the walk is sampled before the cycles are averaged (frames/s of walk
 /// time): 200 frames/s puts ≥ 2 frames on every 1 % of a cycle slower than 0.5 s.
-pub const CYCLE_FPS: f64 = 200.0;
+pub(crate) const CYCLE_FPS: f64 = 200.0;
 /// The first `CYCLE_SKIP` cycles of each leg are left out: they start from the engine's initial
 /// conditions.
-pub const CYCLE_SKIP: usize = 1;
+pub(crate) const CYCLE_SKIP: usize = 1;
 
 /// Cycle-normalized curves: 101 rows (0…100 %) of the column values.
 #[derive(Clone, Debug, PartialEq)]
@@ -191,7 +191,7 @@ impl Panel {
     ];
 
     /// The unit of the panel's values and norms: `deg` or `cm`.
-    pub fn unit(self) -> &'static str {
+    pub(crate) fn unit(self) -> &'static str {
         match self {
             Panel::PelvisHeight => "cm",
             _ => "deg",
@@ -331,7 +331,7 @@ impl GaitCycle {
     }
 
     /// The curves of one panel.
-    pub fn panel_curves(&self, panel: Panel) -> impl Iterator<Item = &Curve> {
+    pub(crate) fn panel_curves(&self, panel: Panel) -> impl Iterator<Item = &Curve> {
         self.curves.iter().filter(move |c| c.panel == panel)
     }
 }

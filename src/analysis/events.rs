@@ -54,7 +54,7 @@ pub fn events(walk: &Walk) -> Vec<Event> {
 
 /// The events of the stance that starts with `steps[0]`, through the next step's double
 /// support (`steps[1]`, when there is one; without it they stop at `end`).
-pub fn step_events(steps: &[Step], end: f64) -> Vec<Event> {
+pub(crate) fn step_events(steps: &[Step], end: f64) -> Vec<Event> {
     let mut out = Vec::new();
     let s = &steps[0];
     let side = Side::of_step(s.index).name();

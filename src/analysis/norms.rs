@@ -13,9 +13,9 @@ use crate::error::{Error, Result};
 use crate::figure::skeleton::Side;
 
 /// The bundled norm table (`models/gait-norms.toml`).
-pub const NORMS_TABLE: &str = include_str!("../../models/gait-norms.toml");
+pub(crate) const NORMS_TABLE: &str = include_str!("../../models/gait-norms.toml");
 /// The values are shown to 0.1 (° or cm) and compared with the norms at that resolution.
-pub const CHECK_RESOLUTION: f64 = 0.1;
+pub(crate) const CHECK_RESOLUTION: f64 = 0.1;
 
 /// How a curve is compared with a norm's range.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]

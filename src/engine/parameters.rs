@@ -2,7 +2,7 @@
 //! spend, how its measurements sample a step, and what a step's invariants allow (spec §4, §5;
 //! the decisions behind each value: docs/engine.md, "Decisions" and "Engine").
 
-/// The tolerances and limits of one walker ([`crate::engine::walker::Walker::with_parameters`]).
+/// The tolerances and limits of one walker (`Walker::parameters`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EngineParameters {
     /// Shooting tolerance of the stance's and swing3's end conditions (rad or m): 100× inside

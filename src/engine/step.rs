@@ -2,7 +2,6 @@
 //! from which the figure, the frames, the events and the report are read.
 use crate::control::stance::{StanceRun, StanceSetup};
 use crate::control::swing::Subphase;
-use crate::dynamics::impact::ImpactReport;
 use crate::engine::report::{Report, SolveRecord, StateFrame, StepReport};
 use crate::kinematics::foot::Foot;
 use crate::kinematics::pelvis::{Determinants, Side};
@@ -23,12 +22,11 @@ pub struct Step {
     pub constraints: StepConstraints,
     pub stance_setup: StanceSetup,
     pub stance: StanceRun,
-    pub impact: ImpactReport,
     pub solves: Vec<SolveRecord>,
     /// The stance side (step 0 stands on the right leg).
     pub side: Side,
     /// The determinants of gait.
-    pub determinants: Determinants,
+    pub(crate) determinants: Determinants,
     /// This step's virtual stance leg (heel strike to the next heel strike; its toe-off falls in
     /// the next step, which continues it as its hind leg).
     pub stance_leg: StanceLeg,
@@ -37,12 +35,12 @@ pub struct Step {
     /// The swing subphases, in order.
     pub swing: Vec<(Subphase, Segment<4>)>,
     /// Swing foot: ankle dorsiflexion and toe angle at toe-off (rad).
-    pub theta5_off: f64,
-    pub theta6_off: f64,
+    pub(crate) theta5_off: f64,
+    pub(crate) theta6_off: f64,
     /// Toe clearance attribute (m).
-    pub toe_clearance: f64,
+    pub(crate) toe_clearance: f64,
     /// Where in the swing (fraction) the foot is lowest.
-    pub lowest_at: f64,
+    pub(crate) lowest_at: f64,
     /// Measurements of the step (targets, achievements, invariants).
     pub report: StepReport,
 }

@@ -27,9 +27,9 @@ pub use crate::engine::swing::swing_hip_vy_end;
 
 /// Walks step after step, carrying the state and the warm starts.
 pub struct Walker {
-    pub body: Body,
-    pub attrs: Attributes,
-    /// The tolerances and limits ([`Self::with_parameters`]).
+    pub(crate) body: Body,
+    pub(crate) attrs: Attributes,
+    /// The tolerances and limits (today's values, [`EngineParameters::default`]).
     pub(super) parameters: EngineParameters,
     pub(super) stance_model: StanceModel,
     pub(super) swing_model: SwingModel,
@@ -145,12 +145,6 @@ impl Walker {
         }
     }
 
-    /// The same walker with the tolerances and limits `parameters`.
-    pub fn with_parameters(mut self, parameters: EngineParameters) -> Self {
-        self.parameters = parameters;
-        self
-    }
-
     /// The same walker with every solve started plainly (body-scaled constants, zero torques,
     /// difference Jacobians) instead of from the fitted start-up guesses: what
     /// `examples/startup_fit.rs` fits, so that its output does not depend on its last output.
@@ -241,7 +235,6 @@ impl Walker {
             constraints: plan.c,
             stance_setup: setup,
             stance,
-            impact,
             solves: vec![stance_solve, swing1, swing2, swing3],
             side: plan.side,
             determinants: plan.det,

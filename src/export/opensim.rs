@@ -52,7 +52,7 @@ impl OpenSimModel {
     /// The model's pelvis origin relative to the midpoint of its hip joints, pelvis frame (m), at
     /// the model's own size: gait2392's hip joints are at (−0.0707, −0.0661, ±0.0835) in the
     /// pelvis; Rajagopal 2015's at (−0.056276, −0.07849, ±0.07726).
-    pub fn pelvis_origin_from_hips(self) -> DVec3 {
+    pub(crate) fn pelvis_origin_from_hips(self) -> DVec3 {
         match self {
             OpenSimModel::Gait2392 => DVec3::new(0.0707, 0.0661, 0.0),
             OpenSimModel::Rajagopal2015 => DVec3::new(0.056276, 0.07849, 0.0),
@@ -61,7 +61,7 @@ impl OpenSimModel {
 
     /// Body height the model's dimensions describe (m): gait2392 1.8 m, Rajagopal 2015 1.7 m.
     /// The pelvis offset is scaled by H / this.
-    pub fn reference_height(self) -> f64 {
+    pub(crate) fn reference_height(self) -> f64 {
         match self {
             OpenSimModel::Gait2392 => 1.8,
             OpenSimModel::Rajagopal2015 => 1.7,
@@ -82,7 +82,7 @@ impl OpenSimModel {
 
 /// One model coordinate of a frame.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Coordinate {
+pub(crate) struct Coordinate {
     pub name: String,
     /// rad for rotations, m for translations.
     pub value: f64,
@@ -90,7 +90,7 @@ pub struct Coordinate {
 }
 
 /// The model coordinates of one frame, in file column order (without `time`).
-pub fn coordinates(
+pub(crate) fn coordinates(
     model: OpenSimModel,
     skeleton: &Skeleton,
     clinical: &Clinical,

@@ -78,14 +78,14 @@ pub struct Clinical {
 }
 
 impl Clinical {
-    pub fn leg(&self, side: Side) -> &LegAngles {
+    pub(crate) fn leg(&self, side: Side) -> &LegAngles {
         match side {
             Side::Right => &self.right,
             Side::Left => &self.left,
         }
     }
 
-    pub fn arm(&self, side: Side) -> &ArmJoints {
+    pub(crate) fn arm(&self, side: Side) -> &ArmJoints {
         match side {
             Side::Right => &self.right_arm,
             Side::Left => &self.left_arm,

@@ -31,21 +31,21 @@ use crate::model::body::Body;
 use crate::plot::{self, Chart, FONT, LEFT_COLOR, RIGHT_COLOR, msg};
 
 /// A foot point this close to the ground (m) is drawn as a contact.
-pub const CONTACT_TOLERANCE_M: f64 = 1e-3;
+pub(crate) const CONTACT_TOLERANCE_M: f64 = 1e-3;
 /// Spacing of the ground ticks of the side view (m).
-pub const GROUND_TICK_M: f64 = 0.25;
+pub(crate) const GROUND_TICK_M: f64 = 0.25;
 /// Frame rate range (frames/s): GIF delays are whole hundredths of a second.
-pub const FPS_RANGE: (f64, f64) = (1.0, 100.0);
+pub(crate) const FPS_RANGE: (f64, f64) = (1.0, 100.0);
 /// Image width range (px).
-pub const WIDTH_RANGE: (u32, u32) = (200, 4000);
+pub(crate) const WIDTH_RANGE: (u32, u32) = (200, 4000);
 /// Image height range (px).
-pub const HEIGHT_RANGE: (u32, u32) = (100, 4000);
+pub(crate) const HEIGHT_RANGE: (u32, u32) = (100, 4000);
 /// At most this many frames (a GIF of more would take long to write and be too large to show).
-pub const MAX_FRAMES: usize = 20_000;
+pub(crate) const MAX_FRAMES: usize = 20_000;
 /// Colour of the contact dots.
-pub const CONTACT_COLOR: RGBColor = RGBColor(0, 0, 0);
+pub(crate) const CONTACT_COLOR: RGBColor = RGBColor(0, 0, 0);
 /// Pelvis, spine, shoulders, neck and head.
-pub const TRUNK_COLOR: RGBColor = RGBColor(95, 95, 95);
+pub(crate) const TRUNK_COLOR: RGBColor = RGBColor(95, 95, 95);
 const GROUND_COLOR: RGBColor = RGBColor(140, 140, 140);
 const CONTACT_RADIUS: i32 = 4;
 const MARGIN: u32 = 8;
@@ -84,7 +84,7 @@ impl Options {
 
     /// The display time of a frame in milliseconds, as plotters takes it (it rounds to
     /// hundredths of a second).
-    pub fn frame_delay_ms(&self) -> u32 {
+    pub(crate) fn frame_delay_ms(&self) -> u32 {
         (1000.0 / self.fps).round() as u32
     }
 }
@@ -132,12 +132,12 @@ pub fn check_path(path: &Path) -> Result<()> {
 /// view's horizontal coordinate (x in the side view, −z in the front view), v = y.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ViewMap {
-    pub u0: f64,
-    pub v0: f64,
-    pub px0: f64,
-    pub py0: f64,
+    pub(crate) u0: f64,
+    pub(crate) v0: f64,
+    pub(crate) px0: f64,
+    pub(crate) py0: f64,
     /// Pixels per metre, both axes.
-    pub scale: f64,
+    pub(crate) scale: f64,
 }
 
 impl ViewMap {

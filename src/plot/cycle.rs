@@ -30,7 +30,7 @@ pub const BAND_COLOR: RGBColor = RGBColor(196, 230, 188);
 /// Fill of a peak-to-peak norm, anchored at the curve's minimum.
 pub const EXCURSION_BAND_COLOR: RGBColor = RGBColor(253, 218, 168);
 /// The pelvis' curves (solid, right cycle).
-pub const PELVIS_COLOR: RGBColor = RGBColor(30, 30, 30);
+pub(crate) const PELVIS_COLOR: RGBColor = RGBColor(30, 30, 30);
 const LABEL_SIZE: i32 = 15;
 const NOTE_SIZE: i32 = 14;
 const LEGEND_H: u32 = 34;

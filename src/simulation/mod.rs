@@ -7,7 +7,6 @@
 //!
 //! A [`Walk`] keeps every step's records, its memory grows with the step count; for long walks
 //! [`Prepared::stream`] samples the figure step by step in bounded memory.
-#![warn(missing_docs)]
 
 pub mod stream;
 

@@ -15,9 +15,8 @@ pub mod run;
 pub mod shard;
 pub mod spec;
 
-pub use file::{parse_sweep_toml, read_sweep_file};
-pub use product::{Axis, Entry, Inputs, MAX_POINTS, QUANTITIES, Sweep};
-pub use rows::{Cell, Format, OUTPUT_COLUMNS, Row, Summary};
-pub use run::{CHUNK_PER_THREAD, MAX_STEPS, run_walk};
-pub use shard::{MAX_SHARDS, Shard};
-pub use spec::{MAX_VALUES, parse_attr, parse_spec, parse_styles};
+pub use file::read_sweep_file;
+pub use product::{Axis, Sweep};
+pub use rows::Format;
+pub use shard::Shard;
+pub use spec::{parse_attr, parse_spec, parse_styles};
