@@ -11,6 +11,7 @@ use crate::numerics::roots;
 /// One event.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Event {
+    /// Time of the event since the first heel strike (s).
     pub time_s: f64,
     /// `right` or `left`.
     pub side: &'static str,

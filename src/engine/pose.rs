@@ -13,7 +13,7 @@ use crate::kinematics::pelvis::{Determinants, PelvisMotion, Side, fold_height};
 use crate::kinematics::stance_leg::{LegPose, leg_points, leg_points_sc};
 use crate::plan::StepConstraints;
 
-/// [ours] Fraction of swing1 at which the swing ankle is back at neutral
+/// \[ours\] Fraction of swing1 at which the swing ankle is back at neutral
 /// ([`Step::swing_foot_angles`]): a modelling constant, not one of the attribute table's 28.
 const ANKLE_NEUTRAL: f64 = 0.8;
 
@@ -23,6 +23,7 @@ const ANKLE_NEUTRAL: f64 = 0.8;
 pub struct SwingPose {
     pub(crate) phase: &'static str,
     pub(crate) theta3: f64,
+    /// θ4: the knee's flexion (rad; spec §1).
     pub theta4: f64,
     /// (sin, cos) of θ3 and of θ3 + θ4, as [`leg_points`] (or the hind leg's pose) computed
     /// them.
@@ -30,6 +31,7 @@ pub struct SwingPose {
     pub(crate) dz: f64,
     pub(crate) knee: [f64; 2],
     pub(crate) ankle: [f64; 2],
+    /// The foot's heel, metatarsal joint and toe tip.
     pub foot: FootPoints,
 }
 
@@ -144,7 +146,7 @@ impl Step {
     }
 
     /// The swing foot's ankle dorsiflexion θ5 and toe angle θ6 at step time τ ≥ t_ds (spec §5
-    /// [ours]): θ5 linear from its toe-off value to 0 over the first 80 % of swing1 (the spec
+    /// \[ours\]): θ5 linear from its toe-off value to 0 over the first 80 % of swing1 (the spec
     /// says all of swing1; the toe needs the neutral ankle earlier), then to δ_hs at heel strike
     /// on a smoothstep; θ6 back to 0 on a half-cosine (no toe velocity jump at toe-off).
     pub(crate) fn swing_foot_angles(&self, tau: f64) -> (f64, f64) {

@@ -14,14 +14,19 @@ use crate::plan::StepConstraints;
 /// A simulated step: its constraints, its dynamic records and its report.
 #[derive(Clone, Debug)]
 pub struct Step {
+    /// Index of the step in the walk (0-based).
     pub index: usize,
     /// Time of the heel strike that starts the step (s).
     pub t_start: f64,
     /// Global x of the stance ankle pivot (m).
     pub x_ankle: f64,
+    /// The step's constraints from its gait (the high level, KLAW 1989 §3, spec §3).
     pub constraints: StepConstraints,
+    /// What the step's stance trials share (spec §4).
     pub stance_setup: StanceSetup,
+    /// The kept stance trial: its dense-output segments and the solved τ1, p (spec §4).
     pub stance: StanceRun,
+    /// The step's shooting solves, in order: stance, swing1, swing2, swing3.
     pub solves: Vec<SolveRecord>,
     /// The stance side (step 0 stands on the right leg).
     pub side: Side,
@@ -47,8 +52,11 @@ pub struct Step {
 
 /// A simulated walk.
 pub struct Walk {
+    /// The walking body.
     pub body: Body,
+    /// Its locomotion attributes.
     pub attrs: Attributes,
+    /// The steps, in order.
     pub steps: Vec<Step>,
 }
 

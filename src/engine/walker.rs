@@ -120,6 +120,8 @@ pub fn simulate(body: Body, attrs: Attributes, gaits: &[Gait]) -> Result<Walk> {
 }
 
 impl Walker {
+    /// A walker for `body` and `attrs` at the first step, with the engine's parameters
+    /// ([`EngineParameters::default`]) and the start-up guesses on.
     pub fn new(body: Body, attrs: Attributes) -> Self {
         let determinants = Determinants::new(&attrs, body.l0);
         Walker {
@@ -173,7 +175,7 @@ impl Walker {
 
     /// Simulate the next step with gait `gait`. When the swing fails with the attributes'
     /// pelvic list (the foot under the ground, or no convergence), the step is tried again with
-    /// half the list, then none [ours]: the list lowers the swing hip by (l0/2) sin L at mid
+    /// half the list, then none \[ours\]: the list lowers the swing hip by (l0/2) sin L at mid
     /// step, ≈ 5 mm, which the fastest walks of short bodies (v = 2 m/s at H = 1.5 m) cannot
     /// spare. The list used is in the step's `determinants`.
     pub fn step(&mut self, gait: Gait) -> Result<Step> {

@@ -7,7 +7,7 @@
 //! as the klaw world frame, and their joints compose rotations in the order of their
 //! `SpatialTransform` (rotation1 · rotation2 · rotation3):
 //! - `ground_pelvis`: `pelvis_tilt` about z, `pelvis_list` about x, `pelvis_rotation` about y, so
-//!   the three are the exact [`zxy_angles`] of the pelvis frame. About +z a positive tilt lifts
+//!   the three are the exact `zxy_angles` of the pelvis frame. About +z a positive tilt lifts
 //!   the front of the pelvis: `pelvis_tilt` is + for a posterior tilt (≈ −clinical tilt); about +x
 //!   a positive list lowers the right side (≈ −clinical list); `pelvis_rotation` + turns the right
 //!   side forward (= clinical).
@@ -22,7 +22,7 @@
 //!   (close to +z): dorsiflexion positive. These three axes are oblique in the models and are
 //!   about klaw's orthogonal axes here: the values agree with the model to first order only.
 //! - `back`: `lumbar_extension` about z, `lumbar_bending` about x, `lumbar_rotation` about y:
-//!   the exact [`zxy_angles`] of the thorax in the pelvis (+ extension, + bending to the right,
+//!   the exact `zxy_angles` of the thorax in the pelvis (+ extension, + bending to the right,
 //!   positive rotation with the right shoulder forward).
 //! - Rajagopal 2015 arms (`acromial`: `arm_flex` z, `arm_add` x, `arm_rot` y; `elbow_flex` about
 //!   an axis close to +z): shoulder flexion, adduction (= −abduction), internal rotation and

@@ -38,10 +38,13 @@ pub(crate) const COLUMN_ALIASES: [(&str, &str); 3] = [
 /// One cell of the map.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MapCell {
+    /// The cell's value of the x column.
     pub x: f64,
+    /// The cell's value of the y column.
     pub y: f64,
     /// Rows on this cell, and how many converged.
     pub rows: usize,
+    /// Rows on this cell whose walk converged.
     pub converged: usize,
     /// The mean of the column over the converged rows (the fraction converged for `converged`).
     pub value: Option<f64>,
@@ -50,6 +53,7 @@ pub struct MapCell {
 }
 
 impl MapCell {
+    /// Whether no walk of the cell converged (drawn in [`FAILED_COLOR`]).
     pub fn failed(&self) -> bool {
         self.converged == 0
     }
@@ -58,12 +62,17 @@ impl MapCell {
 /// The data of a heat map.
 #[derive(Clone, Debug, PartialEq)]
 pub struct HeatMap {
+    /// The column along the horizontal axis.
     pub x: String,
+    /// The column along the vertical axis.
     pub y: String,
+    /// The column the cells are coloured by.
     pub column: String,
-    /// The distinct values of x and y, increasing.
+    /// The distinct values of x, increasing.
     pub xs: Vec<f64>,
+    /// The distinct values of y, increasing.
     pub ys: Vec<f64>,
+    /// One cell per (x, y) pair found in the rows.
     pub cells: Vec<MapCell>,
 }
 

@@ -47,7 +47,9 @@ pub(crate) const LEFT_COLOR: RGBColor = RGBColor(214, 39, 40);
 /// The file format of a figure, from its path's extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FigureFormat {
+    /// `.png`: a raster image.
     Png,
+    /// `.svg`: a vector image.
     Svg,
 }
 

@@ -183,8 +183,9 @@ fn parse_csv(text: &str) -> std::result::Result<Vec<String>, String> {
 pub struct RunStats {
     /// Points of the shard (of the whole sweep for 1/1).
     pub points: usize,
-    /// Walks run now, and how many of them failed.
+    /// Walks run now.
     pub computed: usize,
+    /// Walks run now that failed (their rows carry the error).
     pub failed: usize,
     /// Rows kept from the partial file or the existing target (with `resume`).
     pub kept: usize,

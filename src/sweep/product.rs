@@ -12,16 +12,23 @@ pub(crate) const MAX_POINTS: usize = 10_000_000;
 /// What a swept dimension sets.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Axis {
+    /// Walking speed v (m/s).
     Velocity,
+    /// Step length sl (m).
     StepLength,
+    /// Step frequency sf (steps/min).
     StepFrequency,
+    /// Body height H (m).
     Height,
+    /// Body mass M (kg).
     Mass,
-    /// M = K · H².
+    /// M = K · H² (K in kg/m²).
     MassPerHeight2,
+    /// Steps per walk (count).
     Steps,
     /// A style preset of `models/styles/`, by its index in `attributes::STYLES`.
     Style,
+    /// The locomotion attribute of this name (`models/attributes.toml`), in its units there.
     Attribute(String),
 }
 
@@ -173,6 +180,7 @@ impl Sweep {
             .unwrap_or(usize::MAX)
     }
 
+    /// Whether the product has no point (an empty value list).
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }

@@ -180,7 +180,9 @@ fn json_value(cell: &Cell) -> serde_json::Value {
 /// Output format of a sweep, by the file's extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {
+    /// `.csv`: a header line, then one line per walk.
     Csv,
+    /// `.jsonl`: JSON Lines, one object per walk.
     Jsonl,
 }
 
