@@ -9,7 +9,7 @@
 //! (and an existing target untouched); every file of the crate is written through
 //! [`file`](mod@file).
 pub mod bvh;
-pub mod csv;
+pub(crate) mod csv;
 pub mod cycle;
 pub mod events;
 pub mod file;

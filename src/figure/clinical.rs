@@ -6,7 +6,7 @@
 //!
 //! `R = R_z(a) · R_x(b) · R_y(c)`
 //!
-//! ([`crate::figure::euler`], which says why glam's conversion is not used). The clinical angles
+//! (`figure::euler`, which says why glam's conversion is not used). The clinical angles
 //! are those outputs with per-joint and per-side signs:
 //! - flexion = `a` (hip and shoulder flexion, ankle and mtp dorsiflexion, elbow flexion) or `−a`
 //!   (knee flexion: the shank turns backwards);
@@ -167,7 +167,7 @@ fn joint3([a, b, c]: [f64; 3], side: f64, flexion_sign: f64) -> Joint3 {
 /// The clinical angles of one frame: those of [`Skeleton::new`] then [`Skeleton::clinical`]
 /// (the same errors, the same angles to round-off), without the frames the angles are read back
 /// from: the pelvis, lumbar and arm angles are the landmarks' own (the frames are built from
-/// them, and [`crate::figure::euler`]'s round trips return them), and no arm is placed (the angles do not depend on `_body`).
+/// them, and `figure::euler`'s round trips return them), and no arm is placed (the angles do not depend on `_body`).
 pub fn clinical(lm: &Landmarks, _body: &Body) -> Result<Clinical> {
     let trunk = Trunk::new(lm)?;
     let right = leg_frames(&lm.right, Side::Right, trunk.time)?;

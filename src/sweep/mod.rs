@@ -11,7 +11,7 @@ pub mod merge;
 pub mod output;
 pub mod product;
 pub mod rows;
-pub mod run;
+pub(crate) mod run;
 pub mod shard;
 pub mod spec;
 
