@@ -7,16 +7,12 @@
 //! - `walk_10_steps_frames_csv`: the same, then the frames written as CSV to a temporary file;
 //! - `sweep_1000_walks` (group `sweep`): 1 000 walks of 10 steps, v = 0.6…1.99 m/s (250 values)
 //!   × H = 1.5, 1.65, 1.8, 1.95 m (M = 23 H²), on the rayon pool (all cores), as `klaw sweep`
-//!   runs them (`walk::simulate` per point; the sweep's summary rows are not built).
+//!   runs them (`engine::walker::simulate` per point; the sweep's summary rows are not built).
 //!
 //! Short measurement windows keep the first group to about half a minute on two cores; the sweep
 //! (≈ 1 s a run) takes its minimum of 10 samples, ≈ 30 s: skip it with
 //! `cargo bench --bench walk -- 'walk_|one_step'` (criterion takes one filter, a regular
-//! expression), or run it alone with `-- sweep`.
-//!
-//! Measured 2026-12-01 (2 cores, shared): one_step 252 µs, walk_10_steps 1.89 ms (2 930× real
-//! time), walk_10_steps_with_frames 2.05 ms (2 710×), walk_10_steps_frames_csv 3.18 ms,
-//! sweep_1000_walks 1.18 s.
+//! expression), or run it alone with `-- sweep`. Measured figures: docs/engine.md, "Engine".
 use std::hint::black_box;
 use std::time::Duration;
 

@@ -3,15 +3,14 @@
 //!
 //! A walk allocates and frees its steps' records, ≈ 1 MB for ten steps. glibc's `free` hands the
 //! top of its heap back to the kernel once more than 128 KiB is free there (`M_TRIM_THRESHOLD`),
-//! so with its defaults every walk of a bench, a sweep or a long streamed walk faulted the same
-//! pages in again: 37 000 page faults and ≈ 9 % of the time in the kernel for `klaw bench
-//! --repeat 300 --frames`, 530 faults with [`keep_freed_memory`] (`perf stat -e page-faults`).
+//! so with its defaults every walk of a bench, a sweep or a long streamed walk faults the same
+//! pages in again (what that cost, and what [`keep_freed_memory`] saves: docs/engine.md, "Files
+//! and sweeps").
 
 /// Keep up to 64 MiB of freed memory at the top of glibc's heaps instead of returning it to the
 /// kernel at every `free` (glibc on Linux; elsewhere nothing). Only what was already in use
-/// stays mapped, so peak memory barely moves (the README's 1 000-walk sweep 9.9 → 10.2 MB, a
-/// 10 000-step walk 5.9 → 6.1 MB), and large buffers (≥ 128 KiB) are still mapped and unmapped
-/// on their own. Call it once, early; `klaw` (the binary) does (`tests/memory.rs`
+/// stays mapped, so peak memory barely moves, and large buffers (≥ 128 KiB) are still mapped and
+/// unmapped on their own. Call it once, early; `klaw` (the binary) does (`tests/memory.rs`
 /// counts its page faults).
 pub fn keep_freed_memory() {
     #[cfg(all(target_os = "linux", target_env = "gnu"))]

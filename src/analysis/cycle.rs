@@ -23,10 +23,10 @@ use crate::figure::skeleton::Side;
 
 /// Frame rate at which the walk is sampled before the cycles are averaged (frames/s of walk
 /// time): 200 frames/s puts ≥ 2 frames on every 1 % of a cycle slower than 0.5 s.
-pub const CYCLE_FPS: f64 = 200.0;
+pub(crate) const CYCLE_FPS: f64 = 200.0;
 /// The first `CYCLE_SKIP` cycles of each leg are left out: they start from the engine's initial
 /// conditions.
-pub const CYCLE_SKIP: usize = 1;
+pub(crate) const CYCLE_SKIP: usize = 1;
 
 /// Cycle-normalized curves: 101 rows (0…100 %) of the column values.
 #[derive(Clone, Debug, PartialEq)]
@@ -171,11 +171,17 @@ pub fn cycle_average(
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Panel {
+    /// Hip flexion, + flexion (deg; spec §1).
     HipFlexion,
+    /// Knee flexion, + flexion (deg).
     KneeFlexion,
+    /// Ankle dorsiflexion, + dorsiflexion (deg).
     AnkleDorsiflexion,
+    /// Pelvic list (obliquity), + with the right side up (deg).
     PelvisList,
+    /// Pelvic rotation, + with the right side forward (deg).
     PelvisRotation,
+    /// Height of the pelvis centre above the ground (cm).
     PelvisHeight,
 }
 
@@ -191,7 +197,7 @@ impl Panel {
     ];
 
     /// The unit of the panel's values and norms: `deg` or `cm`.
-    pub fn unit(self) -> &'static str {
+    pub(crate) fn unit(self) -> &'static str {
         match self {
             Panel::PelvisHeight => "cm",
             _ => "deg",
@@ -232,15 +238,18 @@ impl Panel {
 /// One curve of the figure: 101 samples, 0…100 % of its cycle, in its panel's unit.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Curve {
+    /// The panel that shows the curve.
     pub panel: Panel,
     /// The leg (its own cycle), or `None` for the pelvis (the right cycle).
     pub side: Option<Side>,
+    /// The 101 averaged samples at 0, 1, …, 100 % of the cycle, in the panel's unit.
     pub values: Vec<f64>,
 }
 
 /// The averaged gait cycle of a walk: the curves of every panel.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GaitCycle {
+    /// The curves, panel by panel in [`Panel::ALL`]'s order, the right leg's before the left's.
     pub curves: Vec<Curve>,
     /// How many cycles were averaged (right, left).
     pub cycles: (usize, usize),
@@ -289,8 +298,9 @@ impl GaitCycle {
         })
     }
 
-    /// The walk's averaged cycle: frames at [`CYCLE_FPS`], clinical angles, heel strikes at the
-    /// starts of the steps (even steps right, odd steps left), [`CYCLE_SKIP`] cycles skipped;
+    /// The walk's averaged cycle: frames at 200 frames/s (`CYCLE_FPS`), clinical angles, heel
+    /// strikes at the starts of the steps (even steps right, odd steps left), the first cycle of
+    /// each leg skipped (`CYCLE_SKIP`);
     /// toe-off from the walk's gait events. Errors: a frame the skeleton cannot be built from, no
     /// complete steady cycle of a leg ([`Error::Export`]: walk more steps).
     pub fn from_walk(walk: &Walk) -> Result<GaitCycle> {
@@ -331,7 +341,7 @@ impl GaitCycle {
     }
 
     /// The curves of one panel.
-    pub fn panel_curves(&self, panel: Panel) -> impl Iterator<Item = &Curve> {
+    pub(crate) fn panel_curves(&self, panel: Panel) -> impl Iterator<Item = &Curve> {
         self.curves.iter().filter(move |c| c.panel == panel)
     }
 }

@@ -11,6 +11,7 @@ use crate::numerics::roots;
 /// One event.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Event {
+    /// Time of the event since the first heel strike (s).
     pub time_s: f64,
     /// `right` or `left`.
     pub side: &'static str,
@@ -54,7 +55,7 @@ pub fn events(walk: &Walk) -> Vec<Event> {
 
 /// The events of the stance that starts with `steps[0]`, through the next step's double
 /// support (`steps[1]`, when there is one; without it they stop at `end`).
-pub fn step_events(steps: &[Step], end: f64) -> Vec<Event> {
+pub(crate) fn step_events(steps: &[Step], end: f64) -> Vec<Event> {
     let mut out = Vec::new();
     let s = &steps[0];
     let side = Side::of_step(s.index).name();

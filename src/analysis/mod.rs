@@ -5,7 +5,7 @@ pub mod events;
 pub mod norms;
 
 /// Smallest and largest finite value, if any.
-pub fn extent(values: impl IntoIterator<Item = f64>) -> Option<(f64, f64)> {
+pub(crate) fn extent(values: impl IntoIterator<Item = f64>) -> Option<(f64, f64)> {
     values
         .into_iter()
         .filter(|v| v.is_finite())

@@ -2,7 +2,7 @@
 //! `gait-norms.md`: Inman, Ralston & Todd 1981; Murray 1964; Winter; Perry; Whittle) and the
 //! check of an averaged gait cycle against them (issue item 9): each norm is measured on every
 //! curve of its panel ([`check`]) and compared at the resolution the values are shown to
-//! ([`CHECK_RESOLUTION`]).
+//! (0.1 ° or cm, `CHECK_RESOLUTION`).
 use std::path::Path;
 
 use serde::Deserialize;
@@ -13,9 +13,9 @@ use crate::error::{Error, Result};
 use crate::figure::skeleton::Side;
 
 /// The bundled norm table (`models/gait-norms.toml`).
-pub const NORMS_TABLE: &str = include_str!("../../models/gait-norms.toml");
+pub(crate) const NORMS_TABLE: &str = include_str!("../../models/gait-norms.toml");
 /// The values are shown to 0.1 (° or cm) and compared with the norms at that resolution.
-pub const CHECK_RESOLUTION: f64 = 0.1;
+pub(crate) const CHECK_RESOLUTION: f64 = 0.1;
 
 /// How a curve is compared with a norm's range.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
@@ -36,20 +36,29 @@ pub enum Measure {
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Norm {
+    /// The curve it applies to.
     pub panel: Panel,
+    /// What the published table calls it, e.g. `hip flexion at heel strike`.
     pub name: String,
     /// Short name for the panel's note.
     pub label: String,
+    /// How the curve is compared with the range [low, high].
     pub measure: Measure,
     /// Cycle % for [`Measure::At`].
     #[serde(default)]
     pub at: Option<f64>,
+    /// Lower end of the normal range, in `unit`.
     pub low: f64,
+    /// Upper end of the normal range, in `unit`.
     pub high: f64,
+    /// `deg` or `cm`: the panel's unit.
     pub unit: String,
     /// Cycle-% intervals [start, end] where the band is shaded (and, for max / min, searched).
     pub windows: Vec<[f64; 2]>,
+    /// Where the windows come from: `table` (the published timing, widened by 5 % either side)
+    /// or `chosen`, with the reason.
     pub window_source: String,
+    /// The line of the published table (`gait-norms.md`) the range is read from.
     pub source: String,
 }
 
@@ -62,6 +71,7 @@ struct NormFile {
 /// The norms a figure is checked against.
 #[derive(Clone, Debug, PartialEq)]
 pub struct NormTable {
+    /// The norms, in the table's order.
     pub norms: Vec<Norm>,
 }
 
@@ -121,23 +131,29 @@ impl NormTable {
 /// A norm's measure on one curve.
 #[derive(Clone, Debug, PartialEq)]
 pub struct NormCheck {
+    /// The norm's panel.
     pub panel: Panel,
+    /// The norm's name.
     pub name: String,
     /// The curve's leg, `None` for the pelvis.
     pub side: Option<Side>,
+    /// The norm's measure.
     pub measure: Measure,
     /// The measured value, in the norm's unit.
     pub value: f64,
     /// Where in the cycle (%) it was measured (none for peak to peak).
     pub at_pct: Option<f64>,
+    /// The norm's range [low, high], in `unit`.
     pub low: f64,
+    /// Upper end of the norm's range, in `unit`.
     pub high: f64,
+    /// `deg` or `cm`.
     pub unit: String,
 }
 
 impl NormCheck {
     /// Whether the value lies in [low, high], compared as it is shown: to
-    /// [`CHECK_RESOLUTION`] (a peak of 3.9999° against a norm of 4–5° is inside).
+    /// 0.1 ° or cm, `CHECK_RESOLUTION` (a peak of 3.9999° against a norm of 4–5° is inside).
     pub fn inside(&self) -> bool {
         let half = 0.5 * CHECK_RESOLUTION;
         self.value >= self.low - half && self.value <= self.high + half

@@ -2,14 +2,15 @@
 //! spend, how its measurements sample a step, and what a step's invariants allow (spec §4, §5;
 //! the decisions behind each value: docs/engine.md, "Decisions" and "Engine").
 
-/// The tolerances and limits of one walker ([`crate::engine::walker::Walker::with_parameters`]).
+/// The tolerances and limits of a walker: [`crate::engine::walker::Walker`] runs with the
+/// `Default`, today's values.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EngineParameters {
     /// Shooting tolerance of the stance's and swing3's end conditions (rad or m): 100× inside
     /// the 1e-6 the walk promises, and small enough for the heel-contact check, which
     /// differences the heel height over 1e-6 s.
     pub solve_tolerance: f64,
-    /// [ours] Shooting tolerance of swing1's and swing2's end conditions (rad): 10× inside the
+    /// \[ours\] Shooting tolerance of swing1's and swing2's end conditions (rad): 10× inside the
     /// 1e-6 the walk promises, since they are waypoints: the next subphase starts from the state
     /// they reach, swing3 meets the heel strike's conditions at `solve_tolerance` whatever it
     /// is, and swing2's error is the knee's jump where it locks.

@@ -13,7 +13,7 @@ use crate::kinematics::pelvis::{Determinants, PelvisMotion, Side, fold_height};
 use crate::kinematics::stance_leg::{LegPose, leg_points, leg_points_sc};
 use crate::plan::StepConstraints;
 
-/// [ours] Fraction of swing1 at which the swing ankle is back at neutral
+/// \[ours\] Fraction of swing1 at which the swing ankle is back at neutral
 /// ([`Step::swing_foot_angles`]): a modelling constant, not one of the attribute table's 28.
 const ANKLE_NEUTRAL: f64 = 0.8;
 
@@ -21,22 +21,23 @@ const ANKLE_NEUTRAL: f64 = 0.8;
 /// stance ankle, world heights; the hip joint's lateral offset from the ankle `dz`).
 #[derive(Clone, Copy, Debug)]
 pub struct SwingPose {
-    pub phase: &'static str,
-    pub theta3: f64,
+    pub(crate) phase: &'static str,
+    pub(crate) theta3: f64,
+    /// θ4: the knee's flexion (rad; spec §1).
     pub theta4: f64,
     /// (sin, cos) of θ3 and of θ3 + θ4, as [`leg_points`] (or the hind leg's pose) computed
     /// them.
-    pub sin_cos: [(f64, f64); 2],
-    pub hip: [f64; 2],
-    pub dz: f64,
-    pub knee: [f64; 2],
-    pub ankle: [f64; 2],
+    pub(crate) sin_cos: [(f64, f64); 2],
+    pub(crate) dz: f64,
+    pub(crate) knee: [f64; 2],
+    pub(crate) ankle: [f64; 2],
+    /// The foot's heel, metatarsal joint and toe tip.
     pub foot: FootPoints,
 }
 
 /// A step at one instant: what the figure hangs from, evaluated once ([`Step::at`]).
 #[derive(Clone, Copy, Debug)]
-pub struct Instant {
+pub(crate) struct Instant {
     /// Step time τ (s).
     pub tau: f64,
     /// The stance state and whether the knee is locked.
@@ -83,7 +84,7 @@ impl Step {
     }
 
     /// The pelvis's determinants at step time τ.
-    pub fn pelvis(&self, tau: f64) -> PelvisMotion {
+    pub(crate) fn pelvis(&self, tau: f64) -> PelvisMotion {
         self.determinants
             .at(self.side, tau, self.constraints.timing.t_step)
     }
@@ -95,7 +96,7 @@ impl Step {
     }
 
     /// The stance state, the dynamic hip and the pelvis at step time τ, each evaluated once.
-    pub fn at(&self, tau: f64) -> Instant {
+    pub(crate) fn at(&self, tau: f64) -> Instant {
         let (state, locked) = self.stance.state(tau);
         let centre = self
             .stance_setup
@@ -130,12 +131,12 @@ impl Step {
     }
 
     /// The stance leg's pose at step time τ (x relative to the stance ankle).
-    pub fn stance_pose(&self, tau: f64) -> std::result::Result<LegPose, String> {
+    pub(crate) fn stance_pose(&self, tau: f64) -> std::result::Result<LegPose, String> {
         self.stance_pose_at(&self.at(tau))
     }
 
     /// [`Self::stance_pose`] at an instant of this step.
-    pub fn stance_pose_at(&self, now: &Instant) -> std::result::Result<LegPose, String> {
+    pub(crate) fn stance_pose_at(&self, now: &Instant) -> std::result::Result<LegPose, String> {
         let (h, dz) = now.hip_joint(self.side);
         let mut p =
             self.stance_leg
@@ -145,10 +146,10 @@ impl Step {
     }
 
     /// The swing foot's ankle dorsiflexion θ5 and toe angle θ6 at step time τ ≥ t_ds (spec §5
-    /// [ours]): θ5 linear from its toe-off value to 0 over the first 80 % of swing1 (the spec
+    /// \[ours\]): θ5 linear from its toe-off value to 0 over the first 80 % of swing1 (the spec
     /// says all of swing1; the toe needs the neutral ankle earlier), then to δ_hs at heel strike
     /// on a smoothstep; θ6 back to 0 on a half-cosine (no toe velocity jump at toe-off).
-    pub fn swing_foot_angles(&self, tau: f64) -> (f64, f64) {
+    pub(crate) fn swing_foot_angles(&self, tau: f64) -> (f64, f64) {
         let t = self.constraints.timing;
         let t1 = t.t_ds + swing::SWING1_END * t.t_swing;
         if tau < t1 {
@@ -172,7 +173,7 @@ impl Step {
     }
 
     /// [`Self::swing_pose`] at an instant of this step.
-    pub fn swing_pose_at(&self, now: &Instant, foot: &Foot) -> SwingPose {
+    pub(crate) fn swing_pose_at(&self, now: &Instant, foot: &Foot) -> SwingPose {
         let tau = now.tau;
         let t = self.constraints.timing;
         let (hip, dz) = now.hip_joint(self.side.other());
@@ -189,7 +190,6 @@ impl Step {
                 theta3: p.theta3,
                 theta4: p.theta4,
                 sin_cos: p.sin_cos,
-                hip,
                 dz,
                 knee,
                 ankle: p.ankle,
@@ -216,7 +216,6 @@ impl Step {
             theta3: y[0],
             theta4: y[1],
             sin_cos,
-            hip,
             dz,
             knee,
             ankle,
@@ -225,7 +224,7 @@ impl Step {
     }
 
     /// The engine's state frame at world time t.
-    pub fn frame(&self, t: f64, foot: &Foot) -> StateFrame {
+    pub(crate) fn frame(&self, t: f64, foot: &Foot) -> StateFrame {
         let tau = (t - self.t_start).clamp(0.0, self.constraints.timing.t_step);
         let now = self.at(tau);
         let (y, locked, hip) = (now.state, now.locked, now.centre);

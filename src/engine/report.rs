@@ -1,5 +1,6 @@
 //! What a walk produces besides its motion: per-frame records (the CSV rows) and the per-step
-//! report (targets, achievements, shooting statistics). Plain data, serialized by `io`.
+//! report (targets, achievements, shooting statistics; spec §9). Plain data, written by
+//! `export::state` (CSV) and `export::report` (JSON); docs/export.md describes both files.
 use serde::Serialize;
 
 use crate::control::shooting::SolveReport;
@@ -12,7 +13,10 @@ use crate::plan::gait::Gait;
 /// coordinates (x forward from the first stance ankle, y up from the ground), angles in degrees.
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct StateFrame {
+    /// Time since the first heel strike (s).
     pub time_s: f64,
+    /// Index of the step the frame falls in (0-based; a step runs from one heel strike to the
+    /// next).
     pub step: usize,
     /// `double_support`, `swing1`, `swing2` or `swing3` (the swing leg's subphase).
     pub phase: &'static str,
@@ -20,30 +24,53 @@ pub struct StateFrame {
     pub stance_side: &'static str,
     /// `telescopic` or `locked`.
     pub stance_mode: &'static str,
+    /// w: the telescopic stance leg's length, ankle pivot to hip (m; spec §1, §4).
     pub w_m: f64,
+    /// θ1: the stance leg from the upward vertical through the ankle pivot, + with the hip ahead
+    /// of the ankle (deg; spec §1).
     pub theta1_deg: f64,
+    /// θ2: the upper body from the upward vertical, + leaning forward (deg; spec §1).
     pub theta2_deg: f64,
+    /// θ3: the swing thigh from the downward vertical through the hip, − with the knee ahead of
+    /// the hip (deg; spec §1); in double support the hind leg's.
     pub theta3_deg: f64,
+    /// θ4: the swing knee's flexion, thigh to shank (deg; spec §1); in double support the hind
+    /// leg's.
     pub theta4_deg: f64,
+    /// The dynamic hip, the pelvis centre C (m; spec §7).
     pub hip_x_m: f64,
+    /// Height of the dynamic hip (m).
     pub hip_y_m: f64,
+    /// The stance ankle pivot (m).
     pub stance_ankle_x_m: f64,
+    /// Height of the stance ankle pivot: the ankle height l9 of the flat foot (m).
     pub stance_ankle_y_m: f64,
+    /// The swing knee, in double support the hind leg's (m).
     pub swing_knee_x_m: f64,
+    /// Height of the swing knee (m).
     pub swing_knee_y_m: f64,
+    /// The swing ankle, in double support the hind leg's (m).
     pub swing_ankle_x_m: f64,
+    /// Height of the swing ankle (m).
     pub swing_ankle_y_m: f64,
+    /// The swing foot's heel, in double support the hind foot's (m).
     pub swing_heel_x_m: f64,
+    /// Height of the swing heel (m).
     pub swing_heel_y_m: f64,
+    /// The swing foot's toe tip, in double support the hind foot's (m).
     pub swing_toe_x_m: f64,
+    /// Height of the swing toe tip (m).
     pub swing_toe_y_m: f64,
 }
 
-/// Target of a step (SI; step frequency in steps/min).
+/// Target of a step: its gait, completed by the normalizing formula (KLAW 1989 eq. 1).
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct Target {
+    /// Walking speed v (m/s).
     pub velocity: f64,
+    /// Step length sl (m).
     pub step_length: f64,
+    /// Step frequency sf (steps/min).
     pub step_frequency: f64,
 }
 
@@ -58,10 +85,14 @@ pub struct Achieved {
     pub duration: f64,
 }
 
-/// One shooting solve in the report.
+/// One shooting solve in the report (KLAW 1989 §4.1, spec §6).
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct SolveRecord {
+    /// The solved phase: `stance`, `swing1`, `swing2` or `swing3`.
     pub phase: &'static str,
+    /// Its trial integrations (`iterations`, count), the max-norm of the end-condition residual
+    /// (`residual`, rad, m or m/s as the phase's end conditions) and `converged`; flattened into
+    /// the record in the JSON.
     #[serde(flatten)]
     pub report: SolveReport,
 }
@@ -69,34 +100,44 @@ pub struct SolveRecord {
 /// The report of one step.
 #[derive(Clone, Debug, Serialize)]
 pub struct StepReport {
+    /// Index of the step (0-based; step 0 stands on the right leg).
     pub index: usize,
+    /// The gait the step was asked for.
     pub target: Target,
+    /// What the step achieved.
     pub achieved: Achieved,
+    /// The step's shooting solves, in order: stance, swing1, swing2, swing3.
     pub solves: Vec<SolveRecord>,
     /// Largest |end-condition error| of the step: θ1, w, θ3, θ4 at heel strike (rad or m).
     pub end_condition_error: f64,
     /// Height of the heel above the ground at heel strike (m).
     pub heel_height_at_strike: f64,
-    /// Hip rise above its heel-strike height during the stance (m), and the reference e.
+    /// Rise of the hip during the step above its height at the step's closing heel strike (m;
+    /// spec §4).
     pub hip_excursion: f64,
+    /// The hip height reference's bounce e = min(εE, g t_step² / 4π²) (m; spec §4).
     pub bounce_reference: f64,
     /// Lowest hip height minus the lower heel-strike height (m; ≥ −1e-6 by invariant).
     pub hip_min_margin: f64,
-    /// Hip speed after / before the heel strike.
+    /// Hip speed after / before the heel strike that starts the step (1; spec §7).
     pub impact_speed_ratio: f64,
-    /// Lowest point of the swing foot over the whole swing (m), and the lowest toe height in
-    /// mid swing (25–75 %).
+    /// Height of the swing foot's lowest point over the whole swing (m; ≥ −1e-6 by invariant,
+    /// spec §5).
     pub min_foot_height: f64,
+    /// Height of the swing foot's lowest point in mid swing, 25–75 % of the swing (m; > 1e-6 by
+    /// invariant).
     pub min_toe_clearance: f64,
     /// Heel vertical velocity at contact (m/s, ≤ 0).
     pub heel_contact_velocity: f64,
     /// Largest knee flexion of the swing (rad).
     pub peak_swing_knee_flexion: f64,
-    /// Right-hand-side evaluations of the step's dynamic models over all shooting trials.
+    /// Right-hand-side evaluations of the step's dynamic models over all its shooting trials
+    /// (count).
     pub rhs_evaluations: u64,
-    /// Mechanical work of the actuators over the step (J): positive (Σ over the actuators of
-    /// ∫ max(power, 0) dt) and net (∫ Σ power dt); see `work`.
+    /// Positive mechanical work of the actuators over the step: Σ over the actuators of
+    /// ∫ max(power, 0) dt (J; `engine::work`).
     pub positive_work: f64,
+    /// Net mechanical work of the actuators over the step: ∫ Σ power dt (J).
     pub net_work: f64,
 }
 
@@ -143,7 +184,10 @@ impl StepReport {
 /// The report of a walk.
 #[derive(Clone, Debug, Serialize)]
 pub struct Report {
+    /// Body height H (m).
     pub height: f64,
+    /// Body mass M (kg).
     pub mass: f64,
+    /// One report per step, in order.
     pub steps: Vec<StepReport>,
 }

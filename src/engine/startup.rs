@@ -1,11 +1,11 @@
-//! [ours] Start-up guesses of the walker's shooting solves: the seven unknowns — τ1, p (stance),
+//! \[ours\] Start-up guesses of the walker's shooting solves: the seven unknowns — τ1, p (stance),
 //! A, B (swing1), C (swing2), D0, D1 (swing3) — of steps 0, 1 and 2 as quadratics in the Froude
 //! speed, and the cold Jacobians of step 0, fitted over the grid of `tests/walk.rs` by
 //! `examples/startup_fit.rs` into `models/startup-guesses.toml`. The first step starts from an
 //! artificial posture (the mirrored heel strike), and its transient (τ1 falls from ≈ 3 to
 //! ≈ −0.3 M l1, then rises to ≈ 0) is what the fits of the changes from step 0 to 1 and from 1
 //! to 2 follow; later steps start from the previous step's solution alone. The guesses only save
-//! trials: every start has a fallback ([`with_fallback`]).
+//! trials: every start has a fallback (`with_fallback`).
 use std::sync::OnceLock;
 
 use nalgebra::{Matrix2, Vector2};

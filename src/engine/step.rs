@@ -2,7 +2,6 @@
 //! from which the figure, the frames, the events and the report are read.
 use crate::control::stance::{StanceRun, StanceSetup};
 use crate::control::swing::Subphase;
-use crate::dynamics::impact::ImpactReport;
 use crate::engine::report::{Report, SolveRecord, StateFrame, StepReport};
 use crate::kinematics::foot::Foot;
 use crate::kinematics::pelvis::{Determinants, Side};
@@ -15,20 +14,24 @@ use crate::plan::StepConstraints;
 /// A simulated step: its constraints, its dynamic records and its report.
 #[derive(Clone, Debug)]
 pub struct Step {
+    /// Index of the step in the walk (0-based).
     pub index: usize,
     /// Time of the heel strike that starts the step (s).
     pub t_start: f64,
     /// Global x of the stance ankle pivot (m).
     pub x_ankle: f64,
+    /// The step's constraints from its gait (the high level, KLAW 1989 §3, spec §3).
     pub constraints: StepConstraints,
+    /// What the step's stance trials share (spec §4).
     pub stance_setup: StanceSetup,
+    /// The kept stance trial: its dense-output segments and the solved τ1, p (spec §4).
     pub stance: StanceRun,
-    pub impact: ImpactReport,
+    /// The step's shooting solves, in order: stance, swing1, swing2, swing3.
     pub solves: Vec<SolveRecord>,
     /// The stance side (step 0 stands on the right leg).
     pub side: Side,
     /// The determinants of gait.
-    pub determinants: Determinants,
+    pub(crate) determinants: Determinants,
     /// This step's virtual stance leg (heel strike to the next heel strike; its toe-off falls in
     /// the next step, which continues it as its hind leg).
     pub stance_leg: StanceLeg,
@@ -37,20 +40,23 @@ pub struct Step {
     /// The swing subphases, in order.
     pub swing: Vec<(Subphase, Segment<4>)>,
     /// Swing foot: ankle dorsiflexion and toe angle at toe-off (rad).
-    pub theta5_off: f64,
-    pub theta6_off: f64,
+    pub(crate) theta5_off: f64,
+    pub(crate) theta6_off: f64,
     /// Toe clearance attribute (m).
-    pub toe_clearance: f64,
+    pub(crate) toe_clearance: f64,
     /// Where in the swing (fraction) the foot is lowest.
-    pub lowest_at: f64,
+    pub(crate) lowest_at: f64,
     /// Measurements of the step (targets, achievements, invariants).
     pub report: StepReport,
 }
 
 /// A simulated walk.
 pub struct Walk {
+    /// The walking body.
     pub body: Body,
+    /// Its locomotion attributes.
     pub attrs: Attributes,
+    /// The steps, in order.
     pub steps: Vec<Step>,
 }
 

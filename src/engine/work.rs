@@ -149,7 +149,7 @@ fn integrate<const N: usize, const K: usize>(
 }
 
 /// Powers of the stance actuators at (t, y): [F_w ẇ, F_θ1 θ̇1, F_θ2 (θ̇2 − θ̇1)] (W).
-pub fn stance_powers(
+fn stance_powers(
     forces: &StanceForces,
     t: f64,
     y: &crate::control::stance::StanceState,
@@ -175,11 +175,7 @@ pub fn stance_work(setup: &StanceSetup, run: &StanceRun, n: usize) -> Work {
 }
 
 /// Powers of the swing hip and knee torques at (t, y): [F_θ3 θ̇3, F_θ4 θ̇4] (W).
-pub fn swing_powers(
-    forces: &SwingForces,
-    t: f64,
-    y: &crate::control::swing::SwingState,
-) -> [f64; 2] {
+fn swing_powers(forces: &SwingForces, t: f64, y: &crate::control::swing::SwingState) -> [f64; 2] {
     let tau = forces.torques(t, y);
     [tau[0] * y[2], tau[1] * y[3]]
 }

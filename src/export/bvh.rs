@@ -43,11 +43,17 @@ pub fn from_bvh(v: DVec3) -> DVec3 {
 /// A BVH channel.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Channel {
+    /// Translation along X (left), file units.
     Xposition,
+    /// Translation along Y (up), file units.
     Yposition,
+    /// Translation along Z (forward), file units.
     Zposition,
+    /// Rotation about X (left), degrees.
     Xrotation,
+    /// Rotation about Y (up), degrees.
     Yrotation,
+    /// Rotation about Z (forward), degrees.
     Zrotation,
 }
 
@@ -421,20 +427,26 @@ impl RowWriter for BvhWriter {
 /// A joint of a parsed BVH file.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BvhJoint {
+    /// The joint's name, e.g. `LeftUpLeg`.
     pub name: String,
+    /// Index of the parent joint in [`Bvh::joints`], `None` for the root.
     pub parent: Option<usize>,
     /// In the parent's frame, file axes.
     pub offset: DVec3,
+    /// The joint's channels, in file order (the order the rotations compose in).
     pub channels: Vec<Channel>,
     /// Index of this joint's first channel in a frame's values.
     pub first_channel: usize,
+    /// The End Site's offset in the joint's frame (file axes), if the joint has one.
     pub end_site: Option<DVec3>,
 }
 
 /// A parsed BVH file. Joints are in file order (parents before children).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Bvh {
+    /// The hierarchy's joints.
     pub joints: Vec<BvhJoint>,
+    /// Time between frames (s).
     pub frame_time: f64,
     /// One row of channel values per frame (positions in file units, rotations in degrees).
     pub frames: Vec<Vec<f64>>,
@@ -443,7 +455,9 @@ pub struct Bvh {
 /// A joint's world pose in one frame (file axes).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct JointPose {
+    /// The joint's position.
     pub position: DVec3,
+    /// The joint's orientation: its axes as the columns.
     pub rotation: DMat3,
     /// The End Site, if the joint has one.
     pub end_site: Option<DVec3>,

@@ -30,7 +30,7 @@ pub fn parent_dir(path: &Path) -> &Path {
 /// target's directory (so the rename stays on one file system and is atomic), which `commit`
 /// flushes, syncs and renames over the target. Dropped uncommitted, the temporary file is removed
 /// and an existing target is left untouched. Errors are `Error::Io { action: "writing", .. }`.
-pub struct AtomicFile {
+pub(crate) struct AtomicFile {
     path: PathBuf,
     out: BufWriter<File>,
     temp: TempPath,
@@ -95,7 +95,7 @@ impl AtomicFile {
 /// Write `path` whole or not at all: `write` fills an [`AtomicFile`]. On any error the temporary
 /// file is removed and an existing `path` is left untouched. Errors are
 /// `Error::Io { action: "writing", .. }`.
-pub fn write_atomic(
+pub(crate) fn write_atomic(
     path: &Path,
     write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
 ) -> Result<()> {

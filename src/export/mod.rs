@@ -5,10 +5,11 @@
 //!
 //! Every motion writer streams: rows go to a scratch file next to the target while the frames
 //! are converted, then the header (which needs the row count) and the rows are written to the
-//! target by [`file::write_atomic`]. Any error, in a frame or in the file system, leaves no file
-//! (and an existing target untouched); every file of the crate is written through [`file`].
+//! target by `file::write_atomic`. Any error, in a frame or in the file system, leaves no file
+//! (and an existing target untouched); every file of the crate is written through
+//! [`file`](mod@file).
 pub mod bvh;
-pub mod csv;
+pub(crate) mod csv;
 pub mod cycle;
 pub mod events;
 pub mod file;
@@ -129,8 +130,8 @@ where
     try_write(path, format, body, fps, frames.into_iter().map(Ok), options)
 }
 
-/// [`write`] for frames that may fail to be made (e.g. `figure::frames`): the first error is
-/// returned and no file is written.
+/// [`write`](fn@write) for frames that may fail to be made (e.g. `figure::frames`): the first
+/// error is returned and no file is written.
 pub fn try_write<I>(
     path: &Path,
     format: Format,

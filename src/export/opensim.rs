@@ -7,7 +7,7 @@
 //! as the klaw world frame, and their joints compose rotations in the order of their
 //! `SpatialTransform` (rotation1 · rotation2 · rotation3):
 //! - `ground_pelvis`: `pelvis_tilt` about z, `pelvis_list` about x, `pelvis_rotation` about y, so
-//!   the three are the exact [`zxy_angles`] of the pelvis frame. About +z a positive tilt lifts
+//!   the three are the exact `zxy_angles` of the pelvis frame. About +z a positive tilt lifts
 //!   the front of the pelvis: `pelvis_tilt` is + for a posterior tilt (≈ −clinical tilt); about +x
 //!   a positive list lowers the right side (≈ −clinical list); `pelvis_rotation` + turns the right
 //!   side forward (= clinical).
@@ -22,7 +22,7 @@
 //!   (close to +z): dorsiflexion positive. These three axes are oblique in the models and are
 //!   about klaw's orthogonal axes here: the values agree with the model to first order only.
 //! - `back`: `lumbar_extension` about z, `lumbar_bending` about x, `lumbar_rotation` about y:
-//!   the exact [`zxy_angles`] of the thorax in the pelvis (+ extension, + bending to the right,
+//!   the exact `zxy_angles` of the thorax in the pelvis (+ extension, + bending to the right,
 //!   positive rotation with the right shoulder forward).
 //! - Rajagopal 2015 arms (`acromial`: `arm_flex` z, `arm_add` x, `arm_rot` y; `elbow_flex` about
 //!   an axis close to +z): shoulder flexion, adduction (= −abduction), internal rotation and
@@ -52,7 +52,7 @@ impl OpenSimModel {
     /// The model's pelvis origin relative to the midpoint of its hip joints, pelvis frame (m), at
     /// the model's own size: gait2392's hip joints are at (−0.0707, −0.0661, ±0.0835) in the
     /// pelvis; Rajagopal 2015's at (−0.056276, −0.07849, ±0.07726).
-    pub fn pelvis_origin_from_hips(self) -> DVec3 {
+    pub(crate) fn pelvis_origin_from_hips(self) -> DVec3 {
         match self {
             OpenSimModel::Gait2392 => DVec3::new(0.0707, 0.0661, 0.0),
             OpenSimModel::Rajagopal2015 => DVec3::new(0.056276, 0.07849, 0.0),
@@ -61,7 +61,7 @@ impl OpenSimModel {
 
     /// Body height the model's dimensions describe (m): gait2392 1.8 m, Rajagopal 2015 1.7 m.
     /// The pelvis offset is scaled by H / this.
-    pub fn reference_height(self) -> f64 {
+    pub(crate) fn reference_height(self) -> f64 {
         match self {
             OpenSimModel::Gait2392 => 1.8,
             OpenSimModel::Rajagopal2015 => 1.7,
@@ -82,7 +82,7 @@ impl OpenSimModel {
 
 /// One model coordinate of a frame.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Coordinate {
+pub(crate) struct Coordinate {
     pub name: String,
     /// rad for rotations, m for translations.
     pub value: f64,
@@ -90,7 +90,7 @@ pub struct Coordinate {
 }
 
 /// The model coordinates of one frame, in file column order (without `time`).
-pub fn coordinates(
+pub(crate) fn coordinates(
     model: OpenSimModel,
     skeleton: &Skeleton,
     clinical: &Clinical,

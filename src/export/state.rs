@@ -7,7 +7,7 @@ use crate::engine::report::StateFrame;
 use crate::error::Result;
 
 /// The CSV header: the serde field names of `StateFrame`, in declaration order.
-pub fn frame_header() -> Vec<String> {
+pub(crate) fn frame_header() -> Vec<String> {
     let mut w = csv::WriterBuilder::new()
         .has_headers(true)
         .from_writer(Vec::new());

@@ -6,7 +6,7 @@
 //!
 //! `R = R_z(a) · R_x(b) · R_y(c)`
 //!
-//! ([`crate::figure::euler`], which says why glam's conversion is not used). The clinical angles
+//! (`figure::euler`, which says why glam's conversion is not used). The clinical angles
 //! are those outputs with per-joint and per-side signs:
 //! - flexion = `a` (hip and shoulder flexion, ankle and mtp dorsiflexion, elbow flexion) or `−a`
 //!   (knee flexion: the shank turns backwards);
@@ -29,15 +29,22 @@ use crate::model::body::Body;
 /// varus, inversion), rotation (internal +).
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct Joint3 {
+    /// Rotation about the lateral axis: flexion + (the knee's flexion, the ankle's and mtp's
+    /// dorsiflexion) (rad).
     pub flexion: f64,
+    /// Rotation about the forward axis: towards the midline + (adduction, varus, inversion)
+    /// (rad).
     pub adduction: f64,
+    /// Rotation about the segment's long axis: internal + (rad).
     pub rotation: f64,
 }
 
 /// One leg's joints.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct LegAngles {
+    /// The hip: thigh in pelvis.
     pub hip: Joint3,
+    /// The knee: shank in thigh; one degree of freedom, so adduction and rotation are 0.
     pub knee: Joint3,
     /// flexion = dorsiflexion, adduction = inversion, rotation = adduction of the foot (toe-in).
     pub ankle: Joint3,
@@ -50,13 +57,16 @@ pub struct LegAngles {
 pub struct ArmJoints {
     /// adduction = −abduction of [`crate::figure::ArmAngles`].
     pub shoulder: Joint3,
+    /// The elbow: flexion only.
     pub elbow: Joint3,
 }
 
 /// All clinical angles of one frame (rad; degrees only at the file edges).
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct Clinical {
+    /// Time of the frame since the first heel strike (s).
     pub time: f64,
+    /// Index of the step the frame falls in.
     pub step: usize,
     /// Pelvis centre, world frame (m).
     pub pelvis: [f64; 3],
@@ -69,23 +79,29 @@ pub struct Clinical {
     /// Thorax relative to the pelvis: extension + (trunk back), bending + to the right, rotation +
     /// with the right shoulder forward.
     pub lumbar_extension: f64,
+    /// Lumbar bending, + to the right.
     pub lumbar_bending: f64,
+    /// Lumbar rotation, + with the right shoulder forward.
     pub lumbar_rotation: f64,
+    /// The right leg's joints.
     pub right: LegAngles,
+    /// The left leg's joints.
     pub left: LegAngles,
+    /// The right arm's joints.
     pub right_arm: ArmJoints,
+    /// The left arm's joints.
     pub left_arm: ArmJoints,
 }
 
 impl Clinical {
-    pub fn leg(&self, side: Side) -> &LegAngles {
+    pub(crate) fn leg(&self, side: Side) -> &LegAngles {
         match side {
             Side::Right => &self.right,
             Side::Left => &self.left,
         }
     }
 
-    pub fn arm(&self, side: Side) -> &ArmJoints {
+    pub(crate) fn arm(&self, side: Side) -> &ArmJoints {
         match side {
             Side::Right => &self.right_arm,
             Side::Left => &self.left_arm,
@@ -151,7 +167,7 @@ fn joint3([a, b, c]: [f64; 3], side: f64, flexion_sign: f64) -> Joint3 {
 /// The clinical angles of one frame: those of [`Skeleton::new`] then [`Skeleton::clinical`]
 /// (the same errors, the same angles to round-off), without the frames the angles are read back
 /// from: the pelvis, lumbar and arm angles are the landmarks' own (the frames are built from
-/// them, and [`crate::figure::euler`]'s round trips return them), and no arm is placed (the angles do not depend on `_body`).
+/// them, and `figure::euler`'s round trips return them), and no arm is placed (the angles do not depend on `_body`).
 pub fn clinical(lm: &Landmarks, _body: &Body) -> Result<Clinical> {
     let trunk = Trunk::new(lm)?;
     let right = leg_frames(&lm.right, Side::Right, trunk.time)?;
@@ -213,6 +229,7 @@ fn assemble(
 pub struct AngleColumn {
     /// Column name without unit suffix, e.g. `hip_flexion_r`.
     pub name: String,
+    /// The angle's value in a frame (rad).
     pub get: Box<dyn Fn(&Clinical) -> f64 + Send + Sync>,
 }
 

@@ -16,7 +16,7 @@ use glam::{DMat3, DVec3};
 use crate::numerics::trig::{atan2, sin_cos};
 
 /// `R_z(a) · R_x(b) · R_y(c)`.
-pub fn zxy_matrix(a: f64, b: f64, c: f64) -> DMat3 {
+pub(crate) fn zxy_matrix(a: f64, b: f64, c: f64) -> DMat3 {
     DMat3::from_rotation_z(a) * DMat3::from_rotation_x(b) * DMat3::from_rotation_y(c)
 }
 
@@ -24,7 +24,7 @@ pub fn zxy_matrix(a: f64, b: f64, c: f64) -> DMat3 {
 ///
 /// With `m = R_z R_x R_y`: m₂₁ = sin b, (m₀₁, m₁₁) = cos b (−sin a, cos a),
 /// (m₂₀, m₂₂) = cos b (−sin c, cos c).
-pub fn zxy_angles(m: &DMat3) -> [f64; 3] {
+pub(crate) fn zxy_angles(m: &DMat3) -> [f64; 3] {
     zxy_from(|i, j| m.col(j)[i])
 }
 
@@ -74,7 +74,7 @@ pub(crate) fn yxz_round_trip(r: f64, p: f64, q: f64) -> [f64; 3] {
 /// (c_r s_p s_q − s_r c_q, s_r s_q + c_r s_p c_q, c_r c_p),
 /// with [`sin_cos`] instead of libm's for each rotation and two matrix products (this is the
 /// pelvis frame of every exported frame).
-pub fn yxz_matrix(r: f64, p: f64, q: f64) -> DMat3 {
+pub(crate) fn yxz_matrix(r: f64, p: f64, q: f64) -> DMat3 {
     let (sr, cr) = sin_cos(r);
     let (sp, cp) = sin_cos(p);
     let (sq, cq) = sin_cos(q);
@@ -90,7 +90,7 @@ pub fn yxz_matrix(r: f64, p: f64, q: f64) -> DMat3 {
 ///
 /// With `m = R_y R_x R_z`: m₁₂ = −sin p, (m₀₂, m₂₂) = cos p (sin r, cos r),
 /// (m₁₀, m₁₁) = cos p (sin q, cos q).
-pub fn yxz_angles(m: &DMat3) -> [f64; 3] {
+pub(crate) fn yxz_angles(m: &DMat3) -> [f64; 3] {
     let e = |i: usize, j: usize| m.col(j)[i];
     let p = (-e(1, 2)).clamp(-1.0, 1.0).asin();
     let r = atan2(e(0, 2), e(2, 2));

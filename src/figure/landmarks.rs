@@ -17,8 +17,11 @@ use crate::numerics::trig::atan2;
 /// One leg's joint centres and foot contact points, world frame (m).
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct LegPoints {
+    /// Hip joint centre.
     pub hip: [f64; 3],
+    /// Knee joint centre.
     pub knee: [f64; 3],
+    /// Ankle joint centre.
     pub ankle: [f64; 3],
     /// Back of the heel at sole level (the heel contact point).
     pub heel: [f64; 3],
@@ -61,17 +64,26 @@ pub struct Landmarks {
     pub step: usize,
     /// Pelvis centre C, the dynamic model's hip (spec §7), midpoint of the hip joints.
     pub pelvis: [f64; 3],
+    /// Pelvic tilt, + anterior (rad).
     pub pelvis_tilt: f64,
+    /// Pelvic list, + with the right side up (rad).
     pub pelvis_list: f64,
+    /// Pelvic rotation, + with the right side forward (rad).
     pub pelvis_rotation: f64,
     /// Thorax relative to the pelvis (rad): extension + (trunk back), bending + with the top of
     /// the trunk towards the right, rotation + with the right shoulder forward.
     pub lumbar_extension: f64,
+    /// Lumbar bending (rad), + with the top of the trunk towards the right.
     pub lumbar_bending: f64,
+    /// Lumbar rotation (rad), + with the right shoulder forward.
     pub lumbar_rotation: f64,
+    /// The right leg's points.
     pub right: LegPoints,
+    /// The left leg's points.
     pub left: LegPoints,
+    /// The right arm's angles.
     pub right_arm: ArmAngles,
+    /// The left arm's angles.
     pub left_arm: ArmAngles,
 }
 

@@ -2,7 +2,7 @@
 //! at one instant, the segment frames of the exported skeleton, the Euler sequences of its joints
 //! and its clinical joint angles.
 pub mod clinical;
-pub mod euler;
+pub(crate) mod euler;
 pub mod landmarks;
 pub mod skeleton;
 

@@ -30,18 +30,18 @@ use crate::model::body::Body;
 /// Largest disagreement (m) between the landmarks and the rigid segments of the body table that
 /// the BVH export accepts: its offsets are the body's lengths, so beyond this the file could not
 /// reproduce the landmarks.
-pub const LENGTH_TOLERANCE: f64 = 1e-3;
+pub(crate) const LENGTH_TOLERANCE: f64 = 1e-3;
 
 /// A segment's pose: its origin (a joint centre) and its axes (the columns), world frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Frame {
+pub(crate) struct Frame {
     pub origin: DVec3,
     pub axes: DMat3,
 }
 
 impl Frame {
     /// The world position of a point given in this frame.
-    pub fn point(&self, local: DVec3) -> DVec3 {
+    pub(crate) fn point(&self, local: DVec3) -> DVec3 {
         self.origin + self.axes * local
     }
 }
@@ -50,7 +50,7 @@ pub use crate::kinematics::pelvis::Side;
 
 /// The frames of one leg: thigh (origin at the hip), shank (knee), foot (ankle), toe (mtp).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LegFrames {
+pub(crate) struct LegFrames {
     pub thigh: Frame,
     pub shank: Frame,
     pub foot: Frame,
@@ -59,7 +59,7 @@ pub struct LegFrames {
 
 /// The frames of one arm: upper arm (origin at the shoulder), forearm (elbow), hand (wrist).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ArmFrames {
+pub(crate) struct ArmFrames {
     pub upper_arm: Frame,
     pub forearm: Frame,
     pub hand: Frame,
@@ -69,13 +69,13 @@ pub struct ArmFrames {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Skeleton {
     /// Origin at the pelvis centre (midpoint of the hip joints).
-    pub pelvis: Frame,
+    pub(crate) pelvis: Frame,
     /// Origin at the pelvis centre too: the lumbar rotation is about that point.
-    pub thorax: Frame,
-    pub right: LegFrames,
-    pub left: LegFrames,
-    pub right_arm: ArmFrames,
-    pub left_arm: ArmFrames,
+    pub(crate) thorax: Frame,
+    pub(crate) right: LegFrames,
+    pub(crate) left: LegFrames,
+    pub(crate) right_arm: ArmFrames,
+    pub(crate) left_arm: ArmFrames,
 }
 
 /// Whether `x` is finite: 0 · x is ±0 for a finite x and NaN for ±∞ and NaN (one multiply and
@@ -278,14 +278,14 @@ impl Skeleton {
         })
     }
 
-    pub fn leg(&self, side: Side) -> &LegFrames {
+    pub(crate) fn leg(&self, side: Side) -> &LegFrames {
         match side {
             Side::Right => &self.right,
             Side::Left => &self.left,
         }
     }
 
-    pub fn arm(&self, side: Side) -> &ArmFrames {
+    pub(crate) fn arm(&self, side: Side) -> &ArmFrames {
         match side {
             Side::Right => &self.right_arm,
             Side::Left => &self.left_arm,
@@ -296,7 +296,7 @@ impl Skeleton {
     /// hips at pelvis ± R (0, 0, l0/2), knee l3 below the hip and ankle l4 below the knee along
     /// their segments, heel (−l8, −l9, 0) and mtp (√(l12² − l9²), −l9, 0) in the foot frame, toe
     /// tip l13 along the toe. Returns the distance and the landmark's name.
-    pub fn length_error(&self, lm: &Landmarks, body: &Body) -> (f64, String) {
+    pub(crate) fn length_error(&self, lm: &Landmarks, body: &Body) -> (f64, String) {
         let h12 = body.ankle_to_metatarsal_horizontal();
         let mut worst = (0.0, String::new());
         for side in [Side::Right, Side::Left] {

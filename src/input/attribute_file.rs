@@ -8,7 +8,7 @@ use crate::model::attributes::{self, AttributeTable, Attributes};
 
 /// Read a user attribute file (flat TOML `name = number`, user units) into overrides, to be
 /// resolved by `AttributeTable::resolve`.
-pub fn read_attributes(path: &Path) -> Result<BTreeMap<String, f64>> {
+fn read_attributes(path: &Path) -> Result<BTreeMap<String, f64>> {
     let text = read_text(path)?;
     attributes::parse_overrides(&text, path)
 }

@@ -5,8 +5,8 @@ pub mod schedule;
 
 use std::path::Path;
 
-pub use attribute_file::{load_attributes, read_attributes};
-pub use schedule::{SCHEDULE_FIELDS, read_schedule, schedule_gaits};
+pub use attribute_file::load_attributes;
+pub use schedule::{read_schedule, schedule_gaits};
 
 use crate::error::{Error, Result};
 

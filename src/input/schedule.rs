@@ -10,7 +10,7 @@ use crate::model::body::Body;
 use crate::plan::gait::{Gait, GaitRequest};
 
 /// The columns (CSV) and keys (TOML) a schedule row may name.
-pub const SCHEDULE_FIELDS: [&str; 3] = ["velocity", "step_length", "step_frequency"];
+const SCHEDULE_FIELDS: [&str; 3] = ["velocity", "step_length", "step_frequency"];
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -1,7 +1,8 @@
 //! Stick-figure animation of a walk (`klaw animate`, issue item 10): an animated GIF, one frame
 //! per 1/fps s of walk time, each with two views of the figure of [`crate::figure`]:
 //! - side view: x forward to the right, y up, the viewer on the figure's right side (+z); the
-//!   camera follows the pelvis, ticks on the ground every [`GROUND_TICK_M`] show the progression;
+//!   camera follows the pelvis, ticks on the ground every 0.25 m (`GROUND_TICK_M`) show the
+//!   progression;
 //! - front view: the walker coming towards the viewer, so its right side (+z) is on the left of
 //!   the picture (horizontal axis −z), y up; the camera stays on the walk's plane z = 0.
 //!
@@ -11,8 +12,8 @@
 //! the arms shoulder–elbow–wrist–hand tip (segment frames from [`crate::figure::skeleton::Skeleton`],
 //! dimensions from [`Body::figure`]). The right side is blue, the left red, the trunk grey; in
 //! the side view the far (left) limbs are drawn first and paler. Every foot point (heel,
-//! metatarsal joint, toe tip) within [`CONTACT_TOLERANCE_M`] of the ground gets a black dot in
-//! both views.
+//! metatarsal joint, toe tip) within 1 mm of the ground (`CONTACT_TOLERANCE_M`) gets a black
+//! dot in both views.
 //!
 //! The GIF is written by plotters' [`BitMapBackend::gif`] frame by frame into a temporary file
 //! next to the target, renamed over it when complete: written whole or not at all. Text (the
@@ -31,21 +32,21 @@ use crate::model::body::Body;
 use crate::plot::{self, Chart, FONT, LEFT_COLOR, RIGHT_COLOR, msg};
 
 /// A foot point this close to the ground (m) is drawn as a contact.
-pub const CONTACT_TOLERANCE_M: f64 = 1e-3;
+pub(crate) const CONTACT_TOLERANCE_M: f64 = 1e-3;
 /// Spacing of the ground ticks of the side view (m).
-pub const GROUND_TICK_M: f64 = 0.25;
+pub(crate) const GROUND_TICK_M: f64 = 0.25;
 /// Frame rate range (frames/s): GIF delays are whole hundredths of a second.
-pub const FPS_RANGE: (f64, f64) = (1.0, 100.0);
+pub(crate) const FPS_RANGE: (f64, f64) = (1.0, 100.0);
 /// Image width range (px).
-pub const WIDTH_RANGE: (u32, u32) = (200, 4000);
+pub(crate) const WIDTH_RANGE: (u32, u32) = (200, 4000);
 /// Image height range (px).
-pub const HEIGHT_RANGE: (u32, u32) = (100, 4000);
+pub(crate) const HEIGHT_RANGE: (u32, u32) = (100, 4000);
 /// At most this many frames (a GIF of more would take long to write and be too large to show).
-pub const MAX_FRAMES: usize = 20_000;
+pub(crate) const MAX_FRAMES: usize = 20_000;
 /// Colour of the contact dots.
-pub const CONTACT_COLOR: RGBColor = RGBColor(0, 0, 0);
+pub(crate) const CONTACT_COLOR: RGBColor = RGBColor(0, 0, 0);
 /// Pelvis, spine, shoulders, neck and head.
-pub const TRUNK_COLOR: RGBColor = RGBColor(95, 95, 95);
+pub(crate) const TRUNK_COLOR: RGBColor = RGBColor(95, 95, 95);
 const GROUND_COLOR: RGBColor = RGBColor(140, 140, 140);
 const CONTACT_RADIUS: i32 = 4;
 const MARGIN: u32 = 8;
@@ -60,8 +61,9 @@ pub struct Options {
 }
 
 impl Options {
-    /// Check the frame rate against [`FPS_RANGE`] and the size against [`WIDTH_RANGE`] and
-    /// [`HEIGHT_RANGE`] ([`Error::OutOfRange`] / [`Error::NotFinite`]).
+    /// Check the frame rate against 1–100 frames/s (`FPS_RANGE`) and the size against 200–4000
+    /// px wide and 100–4000 px high (`WIDTH_RANGE`, `HEIGHT_RANGE`) ([`Error::OutOfRange`] /
+    /// [`Error::NotFinite`]).
     pub fn new(fps: f64, size: (u32, u32)) -> Result<Options> {
         Error::check_range("fps", fps, FPS_RANGE.0, FPS_RANGE.1, "frames/s")?;
         let (w, h) = size;
@@ -84,7 +86,7 @@ impl Options {
 
     /// The display time of a frame in milliseconds, as plotters takes it (it rounds to
     /// hundredths of a second).
-    pub fn frame_delay_ms(&self) -> u32 {
+    pub(crate) fn frame_delay_ms(&self) -> u32 {
         (1000.0 / self.fps).round() as u32
     }
 }
@@ -132,12 +134,12 @@ pub fn check_path(path: &Path) -> Result<()> {
 /// view's horizontal coordinate (x in the side view, −z in the front view), v = y.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ViewMap {
-    pub u0: f64,
-    pub v0: f64,
-    pub px0: f64,
-    pub py0: f64,
+    pub(crate) u0: f64,
+    pub(crate) v0: f64,
+    pub(crate) px0: f64,
+    pub(crate) py0: f64,
     /// Pixels per metre, both axes.
-    pub scale: f64,
+    pub(crate) scale: f64,
 }
 
 impl ViewMap {
@@ -153,7 +155,9 @@ impl ViewMap {
 /// Where one frame's views were drawn.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FrameViews {
+    /// The side view (x across, y up).
     pub side: ViewMap,
+    /// The front view (−z across, y up).
     pub front: ViewMap,
 }
 
@@ -184,8 +188,8 @@ pub fn animate_walk(walk: &Walk, title: &str, path: &Path, options: &Options) ->
 
 /// Write `frames` (the figure at successive instants, 1/fps apart) as an animated GIF to `path`
 /// (see the module doc). Errors: a path not ending in .gif ([`Error::Malformed`]), no frames
-/// or more than [`MAX_FRAMES`] ([`Error::Export`]), a frame the skeleton cannot be built from
-/// ([`Error::NotFinite`], [`Error::Geometry`]), drawing or writing ([`Error::Io`], action
+/// or more than 20 000 (`MAX_FRAMES`) ([`Error::Export`]), a frame the skeleton cannot be built
+/// from ([`Error::NotFinite`], [`Error::Geometry`]), drawing or writing ([`Error::Io`], action
 /// "writing"). On error no file is left and an existing `path` is untouched.
 pub fn write_gif(
     frames: &[Landmarks],

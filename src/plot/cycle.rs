@@ -30,7 +30,7 @@ pub const BAND_COLOR: RGBColor = RGBColor(196, 230, 188);
 /// Fill of a peak-to-peak norm, anchored at the curve's minimum.
 pub const EXCURSION_BAND_COLOR: RGBColor = RGBColor(253, 218, 168);
 /// The pelvis' curves (solid, right cycle).
-pub const PELVIS_COLOR: RGBColor = RGBColor(30, 30, 30);
+pub(crate) const PELVIS_COLOR: RGBColor = RGBColor(30, 30, 30);
 const LABEL_SIZE: i32 = 15;
 const NOTE_SIZE: i32 = 14;
 const LEGEND_H: u32 = 34;
@@ -64,16 +64,22 @@ fn y_label(panel: Panel) -> &'static str {
 /// axis, in the panel's unit.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PanelPixels {
+    /// The panel.
     pub panel: Panel,
+    /// Pixel of the plotting area's left top corner (0 %, y_hi).
     pub left_top: (i32, i32),
+    /// Pixel of the plotting area's right bottom corner (100 %, y_lo).
     pub right_bottom: (i32, i32),
+    /// The vertical axis's range (y_lo, y_hi), in the panel's unit.
     pub y_range: (f64, f64),
 }
 
 /// What a written figure shows: the norm checks and where each panel was drawn.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CycleFigure {
+    /// Every norm's check on every curve of its panel.
     pub checks: Vec<NormCheck>,
+    /// The panels, in [`Panel::ALL`]'s order.
     pub panels: Vec<PanelPixels>,
 }
 

@@ -29,7 +29,7 @@ const CROSS_COLOR: RGBColor = RGBColor(60, 60, 60);
 const NO_VALUE_COLOR: RGBColor = RGBColor(235, 235, 235);
 
 /// Short names accepted for `--column`.
-pub const COLUMN_ALIASES: [(&str, &str); 3] = [
+pub(crate) const COLUMN_ALIASES: [(&str, &str); 3] = [
     ("iterations", "mean_iterations"),
     ("iterations_mean", "mean_iterations"),
     ("peak_knee", "max_peak_swing_knee_flexion_deg"),
@@ -38,10 +38,13 @@ pub const COLUMN_ALIASES: [(&str, &str); 3] = [
 /// One cell of the map.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MapCell {
+    /// The cell's value of the x column.
     pub x: f64,
+    /// The cell's value of the y column.
     pub y: f64,
     /// Rows on this cell, and how many converged.
     pub rows: usize,
+    /// Rows on this cell whose walk converged.
     pub converged: usize,
     /// The mean of the column over the converged rows (the fraction converged for `converged`).
     pub value: Option<f64>,
@@ -50,6 +53,7 @@ pub struct MapCell {
 }
 
 impl MapCell {
+    /// Whether no walk of the cell converged (drawn in [`FAILED_COLOR`]).
     pub fn failed(&self) -> bool {
         self.converged == 0
     }
@@ -58,12 +62,17 @@ impl MapCell {
 /// The data of a heat map.
 #[derive(Clone, Debug, PartialEq)]
 pub struct HeatMap {
+    /// The column along the horizontal axis.
     pub x: String,
+    /// The column along the vertical axis.
     pub y: String,
+    /// The column the cells are coloured by.
     pub column: String,
-    /// The distinct values of x and y, increasing.
+    /// The distinct values of x, increasing.
     pub xs: Vec<f64>,
+    /// The distinct values of y, increasing.
     pub ys: Vec<f64>,
+    /// One cell per (x, y) pair found in the rows.
     pub cells: Vec<MapCell>,
 }
 
@@ -75,7 +84,7 @@ fn bad(flag: &str, reason: String) -> Error {
 }
 
 /// The unit of a column of a sweep output ("" for none).
-pub fn unit(name: &str) -> String {
+pub(crate) fn unit(name: &str) -> String {
     let u = match name {
         "velocity" | "achieved_velocity" => "m/s",
         "step_length"
@@ -310,7 +319,7 @@ impl HeatMap {
 
     /// The range of the colour scale: [0, 1] for `converged`, else the values' extent (widened
     /// when they are all equal).
-    pub fn value_range(&self) -> (f64, f64) {
+    pub(crate) fn value_range(&self) -> (f64, f64) {
         if self.column == "converged" {
             return (0.0, 1.0);
         }
@@ -329,7 +338,7 @@ impl HeatMap {
 
     /// Draw the map to `path` (PNG or SVG by extension); the cells' pixel rectangles are filled
     /// in.
-    pub fn write(&mut self, path: &Path) -> Result<()> {
+    pub(crate) fn write(&mut self, path: &Path) -> Result<()> {
         let format = plot::figure_format(path)?;
         let text = plot::text_available();
         plot::write_figure(
@@ -506,7 +515,7 @@ impl Draw for MapDrawing<'_> {
 
 /// The viridis colour map at s ∈ [0, 1] (clamped), interpolated linearly between 9 samples of
 /// matplotlib's table.
-pub fn viridis(s: f64) -> RGBColor {
+pub(crate) fn viridis(s: f64) -> RGBColor {
     const TABLE: [(u8, u8, u8); 9] = [
         (68, 1, 84),
         (71, 44, 122),

@@ -30,7 +30,7 @@ use crate::plan::gait::Gait;
 /// Environment variable naming the TrueType font to use instead of the default locations.
 pub const FONT_ENV: &str = "KLAW_FONT";
 /// Where the font is looked for when `KLAW_FONT` is not set (Debian/Ubuntu, Arch, Fedora).
-pub const FONT_CANDIDATES: &[&str] = &[
+pub(crate) const FONT_CANDIDATES: &[&str] = &[
     "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
     "/usr/share/fonts/TTF/DejaVuSans.ttf",
     "/usr/share/fonts/dejavu-sans-fonts/DejaVuSans.ttf",
@@ -40,14 +40,16 @@ pub const FONT_CANDIDATES: &[&str] = &[
 pub(crate) const FONT: &str = "sans-serif";
 pub(crate) const TITLE_SIZE: i32 = 22;
 /// The right side's curves and segments, in every figure.
-pub const RIGHT_COLOR: RGBColor = RGBColor(31, 119, 180);
+pub(crate) const RIGHT_COLOR: RGBColor = RGBColor(31, 119, 180);
 /// The left side's curves and segments, in every figure.
-pub const LEFT_COLOR: RGBColor = RGBColor(214, 39, 40);
+pub(crate) const LEFT_COLOR: RGBColor = RGBColor(214, 39, 40);
 
 /// The file format of a figure, from its path's extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FigureFormat {
+    /// `.png`: a raster image.
     Png,
+    /// `.svg`: a vector image.
     Svg,
 }
 

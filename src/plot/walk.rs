@@ -17,9 +17,9 @@ use crate::plot::{
 /// Figure size in pixels (width, height).
 pub const FIGURE_SIZE: (u32, u32) = (1600, 1000);
 /// Stick figures are drawn this often (s of walk time).
-pub const FIGURE_INTERVAL_S: f64 = 0.1;
+pub(crate) const FIGURE_INTERVAL_S: f64 = 0.1;
 /// The side view shows at most this many steps (the first ones); the time plots show all.
-pub const SIDE_VIEW_MAX_STEPS: usize = 12;
+pub(crate) const SIDE_VIEW_MAX_STEPS: usize = 12;
 
 const HIP_PATH: RGBColor = RGBColor(150, 150, 150);
 const STEP_LINE: RGBColor = RGBColor(215, 215, 215);

@@ -3,11 +3,10 @@
 //! completed by the normalizing formula, KLAW 1989 eq. 1), runs the step loop (KLAW 1989
 //! Figure 1) and hands back a [`Walk`] whose figure frames, clinical angles, gait events, report
 //! and exports are methods. It composes the levels below it (plan, engine, figure, analysis,
-//! export, io) and adds nothing to the physics.
+//! export, input) and adds nothing to the physics.
 //!
 //! A [`Walk`] keeps every step's records, its memory grows with the step count; for long walks
 //! [`Prepared::stream`] samples the figure step by step in bounded memory.
-#![warn(missing_docs)]
 
 pub mod stream;
 

@@ -24,7 +24,7 @@ pub fn read_sweep_file(path: &Path, table: &AttributeTable) -> Result<Vec<Entry>
 }
 
 /// `read_sweep_file` on text; errors are the reason only.
-pub fn parse_sweep_toml(
+pub(crate) fn parse_sweep_toml(
     text: &str,
     table: &AttributeTable,
 ) -> std::result::Result<Vec<Entry>, String> {

@@ -13,11 +13,13 @@ use crate::sweep::Format;
 /// What a merge did.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct MergeStats {
+    /// Rows written.
     pub rows: usize,
     /// Rows found in more than one input (identical; written once).
     pub duplicates: usize,
     /// Points missing between 0 and the largest point found, and the first few of them.
     pub missing: usize,
+    /// The first (at most 10) missing points.
     pub first_missing: Vec<usize>,
     /// Inputs whose last line was cut off (not merged).
     pub cut_off: Vec<PathBuf>,

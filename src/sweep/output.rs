@@ -19,7 +19,7 @@ use crate::error::{Error, Result};
 use crate::sweep::{Format, Shard, Sweep};
 
 /// The partial output of a sweep writing `target`: `.NAME.partial` in the same directory.
-pub fn partial_path(target: &Path) -> PathBuf {
+pub(crate) fn partial_path(target: &Path) -> PathBuf {
     let name = target
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
@@ -56,7 +56,7 @@ fn comparable(format: Format, header: &[String]) -> Vec<String> {
 /// Reads the rows of a sweep output in order, checking that every row is complete, has the
 /// file's columns and a `point` larger than the one before. A last line without its newline
 /// (cut off by an interruption) is not returned: `cut_off` says so.
-pub struct RowReader {
+pub(crate) struct RowReader {
     pub(super) path: PathBuf,
     format: Format,
     reader: BufReader<File>,
@@ -183,8 +183,9 @@ fn parse_csv(text: &str) -> std::result::Result<Vec<String>, String> {
 pub struct RunStats {
     /// Points of the shard (of the whole sweep for 1/1).
     pub points: usize,
-    /// Walks run now, and how many of them failed.
+    /// Walks run now.
     pub computed: usize,
+    /// Walks run now that failed (their rows carry the error).
     pub failed: usize,
     /// Rows kept from the partial file or the existing target (with `resume`).
     pub kept: usize,

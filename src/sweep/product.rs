@@ -7,26 +7,33 @@ use crate::model::attributes::AttributeTable;
 use crate::plan::gait::GaitRequest;
 
 /// Largest number of points (walks) of a sweep.
-pub const MAX_POINTS: usize = 10_000_000;
+pub(crate) const MAX_POINTS: usize = 10_000_000;
 
 /// What a swept dimension sets.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Axis {
+    /// Walking speed v (m/s).
     Velocity,
+    /// Step length sl (m).
     StepLength,
+    /// Step frequency sf (steps/min).
     StepFrequency,
+    /// Body height H (m).
     Height,
+    /// Body mass M (kg).
     Mass,
-    /// M = K · H².
+    /// M = K · H² (K in kg/m²).
     MassPerHeight2,
+    /// Steps per walk (count).
     Steps,
     /// A style preset of `models/styles/`, by its index in `attributes::STYLES`.
     Style,
+    /// The locomotion attribute of this name (`models/attributes.toml`), in its units there.
     Attribute(String),
 }
 
 /// The quantities a sweep names besides the attributes, in product order.
-pub const QUANTITIES: [&str; 8] = [
+pub(crate) const QUANTITIES: [&str; 8] = [
     "velocity",
     "step_length",
     "step_frequency",
@@ -39,7 +46,7 @@ pub const QUANTITIES: [&str; 8] = [
 
 impl Axis {
     /// The column name.
-    pub fn name(&self) -> &str {
+    pub(crate) fn name(&self) -> &str {
         match self {
             Axis::Velocity => "velocity",
             Axis::StepLength => "step_length",
@@ -55,7 +62,7 @@ impl Axis {
 
     /// The axis of a flag or sweep-file key (`step-length` or `step_length`), or of a locomotion
     /// attribute of `table`; `None` for an unknown name.
-    pub fn from_name(name: &str, table: &AttributeTable) -> Option<Axis> {
+    pub(crate) fn from_name(name: &str, table: &AttributeTable) -> Option<Axis> {
         let key = name.trim().replace('-', "_");
         Some(match key.as_str() {
             "velocity" => Axis::Velocity,
@@ -83,15 +90,15 @@ impl Axis {
 /// A sweep: axes in product order (the first varies slowest, the last fastest).
 #[derive(Clone, Debug, Default)]
 pub struct Sweep {
-    pub axes: Vec<(Axis, Vec<f64>)>,
+    pub(crate) axes: Vec<(Axis, Vec<f64>)>,
 }
 
 /// A swept axis with its values, as a flag or a sweep file gives it.
-pub type Entry = (Axis, Vec<f64>);
+pub(crate) type Entry = (Axis, Vec<f64>);
 
 /// The inputs of one walk, decoded from a point of the product.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Inputs {
+pub(crate) struct Inputs {
     /// The point's index in product order.
     pub point: usize,
     pub request: GaitRequest,
@@ -173,12 +180,13 @@ impl Sweep {
             .unwrap_or(usize::MAX)
     }
 
+    /// Whether the product has no point (an empty value list).
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }
 
     /// Point `k` of the product (row-major: the last axis varies fastest).
-    pub fn point(&self, mut k: usize) -> Vec<f64> {
+    pub(crate) fn point(&self, mut k: usize) -> Vec<f64> {
         let mut p = vec![0.0; self.axes.len()];
         for (i, (_, values)) in self.axes.iter().enumerate().rev() {
             p[i] = values[k % values.len()];
@@ -187,14 +195,15 @@ impl Sweep {
         p
     }
 
-    /// Every point, in product order.
-    pub fn points(&self) -> Vec<Vec<f64>> {
+    /// Every point, in product order (the unit tests' view of the product).
+    #[cfg(test)]
+    pub(crate) fn points(&self) -> Vec<Vec<f64>> {
         (0..self.len()).map(|k| self.point(k)).collect()
     }
 
     /// The inputs of the walk of point `k`; unswept quantities take the `klaw walk` defaults
     /// (H 1.8 m, M 80 kg, 10 steps, v 1.4 m/s when no gait quantity is swept).
-    pub fn inputs(&self, k: usize) -> Inputs {
+    pub(crate) fn inputs(&self, k: usize) -> Inputs {
         let point = self.point(k);
         let mut inputs = Inputs {
             point: k,
@@ -235,7 +244,7 @@ impl Sweep {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sweep::OUTPUT_COLUMNS;
+    use crate::sweep::rows::OUTPUT_COLUMNS;
 
     #[test]
     fn product_order_is_row_major() {

@@ -8,7 +8,7 @@ use crate::model::attributes::STYLES;
 
 /// One cell of an output row.
 #[derive(Clone, Debug, PartialEq)]
-pub enum Cell {
+pub(crate) enum Cell {
     Empty,
     Num(f64),
     Int(usize),
@@ -18,7 +18,7 @@ pub enum Cell {
 
 /// What one walk of the sweep produced.
 #[derive(Clone, Debug, Default, PartialEq)]
-pub struct Summary {
+pub(crate) struct Summary {
     pub mean_iterations: f64,
     pub max_iterations: usize,
     pub achieved_velocity: f64,
@@ -35,7 +35,7 @@ pub struct Summary {
 }
 
 /// The output columns after the inputs.
-pub const OUTPUT_COLUMNS: [&str; 14] = [
+pub(crate) const OUTPUT_COLUMNS: [&str; 14] = [
     "converged",
     "error",
     "mean_iterations",
@@ -54,14 +54,14 @@ pub const OUTPUT_COLUMNS: [&str; 14] = [
 
 /// The row of one walk: its inputs and its outcome (a summary, or the reason it failed).
 #[derive(Clone, Debug, PartialEq)]
-pub struct Row {
+pub(crate) struct Row {
     pub inputs: Inputs,
     pub outcome: std::result::Result<Summary, String>,
 }
 
 impl Sweep {
     /// The input column names: `point`, the gait, the body, `steps`, the swept attributes.
-    pub fn input_header(&self) -> Vec<String> {
+    pub(crate) fn input_header(&self) -> Vec<String> {
         let mut h: Vec<String> = [
             "point",
             "velocity",
@@ -89,7 +89,7 @@ impl Sweep {
     }
 
     /// The column names: the inputs, then `OUTPUT_COLUMNS`.
-    pub fn header(&self) -> Vec<String> {
+    pub(crate) fn header(&self) -> Vec<String> {
         let mut h = self.input_header();
         h.extend(OUTPUT_COLUMNS.iter().map(|s| s.to_string()));
         h
@@ -180,7 +180,9 @@ fn json_value(cell: &Cell) -> serde_json::Value {
 /// Output format of a sweep, by the file's extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {
+    /// `.csv`: a header line, then one line per walk.
     Csv,
+    /// `.jsonl`: JSON Lines, one object per walk.
     Jsonl,
 }
 
@@ -203,7 +205,7 @@ impl Format {
 
     /// The text of one row, with its final newline: a CSV record, or a JSON object with the
     /// keys of `header` in order (empty cells as null). `cells` may be a prefix of the row.
-    pub fn line(&self, header: &[String], cells: &[Cell]) -> String {
+    pub(crate) fn line(&self, header: &[String], cells: &[Cell]) -> String {
         match self {
             Format::Csv => csv_line(cells.iter().map(csv_text)),
             Format::Jsonl => {
@@ -223,7 +225,7 @@ impl Format {
     }
 
     /// The header line (CSV), or nothing (JSON Lines name the columns in every row).
-    pub fn header_line(&self, header: &[String]) -> String {
+    pub(crate) fn header_line(&self, header: &[String]) -> String {
         match self {
             Format::Csv => csv_line(header.iter().cloned()),
             Format::Jsonl => String::new(),
@@ -231,7 +233,7 @@ impl Format {
     }
 
     /// How a row's text starts, given its input cells (an exact prefix of `line`).
-    pub fn input_prefix(&self, header: &[String], inputs: &[Cell]) -> String {
+    pub(crate) fn input_prefix(&self, header: &[String], inputs: &[Cell]) -> String {
         let mut line = self.line(header, inputs);
         let end = match self {
             Format::Csv => "\n",

@@ -12,15 +12,15 @@ use crate::model::body::Body;
 use crate::plan::Timing;
 
 /// Steps per walk: valid range.
-pub const MAX_STEPS: usize = 1_000_000;
+pub(crate) const MAX_STEPS: usize = 1_000_000;
 
 /// Walks run in parallel per chunk, for each thread: rows are written chunk by chunk, so memory
 /// holds at most a chunk of rows whatever the size of the sweep.
-pub const CHUNK_PER_THREAD: usize = 32;
+pub(crate) const CHUNK_PER_THREAD: usize = 32;
 
 impl Sweep {
     /// Walk point `k` and summarize it; a failure is recorded in the row, never returned.
-    pub fn walk(&self, k: usize, table: &AttributeTable) -> Row {
+    pub(crate) fn walk(&self, k: usize, table: &AttributeTable) -> Row {
         let inputs = self.inputs(k);
         let outcome =
             run_walk(&inputs, table).map_err(|e| e.to_string().replace(['\n', '\r'], " "));
@@ -31,7 +31,7 @@ impl Sweep {
     /// `CHUNK_PER_THREAD × threads` at a time; `emit` receives every row, in the order of
     /// `points`, as soon as its chunk is done; `progress()` is called after each walk (from any
     /// thread). An `emit` error stops the sweep.
-    pub fn run(
+    pub(crate) fn run(
         &self,
         points: impl IntoIterator<Item = usize>,
         progress: &(dyn Fn() + Sync),
@@ -61,7 +61,7 @@ impl Sweep {
 }
 
 /// Simulate one walk and summarize it.
-pub fn run_walk(inputs: &Inputs, table: &AttributeTable) -> Result<Summary> {
+pub(crate) fn run_walk(inputs: &Inputs, table: &AttributeTable) -> Result<Summary> {
     let steps = Error::check_range("steps", inputs.steps, 1.0, MAX_STEPS as f64, "steps")?;
     if steps.fract() != 0.0 {
         return Err(Error::Geometry {

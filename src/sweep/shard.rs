@@ -13,7 +13,7 @@ pub struct Shard {
 }
 
 /// Largest shard count.
-pub const MAX_SHARDS: usize = 1_000_000;
+pub(crate) const MAX_SHARDS: usize = 1_000_000;
 
 impl Shard {
     /// The whole sweep, 1/1.
@@ -41,12 +41,12 @@ impl Shard {
     }
 
     /// Whether point `p` belongs to this shard.
-    pub fn contains(&self, p: usize) -> bool {
+    pub(crate) fn contains(&self, p: usize) -> bool {
         p % self.count == self.index - 1
     }
 
     /// The shard's points of a sweep of `total` points, increasing, from `from` on.
-    pub fn points(&self, total: usize, from: usize) -> impl Iterator<Item = usize> + use<> {
+    pub(crate) fn points(&self, total: usize, from: usize) -> impl Iterator<Item = usize> + use<> {
         let first = self.index - 1;
         let start = if from <= first {
             first

@@ -4,7 +4,7 @@ use crate::error::{Error, Result};
 use crate::model::attributes::{AttributeTable, STYLES};
 
 /// Largest number of values one flag may expand to.
-pub const MAX_VALUES: usize = 1_000_000;
+pub(crate) const MAX_VALUES: usize = 1_000_000;
 /// Relative tolerance with which a range's STOP is included.
 const RANGE_TOLERANCE: f64 = 1e-9;
 

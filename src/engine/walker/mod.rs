@@ -30,9 +30,9 @@ pub use swing::swing_hip_vy_end;
 
 /// Walks step after step, carrying the state and the warm starts.
 pub struct Walker {
-    pub body: Body,
-    pub attrs: Attributes,
-    /// The tolerances and limits ([`Self::with_parameters`]).
+    pub(crate) body: Body,
+    pub(crate) attrs: Attributes,
+    /// The tolerances and limits (today's values, [`EngineParameters::default`]).
     pub(super) parameters: EngineParameters,
     pub(super) stance_model: StanceModel,
     pub(super) swing_model: SwingModel,
@@ -123,6 +123,8 @@ pub fn simulate(body: Body, attrs: Attributes, gaits: &[Gait]) -> Result<Walk> {
 }
 
 impl Walker {
+    /// A walker for `body` and `attrs` at the first step, with the engine's parameters
+    /// ([`EngineParameters::default`]) and the start-up guesses on.
     pub fn new(body: Body, attrs: Attributes) -> Self {
         let determinants = Determinants::new(&attrs, body.l0);
         Walker {
@@ -146,12 +148,6 @@ impl Walker {
             evaluations: 0,
             startup_guesses: true,
         }
-    }
-
-    /// The same walker with the tolerances and limits `parameters`.
-    pub fn with_parameters(mut self, parameters: EngineParameters) -> Self {
-        self.parameters = parameters;
-        self
     }
 
     /// The same walker with every solve started plainly (body-scaled constants, zero torques,
@@ -182,7 +178,7 @@ impl Walker {
 
     /// Simulate the next step with gait `gait`. When the swing fails with the attributes'
     /// pelvic list (the foot under the ground, or no convergence), the step is tried again with
-    /// half the list, then none [ours]: the list lowers the swing hip by (l0/2) sin L at mid
+    /// half the list, then none \[ours\]: the list lowers the swing hip by (l0/2) sin L at mid
     /// step, ≈ 5 mm, which the fastest walks of short bodies (v = 2 m/s at H = 1.5 m) cannot
     /// spare. The list used is in the step's `determinants`.
     pub fn step(&mut self, gait: Gait) -> Result<Step> {
@@ -244,7 +240,6 @@ impl Walker {
             constraints: plan.c,
             stance_setup: setup,
             stance,
-            impact,
             solves: vec![stance_solve, swing1, swing2, swing3],
             side: plan.side,
             determinants: plan.det,

@@ -158,7 +158,7 @@ impl Walker {
         Ok((stance, record))
     }
 
-    /// [ours] The swings' warm starts extrapolate with the stance's step ratio: the walk
+    /// \[ours\] The swings' warm starts extrapolate with the stance's step ratio: the walk
     /// approaches its limit cycle with one ratio for all seven unknowns (λ ≈ −0.04 to −0.15 over
     /// the grid), which the stance's history shows from step 2 on while the swings' own start
     /// with the first step's (+0.03 to +0.4 for swing1's A at step 2).
@@ -208,7 +208,7 @@ impl Walker {
         })
     }
 
-    /// [ours] The first step's hind leg: a foot flat at −sl, its heel already off at the heel
+    /// \[ours\] The first step's hind leg: a foot flat at −sl, its heel already off at the heel
     /// strike with the knee at κ_hs.
     fn first_hind_leg(&self, plan: &StepPlan) -> StanceLeg {
         let (t, t0) = (plan.c.timing, plan.t0);
