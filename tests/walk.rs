@@ -267,3 +267,44 @@ fn measured_extremes_are_at_least_those_of_dense_sampling() {
         }
     }
 }
+
+/// The walker runs with the parameters it is given: a solve tolerance 100 times looser (the
+/// walk's own promise, 1e-6) spends fewer trials over the walk, and a limit of one
+/// trial per solve cannot walk the first step, whose warm starts are only guesses.
+#[test]
+fn the_walker_runs_with_its_parameters() {
+    use klaw::engine::parameters::EngineParameters;
+    use klaw::engine::walker::Walker;
+    let body = default_body();
+    let g = gait(&body, 1.4);
+    let trials = |parameters: EngineParameters| {
+        let mut w = Walker::new(body, default_attributes()).with_parameters(parameters);
+        let mut spent = 0;
+        for _ in 0..6 {
+            let step = w.step(g).unwrap();
+            for s in &step.report.solves {
+                assert!(s.report.converged);
+                spent += s.report.iterations;
+            }
+        }
+        spent
+    };
+    let default = EngineParameters::default();
+    let loose = EngineParameters {
+        solve_tolerance: 1e-6,
+        waypoint_tolerance: 1e-6,
+        ..default
+    };
+    assert!(
+        trials(loose) < trials(default),
+        "{} vs {}",
+        trials(loose),
+        trials(default)
+    );
+    let one = EngineParameters {
+        max_iterations: 1,
+        ..default
+    };
+    let mut w = Walker::new(body, default_attributes()).with_parameters(one);
+    assert!(w.step(g).is_err());
+}

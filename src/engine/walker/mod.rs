@@ -150,6 +150,12 @@ impl Walker {
         }
     }
 
+    /// The same walker with the tolerances and limits `parameters`.
+    pub fn with_parameters(mut self, parameters: EngineParameters) -> Self {
+        self.parameters = parameters;
+        self
+    }
+
     /// The same walker with every solve started plainly (body-scaled constants, zero torques,
     /// difference Jacobians) instead of from the fitted start-up guesses: what
     /// `examples/startup_fit.rs` fits, so that its output does not depend on its last output.
