@@ -10,7 +10,8 @@ mod common;
 use common::default_walk;
 use image::{AnimationDecoder, RgbaImage};
 use klaw::Error;
-use klaw::figure::Landmarks;
+use klaw::figure::{FigureError, Landmarks};
+use klaw::model::InputError;
 use klaw::plot::animation::{Options, animate_walk, check_path, parse_size, write_gif};
 
 /// The decoded frames (RGBA) and each frame's delay in ms.
@@ -57,7 +58,7 @@ fn gif_has_a_frame_per_interval_and_dots_under_flat_feet() {
         assert_eq!(*delay, 50);
     }
     let landmarks: Vec<Landmarks> = klaw::figure::frames(&walk, fps)
-        .collect::<klaw::Result<_>>()
+        .collect::<Result<_, _>>()
         .unwrap();
     assert_eq!(landmarks.len(), expected);
 
@@ -124,8 +125,7 @@ fn bad_paths_options_and_frames_are_typed_errors() {
     let dir = tempfile::tempdir().unwrap();
     for bad in ["walk.png", "walk", "walk.gif.txt"] {
         let e = check_path(Path::new(bad)).unwrap_err();
-        assert!(matches!(e, Error::Malformed { .. }), "{e}");
-        assert_eq!(e.exit_code(), 2);
+        assert!(matches!(e, InputError::Malformed { .. }), "{e}");
     }
     assert!(check_path(Path::new("a/walk.GIF")).is_ok());
     for (fps, size) in [
@@ -138,7 +138,10 @@ fn bad_paths_options_and_frames_are_typed_errors() {
     ] {
         let e = Options::new(fps, size).unwrap_err();
         assert!(
-            matches!(e, Error::OutOfRange { .. } | Error::NotFinite { .. }),
+            matches!(
+                e,
+                InputError::OutOfRange { .. } | InputError::NotFinite { .. }
+            ),
             "{e}"
         );
     }
@@ -146,28 +149,34 @@ fn bad_paths_options_and_frames_are_typed_errors() {
     assert_eq!(parse_size(" 640X360 ").unwrap(), (640, 360));
     for bad in ["900", "x450", "900x", "a x b", "-1x3"] {
         let e = parse_size(bad).unwrap_err();
-        assert!(matches!(e, Error::BadSpec { .. }), "{bad}: {e}");
+        assert!(matches!(e, InputError::BadValue { .. }), "{bad}: {e}");
     }
 
     let walk = default_walk(1);
     let options = Options::new(10.0, (300, 150)).unwrap();
     let png = dir.path().join("walk.png");
     let e = animate_walk(&walk, "t", &png, &options).unwrap_err();
-    assert!(matches!(e, Error::Malformed { .. }), "{e}");
+    assert!(
+        matches!(e, Error::Input(InputError::Malformed { .. })),
+        "{e}"
+    );
     assert!(!png.exists());
 
     // a frame that cannot be drawn: an error, no file, an existing file untouched
     let mut frames: Vec<Landmarks> = klaw::figure::frames(&walk, 10.0)
-        .collect::<klaw::Result<_>>()
+        .collect::<Result<_, _>>()
         .unwrap();
     let path = dir.path().join("walk.gif");
     fs::write(&path, b"old").unwrap();
     frames[2].right.knee[1] = f64::NAN;
     let e = write_gif(&frames, &walk.body, "t", &path, &options).unwrap_err();
-    assert!(matches!(e, Error::NotFinite { .. }), "{e}");
+    assert!(
+        matches!(e, Error::Figure(FigureError::NotFinite { .. })),
+        "{e}"
+    );
     assert_eq!(fs::read(&path).unwrap(), b"old");
     let e = write_gif(&[], &walk.body, "t", &path, &options).unwrap_err();
-    assert!(matches!(e, Error::Export { .. }), "{e}");
+    assert!(matches!(e, Error::Export(_)), "{e}");
     let names: Vec<String> = fs::read_dir(dir.path())
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())

@@ -17,7 +17,7 @@
 use serde::Deserialize;
 
 use crate::engine::walker::Walk;
-use crate::error::{Error, Result};
+use crate::figure::FigureError;
 use crate::figure::clinical::{self, Clinical, angle_columns};
 use crate::figure::skeleton::Side;
 
@@ -39,12 +39,46 @@ pub struct CycleCurves {
     pub cycles: usize,
 }
 
-fn export_error(what: String) -> Error {
-    Error::Export { what }
+/// Frames that cannot be averaged over the gait cycle.
+#[derive(Debug, thiserror::Error)]
+pub enum CycleError {
+    /// A frame of the walk cannot be built.
+    #[error(transparent)]
+    Frame(#[from] FigureError),
+    /// Not one time per frame.
+    #[error("{times} frame times for {frames} frames")]
+    FrameCount { times: usize, frames: usize },
+    /// A frame with another number of values than the first.
+    #[error("frame {frame} has {values} values, frame 0 has {width}")]
+    FrameWidth {
+        frame: usize,
+        values: usize,
+        width: usize,
+    },
+    #[error("frame times must be finite and strictly increasing")]
+    Times,
+    #[error("right heel strike times must be finite and strictly increasing")]
+    HeelStrikes,
+    #[error("no frames to average")]
+    NoFrames,
+    /// No cycle between two heel strikes, after the first `skip`, lies within the frames'
+    /// times [`t_first`, `t_last`] (s).
+    #[error(
+        "no complete steady-state gait cycle: {strikes} right heel strikes give {} cycles, the \
+         first {skip} skipped as the start-up, and the frames cover {t_first} … {t_last} s; \
+         walk more steps",
+        strikes.saturating_sub(1)
+    )]
+    NoSteadyCycle {
+        strikes: usize,
+        skip: usize,
+        t_first: f64,
+        t_last: f64,
+    },
 }
 
 /// Average `values` (one row per frame, at `times`) over the steady-state cycles delimited by
-/// `right_heel_strikes` (see the module doc). Errors ([`Error::Export`]): times or strikes not
+/// `right_heel_strikes` (see the module doc). Errors ([`CycleError`]): times or strikes not
 /// finite and strictly increasing, rows of unequal length, no complete cycle after skipping
 /// `skip`.
 pub fn average_cycles(
@@ -52,7 +86,7 @@ pub fn average_cycles(
     values: &[Vec<f64>],
     right_heel_strikes: &[f64],
     skip: usize,
-) -> Result<Vec<Vec<f64>>> {
+) -> Result<Vec<Vec<f64>>, CycleError> {
     average(times, values, right_heel_strikes, skip).map(|(rows, _)| rows)
 }
 
@@ -62,7 +96,7 @@ fn average(
     values: &[Vec<f64>],
     right_heel_strikes: &[f64],
     skip: usize,
-) -> Result<(Vec<Vec<f64>>, usize)> {
+) -> Result<(Vec<Vec<f64>>, usize), CycleError> {
     let cycles = steady_cycles(times, values, right_heel_strikes, skip)?;
     let sample = |t: f64, k: usize| -> f64 {
         // the last frame at or before t (t is inside [t_first, t_last])
@@ -99,35 +133,31 @@ fn steady_cycles(
     values: &[Vec<f64>],
     right_heel_strikes: &[f64],
     skip: usize,
-) -> Result<Vec<(f64, f64)>> {
+) -> Result<Vec<(f64, f64)>, CycleError> {
     if times.len() != values.len() {
-        return Err(export_error(format!(
-            "{} frame times for {} frames",
-            times.len(),
-            values.len()
-        )));
+        return Err(CycleError::FrameCount {
+            times: times.len(),
+            frames: values.len(),
+        });
     }
     let width = values.first().map_or(0, Vec::len);
     if let Some(i) = values.iter().position(|v| v.len() != width) {
-        return Err(export_error(format!(
-            "frame {i} has {} values, frame 0 has {width}",
-            values[i].len()
-        )));
+        return Err(CycleError::FrameWidth {
+            frame: i,
+            values: values[i].len(),
+            width,
+        });
     }
     let increasing =
         |xs: &[f64]| xs.iter().all(|x| x.is_finite()) && xs.windows(2).all(|w| w[0] < w[1]);
     if !increasing(times) {
-        return Err(export_error(
-            "frame times must be finite and strictly increasing".into(),
-        ));
+        return Err(CycleError::Times);
     }
     if !increasing(right_heel_strikes) {
-        return Err(export_error(
-            "right heel strike times must be finite and strictly increasing".into(),
-        ));
+        return Err(CycleError::HeelStrikes);
     }
     let (Some(&t_first), Some(&t_last)) = (times.first(), times.last()) else {
-        return Err(export_error("no frames to average".into()));
+        return Err(CycleError::NoFrames);
     };
     let cycles: Vec<(f64, f64)> = right_heel_strikes
         .windows(2)
@@ -136,13 +166,12 @@ fn steady_cycles(
         .filter(|&(a, b)| a >= t_first && b <= t_last)
         .collect();
     if cycles.is_empty() {
-        return Err(export_error(format!(
-            "no complete steady-state gait cycle: {} right heel strikes give {} cycles, the \
-             first {skip} skipped as the start-up, and the frames cover {t_first} … {t_last} s; \
-             walk more steps",
-            right_heel_strikes.len(),
-            right_heel_strikes.len().saturating_sub(1)
-        )));
+        return Err(CycleError::NoSteadyCycle {
+            strikes: right_heel_strikes.len(),
+            skip,
+            t_first,
+            t_last,
+        });
     }
     Ok(cycles)
 }
@@ -152,7 +181,7 @@ pub fn cycle_average(
     frames: &[Clinical],
     right_heel_strikes: &[f64],
     skip: usize,
-) -> Result<CycleCurves> {
+) -> Result<CycleCurves, CycleError> {
     let columns = angle_columns();
     let times: Vec<f64> = frames.iter().map(|c| c.time).collect();
     let values: Vec<Vec<f64>> = frames
@@ -266,7 +295,7 @@ impl GaitCycle {
         right_heel_strikes: &[f64],
         left_heel_strikes: &[f64],
         skip: usize,
-    ) -> Result<GaitCycle> {
+    ) -> Result<GaitCycle, CycleError> {
         let times: Vec<f64> = frames.iter().map(|c| c.time).collect();
         let averaged = |side: Side, strikes: &[f64]| {
             let values: Vec<Vec<f64>> = frames
@@ -302,11 +331,11 @@ impl GaitCycle {
     /// strikes at the starts of the steps (even steps right, odd steps left), the first cycle of
     /// each leg skipped (`CYCLE_SKIP`);
     /// toe-off from the walk's gait events. Errors: a frame the skeleton cannot be built from, no
-    /// complete steady cycle of a leg ([`Error::Export`]: walk more steps).
-    pub fn from_walk(walk: &Walk) -> Result<GaitCycle> {
+    /// complete steady cycle of a leg ([`CycleError`]: walk more steps).
+    pub fn from_walk(walk: &Walk) -> Result<GaitCycle, CycleError> {
         let frames = crate::figure::frames(walk, CYCLE_FPS)
             .map(|lm| lm.and_then(|lm| clinical::clinical(&lm, &walk.body)))
-            .collect::<Result<Vec<Clinical>>>()?;
+            .collect::<Result<Vec<Clinical>, FigureError>>()?;
         let strikes = |parity: usize| -> Vec<f64> {
             walk.steps
                 .iter()

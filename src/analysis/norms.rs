@@ -9,8 +9,8 @@ use serde::Deserialize;
 
 use super::cycle::{GaitCycle, Panel};
 use super::extent;
-use crate::error::{Error, Result};
 use crate::figure::skeleton::Side;
+use crate::model::InputError;
 
 /// The bundled norm table (`models/gait-norms.toml`).
 pub(crate) const NORMS_TABLE: &str = include_str!("../../models/gait-norms.toml");
@@ -78,16 +78,15 @@ pub struct NormTable {
 impl NormTable {
     /// Parse and check a norm table: finite `low < high`, the panel's unit, windows inside
     /// [0, 100] with start < end, `at` in [0, 100] given exactly for `measure = "at"`, windows
-    /// for max / min. Errors are [`Error::Malformed`] naming `path` and the row.
-    pub fn parse(text: &str, path: &Path) -> Result<NormTable> {
-        let bad = |reason: String| Error::Malformed {
-            what: "norm table",
-            path: path.to_path_buf(),
-            reason,
-        };
-        let file: NormFile = toml::from_str(text).map_err(|e| bad(e.to_string()))?;
+    /// for max / min. Errors are [`InputError::Malformed`] naming `path` and the row.
+    pub fn parse(text: &str, path: &Path) -> Result<NormTable, InputError> {
+        let file: NormFile =
+            toml::from_str(text).map_err(|e| InputError::malformed("norm table", path, e))?;
         for (i, n) in file.norm.iter().enumerate() {
-            let row = |reason: &str| bad(format!("norm {} ({}): {reason}", i + 1, n.name));
+            let row = |reason: &str| {
+                let reason = format!("norm {} ({}): {reason}", i + 1, n.name);
+                InputError::malformed("norm table", path, reason)
+            };
             if !(n.low.is_finite() && n.high.is_finite() && n.low < n.high) {
                 return Err(row("low and high must be finite with low < high"));
             }
@@ -276,7 +275,7 @@ mod tests {
         ];
         for b in bad {
             let e = NormTable::parse(&row(b), Path::new("n.toml")).unwrap_err();
-            assert!(matches!(e, Error::Malformed { .. }), "{b}: {e}");
+            assert!(matches!(e, InputError::Malformed { .. }), "{b}: {e}");
         }
         let cm = row("measure = \"max\"\nlow = 1.0\nhigh = 5.0\nwindows = [[0.0, 1.0]]")
             .replace("\"deg\"", "\"cm\"");

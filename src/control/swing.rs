@@ -27,7 +27,7 @@ use nalgebra::{SVector, Vector2};
 use crate::control::stance::HipPath;
 use crate::dynamics::SwingModel;
 use crate::model::attributes::Attributes;
-use crate::numerics::ode::{self, Phase, Segment};
+use crate::numerics::ode::{self, IntegrationError, Phase, Segment};
 use crate::plan::StepConstraints;
 
 /// State (θ3, θ4, θ̇3, θ̇4).
@@ -272,7 +272,7 @@ impl SwingTrial {
         sub: Subphase,
         t0: f64,
         y0: SwingState,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, IntegrationError> {
         Self::simulate_with(setup, sub, t0, y0, sub.tolerance(ode::TOLERANCE))
     }
 
@@ -284,7 +284,7 @@ impl SwingTrial {
         t0: f64,
         y0: SwingState,
         tol: f64,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, IntegrationError> {
         let mut trial = Self::simulate_on(setup, sub, t0, y0, tol, None)?;
         trial.evaluations += trial.densify(setup);
         Ok(trial)
@@ -312,7 +312,7 @@ impl SwingTrial {
         y0: SwingState,
         tol: f64,
         mesh: Option<&Segment<4>>,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, IntegrationError> {
         let t_end = match sub {
             Subphase::Swing1 { .. } => setup.t1,
             Subphase::Swing2 { .. } => setup.t2,

@@ -6,10 +6,10 @@
 //! the interval: at a smooth minimum the value's error is f″ δ² / 2, with δ = 1e-5 of a 0.4 s
 //! swing 1e-8 m for the foot (f″ ≈ 10 m/s²) and 1e-6 rad for the knee (≈ 500 rad/s²);
 //! `tests/walk.rs` checks them against dense sampling.
+use crate::engine::error::{Invariant, SimulationError};
 use crate::engine::parameters::EngineParameters;
 use crate::engine::report::Achieved;
 use crate::engine::step::Step;
-use crate::error::{Error, Result};
 use crate::kinematics::foot::Foot;
 use crate::numerics::minimise::{least_in, minima};
 
@@ -90,22 +90,21 @@ impl Step {
 
     /// Invariants of a converged step (spec §4, §5, §10): the hip never below its heel-strike height,
     /// no point of the swing foot under the ground, the toe clear of it in mid swing.
-    pub(super) fn check_invariants(&self, p: &EngineParameters) -> Result<()> {
+    pub(super) fn check_invariants(&self, p: &EngineParameters) -> Result<(), SimulationError> {
         let r = &self.report;
-        let fail = |phase: &'static str, what: String| {
-            Err(Error::Invariant {
+        let fail = |phase: &'static str, source: Invariant| {
+            Err(SimulationError::Invariant {
                 step: self.index,
                 phase,
-                what,
+                source,
             })
         };
         if r.hip_min_margin < -p.invariant_slack {
             return fail(
                 "stance",
-                format!(
-                    "the hip drops {:.3e} m below its heel-strike height",
-                    -r.hip_min_margin
-                ),
+                Invariant::HipDrops {
+                    depth: -r.hip_min_margin,
+                },
             );
         }
         // a positive clearance, by more than the 1e-6 m to which the feet are placed (spec §5):
@@ -114,20 +113,18 @@ impl Step {
         if r.min_toe_clearance <= p.toe_clearance_min {
             return fail(
                 "swing",
-                format!(
-                    "the toe touches the ground in mid swing (clearance {:.3e} m)",
-                    r.min_toe_clearance
-                ),
+                Invariant::ToeTouches {
+                    clearance: r.min_toe_clearance,
+                },
             );
         }
         if r.min_foot_height < -p.invariant_slack {
             return fail(
                 "swing",
-                format!(
-                    "the swing foot goes {:.3e} m under the ground at {:.0} % of the swing",
-                    -r.min_foot_height,
-                    100.0 * self.lowest_at
-                ),
+                Invariant::FootUnderGround {
+                    depth: -r.min_foot_height,
+                    at: self.lowest_at,
+                },
             );
         }
         Ok(())

@@ -1,6 +1,7 @@
 //! The engine: the step loop that walks a body step after step (KLAW 1989 Figure 1) with its
 //! parameters, the poses of a simulated step at any instant, the per-step measures and report,
 //! and the actuators' work.
+pub mod error;
 pub(crate) mod measure;
 pub mod parameters;
 pub mod pose;
@@ -10,3 +11,5 @@ pub mod step;
 pub(crate) mod trials;
 pub mod walker;
 pub mod work;
+
+pub use error::{Invariant, SimulationError};

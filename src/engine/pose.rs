@@ -8,6 +8,7 @@ use crate::control::stance::StanceState;
 use crate::control::swing;
 use crate::engine::report::StateFrame;
 use crate::engine::step::Step;
+use crate::kinematics::GeometryError;
 use crate::kinematics::foot::{Foot, FootPoints};
 use crate::kinematics::pelvis::{Determinants, PelvisMotion, Side, fold_height};
 use crate::kinematics::stance_leg::{LegPose, leg_points, leg_points_sc};
@@ -131,12 +132,12 @@ impl Step {
     }
 
     /// The stance leg's pose at step time τ (x relative to the stance ankle).
-    pub(crate) fn stance_pose(&self, tau: f64) -> std::result::Result<LegPose, String> {
+    pub(crate) fn stance_pose(&self, tau: f64) -> Result<LegPose, GeometryError> {
         self.stance_pose_at(&self.at(tau))
     }
 
     /// [`Self::stance_pose`] at an instant of this step.
-    pub(crate) fn stance_pose_at(&self, now: &Instant) -> std::result::Result<LegPose, String> {
+    pub(crate) fn stance_pose_at(&self, now: &Instant) -> Result<LegPose, GeometryError> {
         let (h, dz) = now.hip_joint(self.side);
         let mut p =
             self.stance_leg

@@ -7,7 +7,7 @@ use nalgebra::Vector2;
 
 use crate::control::stance::StanceRun;
 use crate::control::swing::SwingTrial;
-use crate::numerics::ode::Segment;
+use crate::numerics::ode::{IntegrationError, Segment};
 
 /// A trial integration of a shooting solve.
 pub(super) trait Trial: Sized {
@@ -70,8 +70,8 @@ impl<T: Trial> Trials<T> {
     /// Run one trial, `simulate` on the current mesh, and return its residual.
     pub fn run(
         &self,
-        simulate: impl FnOnce(Option<&T::Mesh>) -> Result<T, String>,
-    ) -> Result<Vector2<f64>, String> {
+        simulate: impl FnOnce(Option<&T::Mesh>) -> Result<T, IntegrationError>,
+    ) -> Result<Vector2<f64>, IntegrationError> {
         let trial = simulate(self.mesh.borrow().as_ref())?;
         if let Some(mesh) = trial.own_mesh() {
             *self.mesh.borrow_mut() = Some(mesh);

@@ -20,14 +20,15 @@
 //! rotation is the product of its channels in file order, each about the parent's (rest) axes;
 //! the joint sits at its offset in the parent's frame.
 use std::io::{self, Write};
+use std::num::ParseFloatError;
 use std::path::Path;
 
 use glam::{DMat3, DVec3};
 
-use super::{FrameData, RowError, RowWriter};
-use crate::error::{Error, Result};
+use super::{ExportError, FrameData, RowError, RowWriter};
 use crate::figure::euler::{yxz_angles, zxy_angles};
 use crate::figure::skeleton::{LENGTH_TOLERANCE, Side, Skeleton};
+use crate::model::InputError;
 use crate::model::body::Body;
 
 /// A klaw world vector (x forward, y up, z right) in BVH axes (X left, Y up, Z forward).
@@ -357,26 +358,22 @@ impl RowWriter for BvhWriter {
         }
         let expected = self.first_time + frame.index as f64 / self.fps;
         if (lm.time - expected).abs() > 1e-3 / self.fps + 1e-9 {
-            return Err(Error::Export {
-                what: format!(
-                    "BVH frame {}: time {} s, but frames 1/{} s apart from {} s put it at {expected} s",
-                    frame.index, lm.time, self.fps, self.first_time
-                ),
-            }
-            .into());
+            return Err(RowError::Frame(ExportError::FrameTime {
+                frame: frame.index,
+                time: lm.time,
+                fps: self.fps,
+                first: self.first_time,
+                expected,
+            }));
         }
         let (err, name) = sk.length_error(lm, &self.body);
         if err.is_nan() || err > LENGTH_TOLERANCE {
-            return Err(Error::Geometry {
-                what: format!(
-                    "frame at t = {} s: landmark {name} is {:.3} mm from where the body's segment \
-                     lengths put it (the BVH offsets are those lengths; tolerance {} mm)",
-                    lm.time,
-                    err * 1e3,
-                    LENGTH_TOLERANCE * 1e3
-                ),
-            }
-            .into());
+            return Err(RowError::Frame(ExportError::SegmentLength {
+                time: lm.time,
+                landmark: name,
+                distance: err,
+                tolerance: LENGTH_TOLERANCE,
+            }));
         }
         let mut first = true;
         let mut put = |out: &mut dyn Write, v: f64| -> io::Result<()> {
@@ -463,46 +460,97 @@ pub struct JointPose {
     pub end_site: Option<DVec3>,
 }
 
+/// Why BVH text cannot be parsed (tokens are counted from 1).
+#[derive(Debug, thiserror::Error)]
+pub enum ParseError {
+    #[error("unexpected end of file")]
+    UnexpectedEnd,
+    #[error("expected `{want}`, found `{found}` (token {token})")]
+    Expected {
+        want: &'static str,
+        found: String,
+        token: usize,
+    },
+    #[error("expected a number, found `{found}` (token {token})")]
+    NotANumber { found: String, token: usize },
+    #[error("joint {joint}: channel count {count} is not 0…6")]
+    ChannelCount { joint: String, count: f64 },
+    #[error("joint {joint}: unknown channel `{channel}`")]
+    UnknownChannel { joint: String, channel: String },
+    #[error("joint {joint}: unexpected `{found}` (token {token})")]
+    InJoint {
+        joint: String,
+        found: String,
+        token: usize,
+    },
+    #[error("no MOTION section")]
+    NoMotion,
+    #[error("unexpected `{found}` after the root joint")]
+    AfterRoot { found: String },
+    #[error("no `Frames:` line")]
+    NoFrameCount,
+    #[error("bad frame count line `{line}`")]
+    FrameCount { line: String },
+    #[error("no `Frame Time:` line")]
+    NoFrameTime,
+    #[error("bad frame time line `{line}`")]
+    FrameTime { line: String },
+    #[error("frame {frame}: {source}")]
+    Value {
+        frame: usize,
+        source: ParseFloatError,
+    },
+    #[error("frame {frame}: {values} values where the hierarchy has {channels} channels")]
+    FrameWidth {
+        frame: usize,
+        values: usize,
+        channels: usize,
+    },
+    #[error("`Frames: {declared}` but {found} frame lines")]
+    FrameLines { declared: usize, found: usize },
+}
+
 struct Tokens<'a> {
     items: Vec<&'a str>,
     pos: usize,
 }
 
 impl<'a> Tokens<'a> {
-    fn next(&mut self) -> std::result::Result<&'a str, String> {
+    fn next(&mut self) -> Result<&'a str, ParseError> {
         let t = self
             .items
             .get(self.pos)
             .copied()
-            .ok_or_else(|| "unexpected end of file".to_string())?;
+            .ok_or(ParseError::UnexpectedEnd)?;
         self.pos += 1;
         Ok(t)
     }
 
-    fn expect(&mut self, want: &str) -> std::result::Result<(), String> {
+    fn expect(&mut self, want: &'static str) -> Result<(), ParseError> {
         let t = self.next()?;
         if t == want {
             Ok(())
         } else {
-            Err(format!(
-                "expected `{want}`, found `{t}` (token {})",
-                self.pos
-            ))
+            Err(ParseError::Expected {
+                want,
+                found: t.to_string(),
+                token: self.pos,
+            })
         }
     }
 
-    fn number(&mut self) -> std::result::Result<f64, String> {
+    fn number(&mut self) -> Result<f64, ParseError> {
         let t = self.next()?;
         match t.parse::<f64>() {
             Ok(v) if v.is_finite() => Ok(v),
-            _ => Err(format!(
-                "expected a number, found `{t}` (token {})",
-                self.pos
-            )),
+            _ => Err(ParseError::NotANumber {
+                found: t.to_string(),
+                token: self.pos,
+            }),
         }
     }
 
-    fn vec3(&mut self) -> std::result::Result<DVec3, String> {
+    fn vec3(&mut self) -> Result<DVec3, ParseError> {
         Ok(DVec3::new(self.number()?, self.number()?, self.number()?))
     }
 }
@@ -512,7 +560,7 @@ fn parse_joint(
     joints: &mut Vec<BvhJoint>,
     parent: Option<usize>,
     channels_so_far: &mut usize,
-) -> std::result::Result<(), String> {
+) -> Result<(), ParseError> {
     let name = tok.next()?.to_string();
     tok.expect("{")?;
     tok.expect("OFFSET")?;
@@ -520,13 +568,18 @@ fn parse_joint(
     tok.expect("CHANNELS")?;
     let n = tok.number()?;
     if n.fract() != 0.0 || !(0.0..=6.0).contains(&n) {
-        return Err(format!("joint {name}: channel count {n} is not 0…6"));
+        return Err(ParseError::ChannelCount {
+            joint: name,
+            count: n,
+        });
     }
     let mut channels = Vec::new();
     for _ in 0..n as usize {
         let c = tok.next()?;
-        channels
-            .push(Channel::parse(c).ok_or_else(|| format!("joint {name}: unknown channel `{c}`"))?);
+        channels.push(Channel::parse(c).ok_or_else(|| ParseError::UnknownChannel {
+            joint: name.clone(),
+            channel: c.to_string(),
+        })?);
     }
     let index = joints.len();
     joints.push(BvhJoint {
@@ -550,19 +603,18 @@ fn parse_joint(
             }
             "}" => return Ok(()),
             t => {
-                return Err(format!(
-                    "joint {name}: unexpected `{t}` (token {})",
-                    tok.pos
-                ));
+                return Err(ParseError::InJoint {
+                    joint: name,
+                    found: t.to_string(),
+                    token: tok.pos,
+                });
             }
         }
     }
 }
 
-fn parse_text(text: &str) -> std::result::Result<Bvh, String> {
-    let (hierarchy, motion) = text
-        .split_once("MOTION")
-        .ok_or_else(|| "no MOTION section".to_string())?;
+fn parse_text(text: &str) -> Result<Bvh, ParseError> {
+    let (hierarchy, motion) = text.split_once("MOTION").ok_or(ParseError::NoMotion)?;
     let mut tok = Tokens {
         items: hierarchy.split_whitespace().collect(),
         pos: 0,
@@ -573,40 +625,46 @@ fn parse_text(text: &str) -> std::result::Result<Bvh, String> {
     let mut channels = 0;
     parse_joint(&mut tok, &mut joints, None, &mut channels)?;
     if tok.pos != tok.items.len() {
-        return Err(format!(
-            "unexpected `{}` after the root joint",
-            tok.items[tok.pos]
-        ));
+        return Err(ParseError::AfterRoot {
+            found: tok.items[tok.pos].to_string(),
+        });
     }
     let mut lines = motion.lines().filter(|l| !l.trim().is_empty());
-    let frames_line = lines.next().ok_or("no `Frames:` line")?;
+    let frames_line = lines.next().ok_or(ParseError::NoFrameCount)?;
     let n = frames_line
         .trim()
         .strip_prefix("Frames:")
         .and_then(|s| s.trim().parse::<usize>().ok())
-        .ok_or_else(|| format!("bad frame count line `{frames_line}`"))?;
-    let time_line = lines.next().ok_or("no `Frame Time:` line")?;
+        .ok_or_else(|| ParseError::FrameCount {
+            line: frames_line.to_string(),
+        })?;
+    let time_line = lines.next().ok_or(ParseError::NoFrameTime)?;
     let frame_time = time_line
         .trim()
         .strip_prefix("Frame Time:")
         .and_then(|s| s.trim().parse::<f64>().ok())
         .filter(|t| t.is_finite() && *t > 0.0)
-        .ok_or_else(|| format!("bad frame time line `{time_line}`"))?;
+        .ok_or_else(|| ParseError::FrameTime {
+            line: time_line.to_string(),
+        })?;
     let mut frames = Vec::with_capacity(n);
     for (i, line) in lines.enumerate() {
-        let values: std::result::Result<Vec<f64>, _> =
-            line.split_whitespace().map(str::parse::<f64>).collect();
-        let values = values.map_err(|e| format!("frame {i}: {e}"))?;
+        let values: Result<Vec<f64>, _> = line.split_whitespace().map(str::parse::<f64>).collect();
+        let values = values.map_err(|source| ParseError::Value { frame: i, source })?;
         if values.len() != channels {
-            return Err(format!(
-                "frame {i}: {} values where the hierarchy has {channels} channels",
-                values.len()
-            ));
+            return Err(ParseError::FrameWidth {
+                frame: i,
+                values: values.len(),
+                channels,
+            });
         }
         frames.push(values);
     }
     if frames.len() != n {
-        return Err(format!("`Frames: {n}` but {} frame lines", frames.len()));
+        return Err(ParseError::FrameLines {
+            declared: n,
+            found: frames.len(),
+        });
     }
     Ok(Bvh {
         joints,
@@ -615,13 +673,10 @@ fn parse_text(text: &str) -> std::result::Result<Bvh, String> {
     })
 }
 
-/// Parse BVH text; `path` only names the source in errors ([`Error::Malformed`]).
-pub fn parse(text: &str, path: &Path) -> Result<Bvh> {
-    parse_text(text).map_err(|reason| Error::Malformed {
-        what: "BVH file",
-        path: path.to_path_buf(),
-        reason,
-    })
+/// Parse BVH text; `path` only names the source in errors ([`InputError::Malformed`] with a
+/// [`ParseError`]).
+pub fn parse(text: &str, path: &Path) -> Result<Bvh, InputError> {
+    parse_text(text).map_err(|e| InputError::malformed("BVH file", path, e))
 }
 
 impl Bvh {

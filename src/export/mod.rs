@@ -11,6 +11,7 @@
 pub mod bvh;
 pub(crate) mod csv;
 pub mod cycle;
+pub mod error;
 pub mod events;
 pub mod file;
 pub mod opensim;
@@ -21,6 +22,7 @@ use std::io::{self, BufWriter, Seek, Write};
 use std::path::Path;
 
 pub use cycle::write_cycle_csv;
+pub use error::ExportError;
 pub use events::write_events_csv;
 pub use opensim::OpenSimModel;
 pub use report::write_report_json;
@@ -30,6 +32,7 @@ use crate::error::{Error, Result};
 use crate::figure::Landmarks;
 use crate::figure::clinical::Clinical;
 use crate::figure::skeleton::Skeleton;
+use crate::model::InputError;
 use crate::model::body::Body;
 use file::write_error;
 
@@ -48,7 +51,7 @@ pub enum Format {
 
 impl Format {
     /// The format named by `path`'s extension (case-insensitive): `.csv`, `.mot`, `.sto`, `.bvh`.
-    pub fn from_path(path: &Path) -> Result<Format> {
+    pub fn from_path(path: &Path) -> Result<Format, ExportError> {
         let ext = path
             .extension()
             .map(|e| e.to_string_lossy().to_ascii_lowercase());
@@ -57,11 +60,8 @@ impl Format {
             Some("mot") => Ok(Format::Mot),
             Some("sto") => Ok(Format::Sto),
             Some("bvh") => Ok(Format::Bvh),
-            _ => Err(Error::Export {
-                what: format!(
-                    "{}: unknown output format; the extension must be .csv, .mot, .sto or .bvh",
-                    path.display()
-                ),
+            _ => Err(ExportError::UnknownFormat {
+                path: path.to_path_buf(),
             }),
         }
     }
@@ -87,8 +87,7 @@ pub(crate) struct FrameData<'a> {
 
 /// A format's row and header writers.
 pub(crate) trait RowWriter {
-    /// Write one frame's row. Errors other than I/O are klaw errors (a frame the format cannot
-    /// represent).
+    /// Write one frame's row. Errors other than I/O are a frame the format cannot represent.
     fn row(&mut self, out: &mut dyn Write, frame: &FrameData) -> Result<(), RowError>;
     /// Write everything before the rows, knowing how many rows there are.
     fn header(&self, out: &mut dyn Write, rows: usize) -> io::Result<()>;
@@ -97,18 +96,12 @@ pub(crate) trait RowWriter {
 /// A row that could not be written.
 pub(crate) enum RowError {
     Io(io::Error),
-    Klaw(Error),
+    Frame(ExportError),
 }
 
 impl From<io::Error> for RowError {
     fn from(e: io::Error) -> Self {
         RowError::Io(e)
-    }
-}
-
-impl From<Error> for RowError {
-    fn from(e: Error) -> Self {
-        RowError::Klaw(e)
     }
 }
 
@@ -127,12 +120,13 @@ pub fn write<I>(
 where
     I: IntoIterator<Item = Landmarks>,
 {
-    try_write(path, format, body, fps, frames.into_iter().map(Ok), options)
+    let frames = frames.into_iter().map(Ok::<_, Error>);
+    try_write(path, format, body, fps, frames, options)
 }
 
 /// [`write`](fn@write) for frames that may fail to be made (e.g. `figure::frames`): the first
 /// error is returned and no file is written.
-pub fn try_write<I>(
+pub fn try_write<I, E>(
     path: &Path,
     format: Format,
     body: &Body,
@@ -141,9 +135,10 @@ pub fn try_write<I>(
     options: &Options,
 ) -> Result<()>
 where
-    I: IntoIterator<Item = Result<Landmarks>>,
+    I: IntoIterator<Item = Result<Landmarks, E>>,
+    Error: From<E>,
 {
-    Error::check_range("fps", fps, 1e-3, 1e6, "frames/s")?;
+    InputError::check_range("fps", fps, 1e-3, 1e6, "frames/s")?;
     match format {
         Format::Csv => run(path, body, frames, csv::FrameCsv::new()),
         Format::Mot | Format::Sto => run(
@@ -161,9 +156,10 @@ where
     }
 }
 
-fn run<I, W>(path: &Path, body: &Body, frames: I, mut writer: W) -> Result<()>
+fn run<I, E, W>(path: &Path, body: &Body, frames: I, mut writer: W) -> Result<()>
 where
-    I: IntoIterator<Item = Result<Landmarks>>,
+    I: IntoIterator<Item = Result<Landmarks, E>>,
+    Error: From<E>,
     W: RowWriter,
 {
     // the rows wait in an unnamed file in the target's directory, gone when closed
@@ -175,12 +171,12 @@ where
         let lm = lm?;
         let skeleton = Skeleton::new(&lm, body)?;
         if lm.time <= last_time {
-            return Err(Error::Export {
-                what: format!(
-                    "frame {index}: time {} s does not follow the previous frame's {last_time} s",
-                    lm.time
-                ),
-            });
+            return Err(ExportError::OutOfOrder {
+                frame: index,
+                time: lm.time,
+                previous: last_time,
+            }
+            .into());
         }
         last_time = lm.time;
         let frame = FrameData {
@@ -191,14 +187,15 @@ where
         };
         writer.row(&mut spool, &frame).map_err(|e| match e {
             RowError::Io(e) => write_error(path, e),
-            RowError::Klaw(e) => e,
+            RowError::Frame(e) => e.into(),
         })?;
         rows += 1;
     }
     if rows == 0 {
-        return Err(Error::Export {
-            what: format!("{}: no frames to export", path.display()),
-        });
+        return Err(ExportError::NoFrames {
+            path: path.to_path_buf(),
+        }
+        .into());
     }
     let mut file = spool
         .into_inner()

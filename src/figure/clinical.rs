@@ -18,8 +18,8 @@
 //! thorax in the pelvis (the order of [`Landmarks`]).
 use glam::DMat3;
 
-use crate::error::Result;
 use crate::figure::Landmarks;
+use crate::figure::error::Result;
 use crate::figure::euler::{yxz_angles, yxz_round_trip, zxy_from, zxy_round_trip};
 use crate::figure::skeleton::{Frame, LegFrames, Side, Skeleton, Trunk, arm_angles, leg_frames};
 use crate::model::body::Body;

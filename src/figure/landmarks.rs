@@ -8,7 +8,7 @@
 //! walk's sagittal plane at z = 0. Metres and radians.
 
 use crate::engine::walker::Step;
-use crate::error::{Error, Result};
+use crate::figure::error::FigureError;
 use crate::kinematics::foot::{Foot, FootPoints};
 use crate::kinematics::pelvis::Side;
 use crate::model::attributes::Attributes;
@@ -137,23 +137,22 @@ fn place_leg(
 /// from the swing dynamics (or the hind leg's completion); lumbar bending −list, thorax rotation
 /// −1.8 × pelvic rotation relative to the pelvis; each arm follows the opposite thigh with the
 /// arm-swing range, elbow 20° + ½ max(0, shoulder flexion), shoulder abduction 5°.
-pub fn landmarks(step: &Step, t: f64, attrs: &Attributes) -> Result<Landmarks> {
+pub fn landmarks(step: &Step, t: f64, attrs: &Attributes) -> Result<Landmarks, FigureError> {
     let c = &step.constraints;
     let tau = (t - step.t_start).clamp(0.0, c.timing.t_step);
     let x0 = step.x_ankle;
     let now = step.at(tau);
     let (state, centre, p) = (now.state, now.centre, now.pelvis);
     let (l3, l4) = (step.stance_leg.l3, step.stance_leg.l4);
-    let invariant = |what: String| Error::Invariant {
+    let pose = |source| FigureError::Pose {
         step: step.index,
-        phase: "figure",
-        what,
+        source,
     };
     let hip3 = |side: Side| {
         let o = now.hip_offset(side);
         [x0 + centre[0] + o[0], centre[1] + o[1], p.lateral + o[2]]
     };
-    let stance = step.stance_pose_at(&now).map_err(invariant)?;
+    let stance = step.stance_pose_at(&now).map_err(pose)?;
     let (_, dz_stance) = now.hip_joint(step.side);
     let stance_leg = place_leg(
         hip3(step.side),
@@ -222,7 +221,7 @@ fn shifted(f: &FootPoints, dx: f64) -> FootPoints {
 pub fn frames<'a>(
     walk: &'a crate::engine::walker::Walk,
     fps: f64,
-) -> impl Iterator<Item = Result<Landmarks>> + 'a {
+) -> impl Iterator<Item = Result<Landmarks, FigureError>> + 'a {
     let n = (walk.duration() * fps + 1e-9).floor() as usize;
     let mut i = 0;
     (0..=n).filter_map(move |k| {

@@ -2,8 +2,10 @@
 //! at one instant, the segment frames of the exported skeleton, the Euler sequences of its joints
 //! and its clinical joint angles.
 pub mod clinical;
+pub mod error;
 pub(crate) mod euler;
 pub mod landmarks;
 pub mod skeleton;
 
+pub use error::FigureError;
 pub use landmarks::*;

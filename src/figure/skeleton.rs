@@ -22,7 +22,7 @@
 //! and analysis").
 use glam::{DMat3, DVec3};
 
-use crate::error::{Error, Result};
+use crate::figure::error::{FigureError, Result};
 use crate::figure::euler::{yxz_matrix, zxy_matrix};
 use crate::figure::{ArmAngles, Landmarks, LegPoints};
 use crate::model::body::Body;
@@ -97,15 +97,15 @@ fn finite(name: &str, value: f64) -> Result<f64> {
     if is_finite(value) {
         Ok(value)
     } else {
-        Err(Error::NotFinite {
+        Err(FigureError::NotFinite {
             name: name.to_string(),
             value,
         })
     }
 }
 
-/// `p` as a vector, or [`Error::NotFinite`] naming `name().axis` (the name is only built on
-/// error: this runs several times per frame, so the vector's own test comes first).
+/// `p` as a vector, or [`FigureError::NotFinite`] naming `name().axis` (the name is only built
+/// on error: this runs several times per frame, so the vector's own test comes first).
 #[inline(always)]
 fn point(name: impl FnOnce() -> String, p: [f64; 3]) -> Result<DVec3> {
     let v = DVec3::from_array(p);
@@ -117,7 +117,7 @@ fn point(name: impl FnOnce() -> String, p: [f64; 3]) -> Result<DVec3> {
         .zip(p)
         .find(|(_, v)| !v.is_finite())
         .expect("a coordinate is not finite");
-    Err(Error::NotFinite {
+    Err(FigureError::NotFinite {
         name: format!("{}.{axis}", name()),
         value,
     })
@@ -133,12 +133,6 @@ fn finite_named(name: impl FnOnce() -> String, value: f64) -> Result<f64> {
     }
 }
 
-fn geometry(time: f64, what: String) -> Error {
-    Error::Geometry {
-        what: format!("frame at t = {time} s: {what}"),
-    }
-}
-
 /// `v / |v|`, or an error naming `what()` when v is (nearly) zero.
 #[inline(always)]
 fn unit(v: DVec3, time: f64, what: impl Fn() -> String) -> Result<DVec3> {
@@ -146,7 +140,7 @@ fn unit(v: DVec3, time: f64, what: impl Fn() -> String) -> Result<DVec3> {
     if n > 1e-9 {
         Ok(v / n)
     } else {
-        Err(geometry(time, format!("{} has zero length", what())))
+        Err(FigureError::ZeroLength { time, what: what() })
     }
 }
 
@@ -157,10 +151,7 @@ fn perpendicular(hint: DVec3, axis: DVec3, time: f64, what: impl Fn() -> String)
     let p = hint - hint.dot(axis) * axis;
     let n = p.length();
     if n < 1e-6 {
-        return Err(geometry(
-            time,
-            format!("{} is parallel to the segment", what()),
-        ));
+        return Err(FigureError::Parallel { time, what: what() });
     }
     // p.normalize(), without measuring p again
     Ok(p * n.recip())
@@ -216,8 +207,8 @@ pub(super) fn leg_frames(leg: &LegPoints, side: Side, time: f64) -> Result<LegFr
     })
 }
 
-/// An arm's shoulder flexion, abduction and elbow flexion, or [`Error::NotFinite`] naming the
-/// first that is not finite.
+/// An arm's shoulder flexion, abduction and elbow flexion, or [`FigureError::NotFinite`] naming
+/// the first that is not finite.
 #[inline(always)]
 pub(super) fn arm_angles(arm: &ArmAngles, side: Side) -> Result<[f64; 3]> {
     let s = side.suffix();
@@ -258,8 +249,9 @@ fn arm_frames(thorax: &Frame, arm: &ArmAngles, side: Side, body: &Body) -> Resul
 }
 
 impl Skeleton {
-    /// The segment frames of `lm`. Errors: a non-finite number ([`Error::NotFinite`], naming the
-    /// field), a degenerate segment or a knee axis along a segment ([`Error::Geometry`]).
+    /// The segment frames of `lm`. Errors: a non-finite number ([`FigureError::NotFinite`],
+    /// naming the field), a degenerate segment or a knee axis along a segment
+    /// ([`FigureError::ZeroLength`], [`FigureError::Parallel`]).
     pub fn new(lm: &Landmarks, body: &Body) -> Result<Self> {
         let trunk = Trunk::new(lm)?;
         let (t, pelvis) = (trunk.time, trunk.pelvis);

@@ -10,7 +10,7 @@ use crate::model::attributes::{self, AttributeTable, Attributes};
 /// resolved by `AttributeTable::resolve`.
 fn read_attributes(path: &Path) -> Result<BTreeMap<String, f64>> {
     let text = read_text(path)?;
-    attributes::parse_overrides(&text, path)
+    Ok(attributes::parse_overrides(&text, path)?)
 }
 
 /// The attributes of a walk: the bundled defaults, then the values of the style preset `style`,
@@ -26,13 +26,14 @@ pub fn load_attributes(style: Option<&str>, path: Option<&Path>) -> Result<Attri
         overrides.extend(read_attributes(p)?);
         source = p.display().to_string();
     }
-    table.resolve(&overrides, &source)
+    Ok(table.resolve(&overrides, &source)?)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::error::Error;
+    use crate::model::InputError;
     use std::fs;
     use std::path::PathBuf;
 
@@ -73,7 +74,8 @@ mod tests {
         let p = write_file(dir.path(), "b.toml", "bounciness = [1]\n");
         let e = read_attributes(&p).unwrap_err();
         assert!(
-            matches!(e, Error::Malformed { .. }) && e.to_string().contains("b.toml"),
+            matches!(e, Error::Input(InputError::Malformed { .. }))
+                && e.to_string().contains("b.toml"),
             "{e}"
         );
     }

@@ -4,7 +4,8 @@ use std::path::Path;
 use serde::Deserialize;
 
 use super::read_text;
-use crate::error::{Error, Result};
+use crate::error::Result;
+use crate::model::InputError;
 use crate::model::attributes::Attributes;
 use crate::model::body::Body;
 use crate::plan::gait::{Gait, GaitRequest};
@@ -27,6 +28,89 @@ struct TomlSchedule {
     step: Vec<TomlStep>,
 }
 
+/// Why a step schedule cannot be read (an [`InputError::Malformed`] of the file).
+#[derive(Debug, thiserror::Error)]
+pub enum ScheduleError {
+    /// TOML that does not parse or is not `[[step]]` tables, at `line`, `column` (1-based),
+    /// inside the `step`-th table (0: before the first).
+    #[error(
+        "line {line}, column {column}{}: {}",
+        within_step(*step),
+        source.message().trim_end()
+    )]
+    TomlAt {
+        line: usize,
+        column: usize,
+        step: usize,
+        source: toml::de::Error,
+    },
+    /// The same where TOML gives no position.
+    #[error("{}", .0.message().trim_end())]
+    Toml(#[source] toml::de::Error),
+    #[error("header: {0}")]
+    CsvHeader(#[source] CsvError),
+    /// CSV row `row` (1-based, the header not counted).
+    #[error("row {row}: {source}")]
+    CsvRow { row: usize, source: CsvError },
+    /// A header column (1-based) that is not one of [`SCHEDULE_FIELDS`].
+    #[error(
+        "line 1: unknown column `{name}` (column {column}); the columns are {}",
+        SCHEDULE_FIELDS.join(", ")
+    )]
+    UnknownColumn { name: String, column: usize },
+    #[error("line 1: column `{name}` appears twice")]
+    RepeatedColumn { name: String },
+    #[error(
+        "line 1: the header names no column; the columns are {}",
+        SCHEDULE_FIELDS.join(", ")
+    )]
+    NoColumn,
+    /// A cell of `field` in row `row` (at `line` of the file) that is not a number.
+    #[error("row {row} (line {line}): {field} `{cell}` is not a number")]
+    NotANumber {
+        row: usize,
+        line: usize,
+        field: &'static str,
+        cell: String,
+    },
+    #[error(
+        "unrecognised file extension: a schedule is a .toml file ([[step]] tables) or a .csv \
+         file (columns velocity, step_length, step_frequency)"
+    )]
+    Extension,
+    #[error("the schedule has no steps")]
+    NoSteps,
+    /// Row `step` (1-based) cannot be completed to a gait.
+    #[error("step {step}: {source}")]
+    Step { step: usize, source: InputError },
+}
+
+/// A CSV record of a schedule that cannot be read.
+#[derive(Debug, thiserror::Error)]
+pub enum CsvError {
+    /// A record with `len` cells under a header of `expected`.
+    #[error(
+        "{len} cells where the header has {expected}{}",
+        line.map_or(String::new(), |l| format!(" (line {l})"))
+    )]
+    UnequalLengths {
+        len: u64,
+        expected: u64,
+        line: Option<u64>,
+    },
+    #[error(transparent)]
+    Csv(csv::Error),
+}
+
+/// ` (step N)` for a position inside the N-th `[[step]]` table, nothing before the first.
+fn within_step(step: usize) -> String {
+    if step > 0 {
+        format!(" (step {step})")
+    } else {
+        String::new()
+    }
+}
+
 /// Read a step schedule: one gait request per step, from
 /// - a TOML file (`.toml`): `[[step]]` tables with any of `velocity` (m/s), `step_length` (m),
 ///   `step_frequency` (steps/min), no other keys;
@@ -35,53 +119,46 @@ struct TomlSchedule {
 ///
 /// Values are not range-checked here: that is `GaitRequest::complete`'s job.
 pub fn read_schedule(path: &Path) -> Result<Vec<GaitRequest>> {
-    let malformed = |reason: String| Error::Malformed {
-        what: "schedule",
-        path: path.to_path_buf(),
-        reason,
-    };
+    let malformed = |e| InputError::malformed("schedule", path, e);
     let ext = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
     let steps = match ext.as_deref() {
         Some("toml") => parse_schedule_toml(&read_text(path)?).map_err(malformed)?,
         Some("csv") => parse_schedule_csv(&read_text(path)?).map_err(malformed)?,
-        _ => {
-            return Err(malformed(
-                "unrecognised file extension: a schedule is a .toml file ([[step]] tables) or \
-                 a .csv file (columns velocity, step_length, step_frequency)"
-                    .to_string(),
-            ));
-        }
+        _ => return Err(malformed(ScheduleError::Extension).into()),
     };
     if steps.is_empty() {
-        return Err(malformed("the schedule has no steps".to_string()));
+        return Err(malformed(ScheduleError::NoSteps).into());
     }
     Ok(steps)
 }
 
 /// The gait of each of `steps` steps from the rows of the schedule `path`: row i completed
 /// (`GaitRequest::complete`) for step i, the last row held for the steps after the schedule's
-/// end. A row that cannot be completed is `Error::Malformed`, naming the schedule and the step.
+/// end. A row that cannot be completed is [`InputError::Malformed`], naming the schedule and the
+/// step.
 pub fn schedule_gaits(
     path: &Path,
     rows: &[GaitRequest],
     steps: usize,
     body: &Body,
     attrs: &Attributes,
-) -> Result<Vec<Gait>> {
+) -> Result<Vec<Gait>, InputError> {
     let mut gaits = rows
         .iter()
         .take(steps)
         .enumerate()
         .map(|(i, r)| {
-            r.complete(body, attrs).map_err(|e| Error::Malformed {
-                what: "schedule",
-                path: path.to_path_buf(),
-                reason: format!("step {}: {e}", i + 1),
+            r.complete(body, attrs).map_err(|source| {
+                let e = ScheduleError::Step {
+                    step: i + 1,
+                    source,
+                };
+                InputError::malformed("schedule", path, e)
             })
         })
-        .collect::<Result<Vec<_>>>()?;
+        .collect::<Result<Vec<_>, _>>()?;
     if let Some(&last) = gaits.last() {
         gaits.resize(steps, last);
     }
@@ -97,7 +174,7 @@ fn line_col(text: &str, offset: usize) -> (usize, usize) {
     (line, col)
 }
 
-fn parse_schedule_toml(text: &str) -> std::result::Result<Vec<GaitRequest>, String> {
+fn parse_schedule_toml(text: &str) -> Result<Vec<GaitRequest>, ScheduleError> {
     match toml::from_str::<TomlSchedule>(text) {
         Ok(s) => Ok(s
             .step
@@ -109,11 +186,10 @@ fn parse_schedule_toml(text: &str) -> std::result::Result<Vec<GaitRequest>, Stri
             })
             .collect()),
         Err(e) => {
-            let message = e.message().trim_end().to_string();
             let Some(span) = e.span() else {
-                return Err(message);
+                return Err(ScheduleError::Toml(e));
             };
-            let (line, col) = line_col(text, span.start);
+            let (line, column) = line_col(text, span.start);
             // the step whose table holds the error: count the `[[step]]` headers above it
             let step = text
                 .get(..span.start)
@@ -121,17 +197,17 @@ fn parse_schedule_toml(text: &str) -> std::result::Result<Vec<GaitRequest>, Stri
                 .lines()
                 .filter(|l| l.trim_start().starts_with("[[step]]"))
                 .count();
-            let within = if step > 0 {
-                format!(" (step {step})")
-            } else {
-                String::new()
-            };
-            Err(format!("line {line}, column {col}{within}: {message}"))
+            Err(ScheduleError::TomlAt {
+                line,
+                column,
+                step,
+                source: e,
+            })
         }
     }
 }
 
-fn parse_schedule_csv(text: &str) -> std::result::Result<Vec<GaitRequest>, String> {
+fn parse_schedule_csv(text: &str) -> Result<Vec<GaitRequest>, ScheduleError> {
     let mut reader = csv::ReaderBuilder::new()
         .has_headers(true)
         .trim(csv::Trim::All)
@@ -142,53 +218,52 @@ fn parse_schedule_csv(text: &str) -> std::result::Result<Vec<GaitRequest>, Strin
             pos,
             expected_len,
             len,
-        } => {
-            let line = pos
-                .as_ref()
-                .map_or(String::new(), |p| format!(" (line {})", p.line()));
-            format!("{len} cells where the header has {expected_len}{line}")
-        }
-        _ => e.to_string(),
+        } => CsvError::UnequalLengths {
+            len: *len,
+            expected: *expected_len,
+            line: pos.as_ref().map(|p| p.line()),
+        },
+        _ => CsvError::Csv(e),
     };
     let header = reader
         .headers()
-        .map_err(|e| format!("header: {}", csv_err(e)))?
+        .map_err(|e| ScheduleError::CsvHeader(csv_err(e)))?
         .clone();
     let mut columns = Vec::with_capacity(header.len());
     for (i, name) in header.iter().enumerate() {
         let Some(field) = SCHEDULE_FIELDS.iter().position(|f| *f == name) else {
-            return Err(format!(
-                "line 1: unknown column `{name}` (column {}); the columns are {}",
-                i + 1,
-                SCHEDULE_FIELDS.join(", ")
-            ));
+            return Err(ScheduleError::UnknownColumn {
+                name: name.to_string(),
+                column: i + 1,
+            });
         };
         if columns.contains(&field) {
-            return Err(format!("line 1: column `{name}` appears twice"));
+            return Err(ScheduleError::RepeatedColumn {
+                name: name.to_string(),
+            });
         }
         columns.push(field);
     }
     if columns.is_empty() {
-        return Err(format!(
-            "line 1: the header names no column; the columns are {}",
-            SCHEDULE_FIELDS.join(", ")
-        ));
+        return Err(ScheduleError::NoColumn);
     }
     let mut steps = Vec::new();
     for (row, record) in reader.records().enumerate() {
-        let record = record.map_err(|e| format!("row {}: {}", row + 1, csv_err(e)))?;
+        let record = record.map_err(|e| ScheduleError::CsvRow {
+            row: row + 1,
+            source: csv_err(e),
+        })?;
         let line = record.position().map_or(row + 2, |p| p.line() as usize);
         let mut values = [None; 3];
         for (cell, &field) in record.iter().zip(&columns) {
             if cell.is_empty() {
                 continue;
             }
-            let value = cell.parse::<f64>().map_err(|_| {
-                format!(
-                    "row {} (line {line}): {} `{cell}` is not a number",
-                    row + 1,
-                    SCHEDULE_FIELDS[field]
-                )
+            let value = cell.parse::<f64>().map_err(|_| ScheduleError::NotANumber {
+                row: row + 1,
+                line,
+                field: SCHEDULE_FIELDS[field],
+                cell: cell.to_string(),
             })?;
             values[field] = Some(value);
         }
@@ -204,6 +279,7 @@ fn parse_schedule_csv(text: &str) -> std::result::Result<Vec<GaitRequest>, Strin
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::error::Error;
     use std::fs;
     use std::path::PathBuf;
 
@@ -279,14 +355,13 @@ mod tests {
         assert!(
             matches!(
                 e,
-                Error::Malformed {
+                Error::Input(InputError::Malformed {
                     what: "schedule",
                     ..
-                }
+                })
             ),
             "{e:?}"
         );
-        assert_eq!(e.exit_code(), 2);
         let msg = e.to_string();
         assert!(msg.contains(name), "{msg}");
         msg
@@ -355,7 +430,7 @@ mod tests {
         assert!(
             matches!(
                 e,
-                Error::Malformed {
+                InputError::Malformed {
                     what: "schedule",
                     ..
                 }
@@ -378,6 +453,5 @@ mod tests {
             ),
             "{e:?}"
         );
-        assert_eq!(e.exit_code(), 2);
     }
 }

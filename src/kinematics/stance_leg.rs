@@ -16,6 +16,7 @@
 //! the forward axis, so the in-plane drop from hip to ankle is √(Δy² + dz²).
 use std::f64::consts::{FRAC_PI_3, TAU};
 
+use crate::kinematics::error::GeometryError;
 use crate::kinematics::foot::{Foot, FootPoints, GUESS_SLACK};
 pub(crate) use crate::kinematics::knee_curve::KneeCurve;
 pub(crate) use crate::kinematics::leg::{LegPose, leg_points, leg_points_sc};
@@ -179,7 +180,7 @@ impl StanceLeg {
 
     /// The pose at time t for a hip joint at `hip` (world x, y) with lateral offset `dz` from the
     /// ankle.
-    pub fn pose(&self, hip: [f64; 2], dz: f64, t: f64) -> Result<LegPose, String> {
+    pub fn pose(&self, hip: [f64; 2], dz: f64, t: f64) -> Result<LegPose, GeometryError> {
         // the rule of [`Self::phase`], the knee curve evaluated once
         match self.knee_curve(t) {
             Some((kappa, _)) => self.rolling_pose(hip, dz, kappa),
@@ -270,7 +271,7 @@ impl StanceLeg {
     /// toe tip, and the pitch is the smallest on [0, MAX_PITCH] where that circle meets the one
     /// of in-plane radius √(a² − dz²) about the hip (the distance first falls as the heel rises,
     /// then, past a right angle, grows again).
-    fn rolling_pose(&self, hip: [f64; 2], dz: f64, kappa: f64) -> Result<LegPose, String> {
+    fn rolling_pose(&self, hip: [f64; 2], dz: f64, kappa: f64) -> Result<LegPose, GeometryError> {
         let knee_sc = sin_cos(kappa);
         let a = reach(self.l3, self.l4, knee_sc.1);
         let Foot { h12, l9, l13, .. } = self.foot;
@@ -325,11 +326,9 @@ impl StanceLeg {
             };
             first(&about_meta, 0.0, t6.min(MAX_PITCH))
                 .or_else(|| first(&about_toe, t6.max(0.0), MAX_PITCH))
-                .ok_or_else(|| {
-                    format!(
-                        "the rolling foot cannot reach the hip: hip–ankle distance {a:.4} m for knee flexion {:.1}° is out of reach",
-                        kappa.to_degrees()
-                    )
+                .ok_or(GeometryError::RollingFootOutOfReach {
+                    distance: a,
+                    knee_flexion: kappa,
                 })?
         };
         let (ankle, theta6, foot) = self.rolling(p);
@@ -363,7 +362,7 @@ impl StanceLeg {
         t_to: f64,
         t_toe_off: f64,
         kappa_to: f64,
-    ) -> Result<(), String> {
+    ) -> Result<(), GeometryError> {
         let flat = |t: f64| {
             let (h, dz) = hip(t);
             self.pose(h, dz, t)
@@ -371,7 +370,7 @@ impl StanceLeg {
         // the trigger as a sign: how far past θ5_max the flat foot's ankle is, or how far the
         // leg falls short of the hip where it does (positive: heel-off); −1 while the foot is
         // not flat
-        let past = |t: f64| -> Result<f64, String> {
+        let past = |t: f64| -> Result<f64, GeometryError> {
             let p = flat(t)?;
             Ok(if p.pitch != 0.0 {
                 -1.0
@@ -387,7 +386,7 @@ impl StanceLeg {
         const SCAN: usize = 24;
         let points = (1..=SCAN).map(|k| t_from + (t_to - t_from) * k as f64 / SCAN as f64);
         // (an error ends the scan as the trigger does, and is returned)
-        let on = |g: &Result<f64, String>| g.as_ref().map_or(true, |&g| g >= 0.0);
+        let on = |g: &Result<f64, GeometryError>| g.as_ref().map_or(true, |&g| g >= 0.0);
         let Some(((lo, g_lo), (t, g))) = roots::scan(t_from, points, past, on) else {
             return Ok(());
         };
@@ -431,7 +430,7 @@ impl StanceLeg {
         t_hs_next: f64,
         t_toe_off: f64,
         kappa_to: f64,
-    ) -> Result<(), String> {
+    ) -> Result<(), GeometryError> {
         // the same toe-off rate as planned at heel-off: in a steady gait the re-anchored cubic is
         // the one planned
         let planned = self.heel_off.map(|k| k.rate_to);

@@ -5,7 +5,7 @@ use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use crate::error::{Error, Result};
+use crate::model::error::{InputError, Reason};
 
 /// The bundled attribute table.
 pub(crate) const BUILTIN_TABLE: &str = include_str!("../../models/attributes.toml");
@@ -23,22 +23,24 @@ pub const STYLES: &[(&str, &str)] = &[
 ];
 
 /// The overrides of the style preset `name` (an error lists the known styles).
-pub fn style(name: &str) -> Result<BTreeMap<String, f64>> {
+pub fn style(name: &str) -> Result<BTreeMap<String, f64>, InputError> {
     let (_, text) = STYLES
         .iter()
         .find(|(n, _)| *n == name)
-        .ok_or_else(|| Error::BadSpec {
-            flag: "style".into(),
-            reason: format!(
-                "unknown style `{name}`; the styles are {}",
-                STYLES
-                    .iter()
-                    .map(|(n, _)| *n)
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
-        })?;
+        .ok_or_else(|| InputError::bad_value("style", unknown_style(name)))?;
     parse_overrides(text, Path::new(&format!("models/styles/{name}.toml")))
+}
+
+/// [`InputError::UnknownStyle`] for `name`, listing the styles.
+pub fn unknown_style(name: &str) -> InputError {
+    InputError::UnknownStyle {
+        name: name.to_string(),
+        known: STYLES
+            .iter()
+            .map(|(n, _)| *n)
+            .collect::<Vec<_>>()
+            .join(", "),
+    }
 }
 
 /// One row of the attribute table: default, unit, valid range, meaning and source.
@@ -75,32 +77,31 @@ impl AttributeTable {
 
     /// Parse a table; every attribute the engine reads must be present, with
     /// min ≤ default ≤ max.
-    pub(crate) fn parse(text: &str, path: &Path) -> Result<Self> {
-        let malformed = |reason: String| Error::Malformed {
-            what: "attribute table",
-            path: path.to_path_buf(),
-            reason,
-        };
+    pub(crate) fn parse(text: &str, path: &Path) -> Result<Self, InputError> {
+        let malformed = |reason: Reason| InputError::malformed("attribute table", path, reason);
         let rows: BTreeMap<String, AttributeSpec> =
-            toml::from_str(text).map_err(|e| malformed(e.to_string()))?;
+            toml::from_str(text).map_err(|e| malformed(Box::new(e)))?;
         for name in Attributes::NAMES {
             let spec = rows
                 .get(*name)
-                .ok_or_else(|| malformed(format!("attribute `{name}` is missing")))?;
+                .ok_or_else(|| malformed(format!("attribute `{name}` is missing").into()))?;
             if !(spec.min <= spec.default && spec.default <= spec.max) {
-                return Err(malformed(format!(
-                    "attribute `{name}`: default {} is outside [{}, {}]",
-                    spec.default, spec.min, spec.max
-                )));
+                return Err(malformed(
+                    format!(
+                        "attribute `{name}`: default {} is outside [{}, {}]",
+                        spec.default, spec.min, spec.max
+                    )
+                    .into(),
+                ));
             }
         }
         if let Some(extra) = rows
             .keys()
             .find(|k| !Attributes::NAMES.contains(&k.as_str()))
         {
-            return Err(malformed(format!(
-                "attribute `{extra}` is not read by the engine"
-            )));
+            return Err(malformed(
+                format!("attribute `{extra}` is not read by the engine").into(),
+            ));
         }
         Ok(AttributeTable(rows))
     }
@@ -110,23 +111,26 @@ impl AttributeTable {
         &self,
         overrides: &BTreeMap<String, f64>,
         source_name: &str,
-    ) -> Result<Attributes> {
+    ) -> Result<Attributes, InputError> {
         let mut values = BTreeMap::new();
         for (name, spec) in &self.0 {
             values.insert(name.as_str(), spec.default);
         }
         for (name, &value) in overrides {
-            let spec = self.0.get(name).ok_or_else(|| Error::UnknownAttribute {
-                name: name.clone(),
-                source_name: source_name.to_string(),
-                known: Attributes::NAMES.join(", "),
-            })?;
+            let spec = self
+                .0
+                .get(name)
+                .ok_or_else(|| InputError::UnknownAttribute {
+                    name: name.clone(),
+                    source_name: source_name.to_string(),
+                    known: Attributes::NAMES.join(", "),
+                })?;
             let unit = if spec.unit == "1" {
                 ""
             } else {
                 spec.unit.as_str()
             };
-            Error::check_range(name, value, spec.min, spec.max, unit)?;
+            InputError::check_range(name, value, spec.min, spec.max, unit)?;
             values.insert(name.as_str(), value);
         }
         let si = |name: &str| {
@@ -149,13 +153,12 @@ impl AttributeTable {
 
 /// Read an attribute file: a flat TOML table `name = number` (user units; an optional
 /// `description = "…"` is ignored). Later files override earlier ones.
-pub(crate) fn parse_overrides(text: &str, path: &Path) -> Result<BTreeMap<String, f64>> {
-    let malformed = |reason: String| Error::Malformed {
-        what: "attribute file",
-        path: path.to_path_buf(),
-        reason,
-    };
-    let table: toml::Table = toml::from_str(text).map_err(|e| malformed(e.to_string()))?;
+pub(crate) fn parse_overrides(
+    text: &str,
+    path: &Path,
+) -> Result<BTreeMap<String, f64>, InputError> {
+    let malformed = |reason: Reason| InputError::malformed("attribute file", path, reason);
+    let table: toml::Table = toml::from_str(text).map_err(|e| malformed(Box::new(e)))?;
     let mut out = BTreeMap::new();
     for (key, value) in table {
         if key == "description" {
@@ -165,10 +168,9 @@ pub(crate) fn parse_overrides(text: &str, path: &Path) -> Result<BTreeMap<String
             toml::Value::Float(f) => f,
             toml::Value::Integer(i) => i as f64,
             other => {
-                return Err(malformed(format!(
-                    "`{key}` must be a number, found {}",
-                    other.type_str()
-                )));
+                return Err(malformed(
+                    format!("`{key}` must be a number, found {}", other.type_str()).into(),
+                ));
             }
         };
         out.insert(key, number);
@@ -307,7 +309,7 @@ mod tests {
             .to_string();
         assert!(e.contains("bounciness") && e.contains("number"), "{e}");
         let e = parse_overrides("bounciness = ", p).unwrap_err();
-        assert!(matches!(e, Error::Malformed { .. }));
+        assert!(matches!(e, InputError::Malformed { .. }));
         let o = parse_overrides("bouncyness = 0.5", p).unwrap();
         let e = AttributeTable::builtin()
             .resolve(&o, "a.toml")

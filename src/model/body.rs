@@ -3,7 +3,7 @@
 use serde::Deserialize;
 use std::path::Path;
 
-use crate::error::{Error, Result};
+use crate::model::error::{InputError, Reason};
 
 /// The table bundled with klaw: Winter's (Dempster's) data as printed in Table B-1.
 pub(crate) const BUILTIN_TABLE: &str = include_str!("../../models/body-winter.toml");
@@ -102,12 +102,9 @@ impl BodyTable {
     }
 
     /// Parse a table from TOML text; `path` only names the source in errors.
-    pub(crate) fn parse(text: &str, path: &Path) -> Result<Self> {
-        let table: BodyTable = toml::from_str(text).map_err(|e| Error::Malformed {
-            what: "body table",
-            path: path.to_path_buf(),
-            reason: e.to_string(),
-        })?;
+    pub(crate) fn parse(text: &str, path: &Path) -> Result<Self, InputError> {
+        let malformed = |reason: Reason| InputError::malformed("body table", path, reason);
+        let table: BodyTable = toml::from_str(text).map_err(|e| malformed(Box::new(e)))?;
         let rows = [
             ("pelvis.length", table.pelvis.length),
             ("leg.r", table.leg.r),
@@ -138,18 +135,13 @@ impl BodyTable {
             ("figure.hand", table.figure.hand),
         ];
         for (name, v) in rows {
-            Error::check_range(name, v, 1e-6, 1.0, "(fraction)").map_err(|e| Error::Malformed {
-                what: "body table",
-                path: path.to_path_buf(),
-                reason: e.to_string(),
-            })?;
+            InputError::check_range(name, v, 1e-6, 1.0, "(fraction)")
+                .map_err(|e| malformed(Box::new(e)))?;
         }
         if table.foot.ankle_to_metatarsal <= table.foot.ankle_height {
-            return Err(Error::Malformed {
-                what: "body table",
-                path: path.to_path_buf(),
-                reason: "foot.ankle_to_metatarsal must exceed foot.ankle_height".into(),
-            });
+            return Err(malformed(
+                "foot.ankle_to_metatarsal must exceed foot.ankle_height".into(),
+            ));
         }
         Ok(table)
     }
@@ -215,11 +207,11 @@ pub struct Body {
 impl Body {
     /// Scale `table` to height `height` (m) and mass `mass` (kg), checking both against the
     /// table's limits.
-    pub(crate) fn new(table: &BodyTable, height: f64, mass: f64) -> Result<Self> {
+    pub(crate) fn new(table: &BodyTable, height: f64, mass: f64) -> Result<Self, InputError> {
         let [hmin, hmax] = table.limits.height;
         let [mmin, mmax] = table.limits.mass;
-        Error::check_range("height", height, hmin, hmax, "m")?;
-        Error::check_range("mass", mass, mmin, mmax, "kg")?;
+        InputError::check_range("height", height, hmin, hmax, "m")?;
+        InputError::check_range("mass", mass, mmin, mmax, "kg")?;
         let (h, m) = (height, mass);
         let l3 = table.thigh.length * h;
         let l4 = table.shank.length * h;
@@ -273,7 +265,7 @@ impl Body {
     }
 
     /// The bundled table scaled to `height` and `mass`.
-    pub fn standard(height: f64, mass: f64) -> Result<Self> {
+    pub fn standard(height: f64, mass: f64) -> Result<Self, InputError> {
         Self::new(&BodyTable::builtin(), height, mass)
     }
 
@@ -347,6 +339,6 @@ mod tests {
             .to_string();
         assert!(e.contains("thigh.length"), "{e}");
         let e = BodyTable::parse("name = 3", Path::new("y.toml")).unwrap_err();
-        assert!(matches!(e, Error::Malformed { .. }));
+        assert!(matches!(e, InputError::Malformed { .. }));
     }
 }

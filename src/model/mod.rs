@@ -2,6 +2,9 @@
 //! (defaults, units and ranges in `models/attributes.toml`, style presets) and physical constants.
 pub mod attributes;
 pub mod body;
+pub mod error;
+
+pub use error::InputError;
 
 /// Standard gravity (m/s²).
 pub const GRAVITY: f64 = 9.81;

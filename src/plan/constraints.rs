@@ -2,7 +2,7 @@
 //! Figures 4–5, made precise in the spec §3), with the step's state-phase timings (eq. 2).
 use serde::Serialize;
 
-use crate::error::{Error, Result};
+use crate::model::InputError;
 use crate::model::attributes::Attributes;
 use crate::model::body::Body;
 use crate::plan::gait::Gait;
@@ -62,7 +62,7 @@ impl StepConstraints {
     /// displacement 0), with a lateral offset d to its ankle: the leg works in its own plane,
     /// where the hip sits d_v − √(d_v² − d²) higher than in the world (d_v the in-plane drop).
     /// The cosine law is solved in that plane; the pelvis centre is then that much lower.
-    pub fn new(body: &Body, attrs: &Attributes, gait: Gait) -> Result<Self> {
+    pub fn new(body: &Body, attrs: &Attributes, gait: Gait) -> Result<Self, InputError> {
         let timing = Timing::new(gait.step_frequency)?;
         let sl = gait.step_length;
         let kappa = attrs.heel_strike_knee;
@@ -84,9 +84,7 @@ impl StepConstraints {
         let lateral_offset = half * attrs.pelvic_rotation.cos() - 0.5 * attrs.step_width;
         let dx = heel_x - x_h - hip_shift;
         if dx.abs() >= r {
-            return Err(Error::Geometry {
-                what: format!("step length {sl} m: the swing heel cannot reach the ground"),
-            });
+            return Err(InputError::StepTooLong { step_length: sl });
         }
         let y_plane = (r2 - dx * dx).sqrt();
         let omega3 = ((a1 * a1 + r2 - body.l11 * body.l11) / (2.0 * a1 * r)).acos();

@@ -3,7 +3,7 @@
 //! the anatomical limits checked before anything is simulated.
 use serde::{Deserialize, Serialize};
 
-use crate::error::{Error, Result};
+use crate::model::InputError;
 use crate::model::attributes::Attributes;
 use crate::model::body::Body;
 
@@ -41,7 +41,7 @@ impl GaitRequest {
     /// only sf → sl = 0.004 k sf H; only sl → sf = sl / (0.004 k H) (k the `stride_factor`
     /// attribute, 1 for the paper's formula); two given → the third from
     /// v = sl sf / 60; all three → they must agree within `CONSISTENCY_TOLERANCE`.
-    pub fn complete(&self, body: &Body, attrs: &Attributes) -> Result<Gait> {
+    pub fn complete(&self, body: &Body, attrs: &Attributes) -> Result<Gait, InputError> {
         for (name, value) in [
             ("velocity", self.velocity),
             ("step_length", self.step_length),
@@ -50,7 +50,7 @@ impl GaitRequest {
             if let Some(v) = value
                 && !v.is_finite()
             {
-                return Err(Error::NotFinite {
+                return Err(InputError::NotFinite {
                     name: name.into(),
                     value: v,
                 });
@@ -59,7 +59,7 @@ impl GaitRequest {
         let h = body.height;
         let k = NORMALIZING_CONSTANT * attrs.stride_factor;
         let (v, sl, sf) = match (self.velocity, self.step_length, self.step_frequency) {
-            (None, None, None) => return Err(Error::MissingGait),
+            (None, None, None) => return Err(InputError::MissingGait),
             (Some(v), None, None) => {
                 let sf = (60.0 * v / (k * h)).sqrt();
                 (v, 60.0 * v / sf, sf)
@@ -75,7 +75,7 @@ impl GaitRequest {
             (Some(v), Some(sl), Some(sf)) => {
                 let implied = sl * sf / 60.0;
                 if (implied - v).abs() > CONSISTENCY_TOLERANCE * v {
-                    return Err(Error::Inconsistent {
+                    return Err(InputError::Inconsistent {
                         velocity: v,
                         step_length: sl,
                         step_frequency: sf,
@@ -116,7 +116,7 @@ impl GaitRequest {
         for given in [true, false] {
             for (name, value, min, max, unit, asked) in checks {
                 if asked.is_some() == given {
-                    Error::check_range(name, value, min, max, unit)?;
+                    InputError::check_range(name, value, min, max, unit)?;
                 }
             }
         }
@@ -186,10 +186,9 @@ mod tests {
             .unwrap_err();
         let msg = e.to_string();
         assert!(
-            matches!(e, Error::Inconsistent { .. }) && msg.contains("1.0000 m/s"),
+            matches!(e, InputError::Inconsistent { .. }) && msg.contains("1.0000 m/s"),
             "{msg}"
         );
-        assert_eq!(e.exit_code(), 2);
     }
 
     #[test]
@@ -223,12 +222,12 @@ mod tests {
         let e = req(Some(f64::NAN), None, None)
             .complete(&b, &a)
             .unwrap_err();
-        assert!(matches!(e, Error::NotFinite { .. }));
+        assert!(matches!(e, InputError::NotFinite { .. }));
         let e = req(Some(-1.0), None, None).complete(&b, &a).unwrap_err();
-        assert!(matches!(e, Error::OutOfRange { .. }));
+        assert!(matches!(e, InputError::OutOfRange { .. }));
         assert!(matches!(
             req(None, None, None).complete(&b, &a),
-            Err(Error::MissingGait)
+            Err(InputError::MissingGait)
         ));
     }
 }

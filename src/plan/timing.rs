@@ -1,7 +1,7 @@
 //! State-phase timings of a step from its frequency (KLAW 1989 eq. 2).
 use serde::Serialize;
 
-use crate::error::{Error, Result};
+use crate::model::InputError;
 
 /// State-phase timings of one step (s), KLAW 1989 eq. 2.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -21,12 +21,12 @@ pub struct Timing {
 impl Timing {
     /// Eq. 2 for a step frequency in steps/min. Fails when double support vanishes
     /// (sf ≥ 181.75: running).
-    pub(crate) fn new(step_frequency: f64) -> Result<Self> {
+    pub(crate) fn new(step_frequency: f64) -> Result<Self, InputError> {
         let t_step = 60.0 / step_frequency;
         let t_cycle = 2.0 * t_step;
         let t_ds = (-0.16 * step_frequency + 29.08) * t_cycle / 100.0;
         if t_ds <= 0.0 {
-            return Err(Error::NoDoubleSupport {
+            return Err(InputError::NoDoubleSupport {
                 step_frequency,
                 t_ds,
             });

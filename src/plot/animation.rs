@@ -26,10 +26,12 @@ use plotters::prelude::*;
 
 use crate::engine::walker::Walk;
 use crate::error::{Error, Result};
+use crate::export::ExportError;
 use crate::figure::skeleton::Skeleton;
 use crate::figure::{Landmarks, LegPoints};
+use crate::model::InputError;
 use crate::model::body::Body;
-use crate::plot::{self, Chart, FONT, LEFT_COLOR, RIGHT_COLOR, msg};
+use crate::plot::{self, Chart, DrawError, FONT, LEFT_COLOR, RIGHT_COLOR, msg};
 
 /// A foot point this close to the ground (m) is drawn as a contact.
 pub(crate) const CONTACT_TOLERANCE_M: f64 = 1e-3;
@@ -62,19 +64,19 @@ pub struct Options {
 
 impl Options {
     /// Check the frame rate against 1–100 frames/s (`FPS_RANGE`) and the size against 200–4000
-    /// px wide and 100–4000 px high (`WIDTH_RANGE`, `HEIGHT_RANGE`) ([`Error::OutOfRange`] /
-    /// [`Error::NotFinite`]).
-    pub fn new(fps: f64, size: (u32, u32)) -> Result<Options> {
-        Error::check_range("fps", fps, FPS_RANGE.0, FPS_RANGE.1, "frames/s")?;
+    /// px wide and 100–4000 px high (`WIDTH_RANGE`, `HEIGHT_RANGE`) ([`InputError::OutOfRange`]
+    /// / [`InputError::NotFinite`]).
+    pub fn new(fps: f64, size: (u32, u32)) -> Result<Options, InputError> {
+        InputError::check_range("fps", fps, FPS_RANGE.0, FPS_RANGE.1, "frames/s")?;
         let (w, h) = size;
-        Error::check_range(
+        InputError::check_range(
             "width",
             f64::from(w),
             f64::from(WIDTH_RANGE.0),
             f64::from(WIDTH_RANGE.1),
             "px",
         )?;
-        Error::check_range(
+        InputError::check_range(
             "height of the image",
             f64::from(h),
             f64::from(HEIGHT_RANGE.0),
@@ -101,11 +103,11 @@ impl Default for Options {
     }
 }
 
-/// Parse `WIDTHxHEIGHT` (e.g. `900x450`); errors are [`Error::BadSpec`] for `--size`.
-pub fn parse_size(text: &str) -> Result<(u32, u32)> {
-    let bad = || Error::BadSpec {
-        flag: "size".into(),
-        reason: format!("`{text}` is not WIDTHxHEIGHT in pixels, e.g. 900x450"),
+/// Parse `WIDTHxHEIGHT` (e.g. `900x450`); errors are [`InputError::BadValue`] for `size`.
+pub fn parse_size(text: &str) -> Result<(u32, u32), InputError> {
+    let bad = || {
+        let reason = format!("`{text}` is not WIDTHxHEIGHT in pixels, e.g. 900x450");
+        InputError::bad_value("size", reason)
     };
     let (w, h) = text.trim().split_once(['x', 'X', '×']).ok_or_else(bad)?;
     let w = w.trim().parse::<u32>().map_err(|_| bad())?;
@@ -113,8 +115,8 @@ pub fn parse_size(text: &str) -> Result<(u32, u32)> {
     Ok((w, h))
 }
 
-/// The animation's path must end in `.gif` (any case); else [`Error::Malformed`].
-pub fn check_path(path: &Path) -> Result<()> {
+/// The animation's path must end in `.gif` (any case); else [`InputError::Malformed`].
+pub fn check_path(path: &Path) -> Result<(), InputError> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
@@ -122,11 +124,11 @@ pub fn check_path(path: &Path) -> Result<()> {
     if ext.as_deref() == Some("gif") {
         Ok(())
     } else {
-        Err(Error::Malformed {
-            what: "animation path",
-            path: path.to_path_buf(),
-            reason: "the extension must be .gif".to_string(),
-        })
+        Err(InputError::malformed(
+            "animation path",
+            path,
+            "the extension must be .gif",
+        ))
     }
 }
 
@@ -175,22 +177,23 @@ pub struct Summary {
 pub fn animate_walk(walk: &Walk, title: &str, path: &Path, options: &Options) -> Result<Summary> {
     check_path(path)?;
     let expected = walk.duration() * options.fps + 1.0;
-    Error::check_range(
+    InputError::check_range(
         "frame count (duration · fps + 1)",
         expected.floor(),
         1.0,
         MAX_FRAMES as f64,
         "frames",
     )?;
-    let frames = crate::figure::frames(walk, options.fps).collect::<Result<Vec<Landmarks>>>()?;
+    let frames = crate::figure::frames(walk, options.fps);
+    let frames = frames.collect::<Result<Vec<Landmarks>, _>>()?;
     write_gif(&frames, &walk.body, title, path, options)
 }
 
 /// Write `frames` (the figure at successive instants, 1/fps apart) as an animated GIF to `path`
-/// (see the module doc). Errors: a path not ending in .gif ([`Error::Malformed`]), no frames
-/// or more than 20 000 (`MAX_FRAMES`) ([`Error::Export`]), a frame the skeleton cannot be built
-/// from ([`Error::NotFinite`], [`Error::Geometry`]), drawing or writing ([`Error::Io`], action
-/// "writing"). On error no file is left and an existing `path` is untouched.
+/// (see the module doc). Errors: a path not ending in .gif ([`InputError::Malformed`]), no
+/// frames or more than 20 000 (`MAX_FRAMES`) ([`ExportError::FrameCount`]), a frame the skeleton cannot
+/// be built from ([`Error::Figure`]), drawing ([`Error::Draw`]) or writing ([`Error::Io`],
+/// action "writing"). On error no file is left and an existing `path` is untouched.
 pub fn write_gif(
     frames: &[Landmarks],
     body: &Body,
@@ -201,43 +204,42 @@ pub fn write_gif(
     check_path(path)?;
     let options = Options::new(options.fps, options.size)?;
     if frames.is_empty() || frames.len() > MAX_FRAMES {
-        return Err(Error::Export {
-            what: format!(
-                "{}: {} frames to animate; between 1 and {MAX_FRAMES} are needed",
-                path.display(),
-                frames.len()
-            ),
-        });
+        return Err(ExportError::FrameCount {
+            path: path.to_path_buf(),
+            frames: frames.len(),
+            max: MAX_FRAMES,
+        }
+        .into());
     }
     // every skeleton first: a bad frame fails before any drawing
     let skeletons = frames
         .iter()
         .map(|lm| Skeleton::new(lm, body))
-        .collect::<Result<Vec<_>>>()?;
+        .collect::<Result<Vec<_>, _>>()?;
     let text = plot::text_available();
-    let fail = |reason: String| Error::Io {
-        action: "writing",
+    let fail = |source| Error::Draw {
         path: path.to_path_buf(),
-        source: std::io::Error::other(format!("drawing the animation: {reason}")),
+        what: "the animation",
+        source,
     };
     let file = crate::export::file::AtomicFile::create(path)?;
     let mut views = Vec::with_capacity(frames.len());
     {
         let backend = BitMapBackend::gif(file.temp_path(), options.size, options.frame_delay_ms())
-            .map_err(|e| fail(e.to_string()))?;
+            .map_err(|e| fail(msg(e)))?;
         let root = backend.into_drawing_area();
         for (lm, sk) in frames.iter().zip(&skeletons) {
             views.push(draw_frame(&root, lm, sk, body, title, text).map_err(fail)?);
-            root.present().map_err(|e| fail(e.to_string()))?;
+            root.present().map_err(|e| fail(msg(e)))?;
         }
         // dropping the backend writes the GIF trailer (errors there are not reported: checked
         // below)
     }
     let complete = gif_is_complete(file.temp_path()).map_err(|e| file.error(e))?;
     if !complete {
-        return Err(fail(
-            "the GIF has no trailer: the file was not completed".into(),
-        ));
+        return Err(fail(msg(
+            "the GIF has no trailer: the file was not completed",
+        )));
     }
     file.commit()?;
     Ok(Summary {
@@ -259,7 +261,7 @@ fn view_chart<'a, DB: DrawingBackend>(
     area: &'a DrawingArea<DB, Shift>,
     u_mid: f64,
     (v_lo, v_hi): (f64, f64),
-) -> std::result::Result<(Chart<'a, DB>, ViewMap), String> {
+) -> std::result::Result<(Chart<'a, DB>, ViewMap), DrawError> {
     let (w, h) = area.dim_in_pixel();
     let (pw, ph) = (
         f64::from(w.saturating_sub(2 * MARGIN).max(2)),
@@ -345,7 +347,7 @@ fn wrap<DB: DrawingBackend>(
     lines: &[String],
     width: u32,
     style: &TextStyle,
-) -> std::result::Result<Vec<String>, String> {
+) -> std::result::Result<Vec<String>, DrawError> {
     let mut out = Vec::new();
     for line in lines {
         let mut current = String::new();
@@ -385,7 +387,7 @@ fn draw_frame<DB: DrawingBackend>(
     body: &Body,
     title: &str,
     text: bool,
-) -> std::result::Result<FrameViews, String> {
+) -> std::result::Result<FrameViews, DrawError> {
     root.fill(&WHITE).map_err(msg)?;
     let (w, h) = root.dim_in_pixel();
     let side_w = w * 2 / 3;
@@ -439,7 +441,7 @@ fn frame_text<DB: DrawingBackend>(
     title: &str,
     (side_w, w): (u32, u32),
     style: &TextStyle,
-) -> std::result::Result<(Vec<String>, Vec<String>), String> {
+) -> std::result::Result<(Vec<String>, Vec<String>), DrawError> {
     let stance = if lm.step.is_multiple_of(2) {
         "right"
     } else {
@@ -482,7 +484,7 @@ fn draw_view<DB: DrawingBackend>(
     scene: &Scene,
     side_view: bool,
     lines: &[String],
-) -> std::result::Result<ViewMap, String> {
+) -> std::result::Result<ViewMap, DrawError> {
     let project = move |p: [f64; 3]| {
         if side_view {
             (p[0], p[1])

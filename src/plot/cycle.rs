@@ -19,8 +19,8 @@ use crate::analysis::norms::{Measure, Norm, NormCheck, NormTable, check};
 use crate::error::Result;
 use crate::figure::skeleton::Side;
 use crate::plot::{
-    self, Chart, Draw, Drawn, FONT, FigureFormat, LEFT_COLOR, Png, RIGHT_COLOR, TITLE_SIZE, msg,
-    titled,
+    self, Chart, Draw, DrawError, Drawn, FONT, FigureFormat, LEFT_COLOR, Png, RIGHT_COLOR,
+    TITLE_SIZE, msg, titled,
 };
 
 /// Figure size in pixels (width, height).
@@ -85,8 +85,9 @@ pub struct CycleFigure {
 
 /// Draw the cycle figure to `path` (PNG or SVG by its extension). `subtitle` names the walk
 /// (see [`crate::plot::parameters_title`]). Errors: a bad extension
-/// ([`crate::Error::Malformed`], before anything is drawn), drawing or writing
-/// ([`crate::Error::Io`] with action "writing"; no file is left).
+/// ([`crate::model::InputError::Malformed`], before anything is drawn), drawing
+/// ([`crate::Error::Draw`]) or writing ([`crate::Error::Io`] with action "writing"; no file is
+/// left).
 pub fn write_cycle_figure(
     cycle: &GaitCycle,
     norms: &NormTable,
@@ -139,7 +140,7 @@ impl Draw for CycleDrawing<'_> {
     fn draw<DB: DrawingBackend>(
         &mut self,
         root: &DrawingArea<DB, Shift>,
-    ) -> std::result::Result<Vec<PanelPixels>, String> {
+    ) -> std::result::Result<Vec<PanelPixels>, DrawError> {
         root.fill(&WHITE).map_err(msg)?;
         let (r, l) = self.cycle.cycles;
         let title = format!(
@@ -283,7 +284,7 @@ fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     panel: Panel,
     figure: &CycleDrawing,
-) -> std::result::Result<PanelPixels, String> {
+) -> std::result::Result<PanelPixels, DrawError> {
     let text = figure.text;
     let area = titled(area, title(panel), 19, text)?;
     let curves: Vec<&Curve> = figure.cycle.panel_curves(panel).collect();
@@ -327,7 +328,7 @@ fn panel_chart<'a, DB: DrawingBackend>(
     panel: Panel,
     range: PanelRange,
     text: bool,
-) -> std::result::Result<Chart<'a, DB>, String> {
+) -> std::result::Result<Chart<'a, DB>, DrawError> {
     let mut b = ChartBuilder::on(area);
     b.margin(10).margin_right(18);
     if text {

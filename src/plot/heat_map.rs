@@ -17,8 +17,10 @@ use plotters::prelude::*;
 
 use crate::error::{Error, Result};
 use crate::model::attributes::AttributeTable;
-use crate::plot::{self, Chart, Draw, Drawn, FONT, Png, TITLE_SIZE, msg, titled};
+use crate::model::{InputError, error::Reason};
+use crate::plot::{self, Chart, Draw, DrawError, Drawn, FONT, Png, TITLE_SIZE, msg, titled};
 use crate::sweep::Format;
+use crate::sweep::output::LineError;
 
 /// Heat map size in pixels (width, height).
 pub const HEAT_MAP_SIZE: (u32, u32) = (1200, 900);
@@ -76,11 +78,8 @@ pub struct HeatMap {
     pub cells: Vec<MapCell>,
 }
 
-fn bad(flag: &str, reason: String) -> Error {
-    Error::BadSpec {
-        flag: flag.to_string(),
-        reason,
-    }
+fn bad(parameter: &str, reason: String) -> Error {
+    InputError::bad_value(parameter, reason).into()
 }
 
 /// The unit of a column of a sweep output ("" for none).
@@ -137,11 +136,8 @@ fn number(text: &str) -> std::result::Result<Option<f64>, ()> {
 /// The rows of a sweep output as (column name → cell text), CSV or JSON Lines by extension.
 fn read_rows(path: &Path) -> Result<(Vec<String>, Vec<Vec<String>>)> {
     let format = Format::from_path(path)?;
-    let malformed = |reason: String| Error::Malformed {
-        what: "sweep output",
-        path: path.to_path_buf(),
-        reason,
-    };
+    let malformed =
+        |reason: Reason| Error::from(InputError::malformed("sweep output", path, reason));
     let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
         action: "reading",
         path: path.to_path_buf(),
@@ -152,7 +148,7 @@ fn read_rows(path: &Path) -> Result<(Vec<String>, Vec<Vec<String>>)> {
             let mut r = csv::Reader::from_reader(text.as_bytes());
             let header: Vec<String> = r
                 .headers()
-                .map_err(|e| malformed(e.to_string()))?
+                .map_err(|e| malformed(Box::new(e)))?
                 .iter()
                 .map(str::to_string)
                 .collect();
@@ -160,7 +156,7 @@ fn read_rows(path: &Path) -> Result<(Vec<String>, Vec<Vec<String>>)> {
                 .records()
                 .map(|rec| {
                     rec.map(|r| r.iter().map(str::to_string).collect())
-                        .map_err(|e| malformed(e.to_string()))
+                        .map_err(|e| malformed(Box::new(e)))
                 })
                 .collect::<Result<Vec<Vec<String>>>>()?;
             Ok((header, rows))
@@ -174,7 +170,13 @@ fn read_rows(path: &Path) -> Result<(Vec<String>, Vec<Vec<String>>)> {
                 .filter(|(_, l)| !l.trim().is_empty())
             {
                 let map: serde_json::Map<String, serde_json::Value> = serde_json::from_str(line)
-                    .map_err(|e| malformed(format!("line {}: {e}", i + 1)))?;
+                    .map_err(|e| {
+                        let reason = Box::new(e);
+                        malformed(Box::new(LineError {
+                            line: i + 1,
+                            reason,
+                        }))
+                    })?;
                 if header.is_empty() {
                     header = map.keys().cloned().collect();
                 }
@@ -288,10 +290,9 @@ impl HeatMap {
         let iconv = header
             .iter()
             .position(|h| h == "converged")
-            .ok_or_else(|| Error::Malformed {
-                what: "sweep output",
-                path: path.to_path_buf(),
-                reason: "no `converged` column: not written by klaw sweep".into(),
+            .ok_or_else(|| {
+                let reason = "no `converged` column: not written by klaw sweep";
+                InputError::malformed("sweep output", path, reason)
             })?;
         if ix == iy {
             return Err(bad(
@@ -473,7 +474,7 @@ fn draw_cell<DB: DrawingBackend>(
     ((x0, x1), (y0, y1)): ((f64, f64), (f64, f64)),
     color: RGBColor,
     failed: bool,
-) -> std::result::Result<(i32, i32, i32, i32), String> {
+) -> std::result::Result<(i32, i32, i32, i32), DrawError> {
     chart
         .draw_series(std::iter::once(Rectangle::new(
             [(x0, y1), (x1, y0)],

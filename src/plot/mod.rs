@@ -24,6 +24,7 @@ use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::{ColorType, ImageEncoder, ImageError};
 
 use crate::error::{Error, Result};
+use crate::model::InputError;
 use crate::model::body::Body;
 use crate::plan::gait::Gait;
 
@@ -54,7 +55,7 @@ pub enum FigureFormat {
 }
 
 /// `.png` or `.svg` (any case); anything else is an input error naming the path.
-pub fn figure_format(path: &Path) -> Result<FigureFormat> {
+pub fn figure_format(path: &Path) -> Result<FigureFormat, InputError> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
@@ -62,11 +63,11 @@ pub fn figure_format(path: &Path) -> Result<FigureFormat> {
     match ext.as_deref() {
         Some("png") => Ok(FigureFormat::Png),
         Some("svg") => Ok(FigureFormat::Svg),
-        _ => Err(Error::Malformed {
-            what: "plot path",
-            path: path.to_path_buf(),
-            reason: "the extension must be .png or .svg".to_string(),
-        }),
+        _ => Err(InputError::malformed(
+            "plot path",
+            path,
+            "the extension must be .png or .svg",
+        )),
     }
 }
 
@@ -116,12 +117,19 @@ pub fn parameters_title(gaits: &[Gait], body: &Body, style: &str) -> String {
     )
 }
 
-pub(crate) type Drawn = std::result::Result<(), String>;
+/// A figure that cannot be drawn: plotters' error, as its text (plotters' error types are
+/// generic over the drawing backend, which the figures are too).
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+pub struct DrawError(String);
+
+pub(crate) type Drawn = std::result::Result<(), DrawError>;
 /// A chart with both axes in f64.
 pub(crate) type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
-pub(crate) fn msg<E: std::fmt::Display>(e: E) -> String {
-    e.to_string()
+/// A plotters error as a [`DrawError`].
+pub(crate) fn msg<E: std::fmt::Display>(e: E) -> DrawError {
+    DrawError(e.to_string())
 }
 
 /// `area` with `title` above it in `size` px when there is text, else `area` itself.
@@ -130,7 +138,7 @@ pub(crate) fn titled<DB: DrawingBackend>(
     title: &str,
     size: i32,
     text: bool,
-) -> std::result::Result<DrawingArea<DB, Shift>, String> {
+) -> std::result::Result<DrawingArea<DB, Shift>, DrawError> {
     if text {
         area.titled(title, (FONT, size)).map_err(msg)
     } else {
@@ -145,7 +153,7 @@ pub(crate) trait Draw {
     fn draw<DB: DrawingBackend>(
         &mut self,
         root: &DrawingArea<DB, Shift>,
-    ) -> std::result::Result<Self::Output, String>;
+    ) -> std::result::Result<Self::Output, DrawError>;
 }
 
 /// How a PNG is encoded.
@@ -159,19 +167,19 @@ pub(crate) enum Png {
 }
 
 /// Draw `figure` on `size` pixels and write it to `path` in `format`, whole or not at all. A
-/// drawing failure is `Error::Io { action: "writing" }` saying "drawing {what}: …".
+/// drawing failure is [`Error::Draw`] naming `what`.
 pub(crate) fn write_figure<F: Draw>(
     figure: &mut F,
     path: &Path,
     format: FigureFormat,
     size: (u32, u32),
     png: Png,
-    what: &str,
+    what: &'static str,
 ) -> Result<F::Output> {
-    let fail = |reason: String| Error::Io {
-        action: "writing",
+    let fail = |source| Error::Draw {
         path: path.to_path_buf(),
-        source: std::io::Error::other(format!("drawing {what}: {reason}")),
+        what,
+        source,
     };
     match format {
         FigureFormat::Png => {
@@ -179,7 +187,7 @@ pub(crate) fn write_figure<F: Draw>(
             let drawn = {
                 let root = BitMapBackend::with_buffer(&mut pixels, size).into_drawing_area();
                 let drawn = figure.draw(&root).map_err(fail)?;
-                root.present().map_err(|e| fail(e.to_string()))?;
+                root.present().map_err(|e| fail(msg(e)))?;
                 drawn
             };
             write_png(path, &pixels, size, png)?;
@@ -190,7 +198,7 @@ pub(crate) fn write_figure<F: Draw>(
             let drawn = {
                 let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
                 let drawn = figure.draw(&root).map_err(fail)?;
-                root.present().map_err(|e| fail(e.to_string()))?;
+                root.present().map_err(|e| fail(msg(e)))?;
                 drawn
             };
             crate::export::file::write_atomic(path, |out| out.write_all(svg.as_bytes()))?;
@@ -231,7 +239,7 @@ mod tests {
         );
         for bad in ["w", "w.jpg", "png"] {
             let e = figure_format(Path::new(bad)).unwrap_err();
-            assert_eq!(e.exit_code(), 2, "{e}");
+            assert!(matches!(e, InputError::Malformed { .. }), "{e}");
             assert!(e.to_string().contains(".png or .svg"), "{e}");
         }
     }

@@ -17,10 +17,11 @@ use crate::analysis::cycle::{CycleCurves, cycle_average};
 use crate::analysis::events::{self, Event};
 use crate::engine::report::{Report, StateFrame};
 use crate::engine::walker::{self, simulate};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::export::{self, Format, Options};
 use crate::figure::clinical::{Clinical, clinical};
 use crate::figure::{Landmarks, frames, landmarks};
+use crate::model::InputError;
 use crate::model::attributes::{AttributeTable, Attributes, style};
 use crate::model::body::Body;
 use crate::plan::{Gait, GaitRequest};
@@ -127,7 +128,7 @@ impl Simulation {
 
     /// Every step walks this gait: any of v (m/s), sl (m), sf (steps/min), completed by the
     /// normalizing formula and checked against the attributes' limits
-    /// ([`GaitRequest::complete`]; an empty request is [`Error::MissingGait`]). Replaces a
+    /// ([`GaitRequest::complete`]; an empty request is [`InputError::MissingGait`]). Replaces a
     /// [`schedule`](Simulation::schedule) set before.
     pub fn gait(mut self, request: GaitRequest) -> Self {
         self.requests = Requests::One(request);
@@ -146,7 +147,7 @@ impl Simulation {
     /// One gait request per step (each completed and checked as by
     /// [`gait`](Simulation::gait)): the walk has as many steps as the schedule unless
     /// [`steps`](Simulation::steps) says otherwise (fewer: the schedule is cut; more: its last
-    /// gait is held). An empty schedule is [`Error::MissingGait`].
+    /// gait is held). An empty schedule is [`InputError::MissingGait`].
     pub fn schedule(mut self, requests: Vec<GaitRequest>) -> Self {
         self.requests = Requests::Schedule(requests);
         self
@@ -179,14 +180,14 @@ impl Simulation {
             }
             Requests::Schedule(rows) => {
                 if rows.is_empty() {
-                    return Err(Error::MissingGait);
+                    return Err(InputError::MissingGait.into());
                 }
                 let n = check_steps(self.steps.unwrap_or(rows.len()))?;
                 let mut gaits = rows
                     .iter()
                     .take(n)
                     .map(complete)
-                    .collect::<Result<Vec<_>>>()?;
+                    .collect::<Result<Vec<_>, _>>()?;
                 gaits.resize(n, gaits[gaits.len() - 1]);
                 gaits
             }
@@ -204,13 +205,13 @@ impl Simulation {
     }
 }
 
-fn check_steps(n: usize) -> Result<usize> {
-    Error::check_range("steps", n as f64, 1.0, MAX_STEPS as f64, "steps")?;
+fn check_steps(n: usize) -> Result<usize, InputError> {
+    InputError::check_range("steps", n as f64, 1.0, MAX_STEPS as f64, "steps")?;
     Ok(n)
 }
 
-fn check_fps(fps: f64) -> Result<f64> {
-    Error::check_range("fps", fps, MIN_FPS, MAX_FPS, "frames/s")
+fn check_fps(fps: f64) -> Result<f64, InputError> {
+    InputError::check_range("fps", fps, MIN_FPS, MAX_FPS, "frames/s")
 }
 
 /// A simulation whose inputs are checked and completed: the body, the attributes and one gait
@@ -326,23 +327,25 @@ impl Walk {
 
     /// The figure at time `t` (s, clamped to the walk).
     pub fn figure_at(&self, t: f64) -> Result<Landmarks> {
-        let t = Error::check_range("t", t, f64::MIN, f64::MAX, "s")?.clamp(0.0, self.duration());
+        let t = InputError::check_range("t", t, f64::MIN, f64::MAX, "s")?;
+        let t = t.clamp(0.0, self.duration());
         let steps = &self.walk.steps;
         let i = steps.partition_point(|s| s.t_start <= t).saturating_sub(1);
-        landmarks(&steps[i], t, &self.walk.attrs)
+        Ok(landmarks(&steps[i], t, &self.walk.attrs)?)
     }
 
     /// The figure's landmarks (joint centres, foot points, pelvis, trunk and arm angles) at
     /// `fps` frames per second.
     pub fn frames(&self, fps: f64) -> Result<Vec<Landmarks>> {
-        frames(&self.walk, check_fps(fps)?).collect()
+        Ok(frames(&self.walk, check_fps(fps)?).collect::<Result<_, _>>()?)
     }
 
     /// The clinical joint angles (rad) of every frame at `fps` frames per second.
     pub fn clinical_angles(&self, fps: f64) -> Result<Vec<Clinical>> {
-        frames(&self.walk, check_fps(fps)?)
+        let frames = frames(&self.walk, check_fps(fps)?);
+        Ok(frames
             .map(|lm| clinical(&lm?, &self.walk.body))
-            .collect()
+            .collect::<Result<_, _>>()?)
     }
 
     /// The engine's state (θ1…θ4, w, the sagittal joint points, phase) at `fps` frames per
@@ -373,7 +376,11 @@ impl Walk {
             .step_by(2)
             .map(|s| s.t_start)
             .collect();
-        cycle_average(&self.clinical_angles(fps)?, &right_heel_strikes, 1)
+        Ok(cycle_average(
+            &self.clinical_angles(fps)?,
+            &right_heel_strikes,
+            1,
+        )?)
     }
 
     /// Write the motion at `fps` frames per second to `path` in the format of its extension:

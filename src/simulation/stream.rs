@@ -6,7 +6,7 @@
 use crate::analysis::events::{Event, step_events};
 use crate::engine::report::{StateFrame, StepReport};
 use crate::engine::walker::{Step, Walker};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::figure::clinical::{Clinical, clinical};
 use crate::figure::{Landmarks, landmarks};
 use crate::model::attributes::Attributes;
@@ -100,7 +100,7 @@ impl<'a> WalkStream<'a> {
         let gait = *self.gaits.next()?;
         let step = match self.walker.step(gait) {
             Ok(s) => s,
-            Err(e) => return Some(Err(e)),
+            Err(e) => return Some(Err(e.into())),
         };
         if self.gather.clinical && step.index.is_multiple_of(2) {
             self.right_heel_strikes.push(step.t_start);
@@ -151,7 +151,7 @@ impl<'a> WalkStream<'a> {
             }
         }
         let step = self.current.as_ref()?;
-        let lm = landmarks(step, t, &self.walker.attrs);
+        let lm = landmarks(step, t, &self.walker.attrs).map_err(Error::from);
         if self.gather.state_frames {
             self.state_frames.push(step.frame(t, &step.stance_leg.foot));
         }
@@ -160,7 +160,7 @@ impl<'a> WalkStream<'a> {
         {
             match clinical(l, &self.walker.body) {
                 Ok(c) => self.clinical.push(c),
-                Err(e) => return Some(Err(e)),
+                Err(e) => return Some(Err(e.into())),
             }
         }
         Some(lm)

@@ -2,9 +2,46 @@
 use std::path::Path;
 
 use super::product::{Axis, Entry, QUANTITIES};
-use super::spec::{parse_spec, parse_styles};
+use super::spec::{parse_styles, values};
 use crate::error::{Error, Result};
+use crate::model::InputError;
 use crate::model::attributes::AttributeTable;
+
+/// Why a sweep file cannot be read (an [`InputError::Malformed`] of the file).
+#[derive(Debug, thiserror::Error)]
+pub enum SweepFileError {
+    /// Not a TOML table.
+    #[error("{}", .0.to_string().trim_end())]
+    Toml(#[source] toml::de::Error),
+    /// A key that is neither a quantity of [`QUANTITIES`] nor a locomotion attribute.
+    #[error(
+        "unknown key `{key}`: a key is one of {} or a locomotion attribute of \
+         models/attributes.toml",
+        QUANTITIES.join(", ")
+    )]
+    UnknownKey { key: String },
+    /// Two keys for one quantity (`step_length` and `step-length`).
+    #[error("`{key}` is given twice (as `{name}`)")]
+    Twice { key: String, name: String },
+    #[error(
+        "`{key}` must be a number, a string \"START:STOP:STEP\" or \"A,B,C\", or an array of \
+         numbers"
+    )]
+    Shape { key: String },
+    #[error("`{key}` must be style names")]
+    StyleNames { key: String },
+    #[error("`{key}` is an empty array")]
+    EmptyArray { key: String },
+    #[error("`{key}`: {value} is not a finite number")]
+    NotFinite { key: String, value: f64 },
+    /// The value of `key` cannot be used: its spec or its style names.
+    #[error("`{key}`: {reason}")]
+    Value {
+        key: String,
+        #[source]
+        reason: crate::model::error::Reason,
+    },
+}
 
 /// Read a sweep file: a flat TOML table whose keys are the quantities of `klaw sweep`
 /// (`velocity`, `step_length` or `step-length`, …, `steps`) or locomotion attribute names, and
@@ -16,37 +53,35 @@ pub fn read_sweep_file(path: &Path, table: &AttributeTable) -> Result<Vec<Entry>
         path: path.to_path_buf(),
         source: e,
     })?;
-    parse_sweep_toml(&text, table).map_err(|reason| Error::Malformed {
-        what: "sweep file",
-        path: path.to_path_buf(),
-        reason,
-    })
+    parse_sweep_toml(&text, table).map_err(|e| InputError::malformed("sweep file", path, e).into())
 }
 
 /// `read_sweep_file` on text; errors are the reason only.
 pub(crate) fn parse_sweep_toml(
     text: &str,
     table: &AttributeTable,
-) -> std::result::Result<Vec<Entry>, String> {
-    let doc: toml::Table =
-        toml::from_str(text).map_err(|e| e.to_string().trim_end().to_string())?;
+) -> Result<Vec<Entry>, SweepFileError> {
+    let doc: toml::Table = toml::from_str(text).map_err(SweepFileError::Toml)?;
     let mut entries: Vec<Entry> = Vec::new();
     for (key, value) in &doc {
-        let axis = Axis::from_name(key, table).ok_or_else(|| {
-            format!(
-                "unknown key `{key}`: a key is one of {} or a locomotion attribute of \
-                 models/attributes.toml",
-                QUANTITIES.join(", ")
-            )
-        })?;
+        let key_name = || key.to_string();
+        let axis = Axis::from_name(key, table)
+            .ok_or_else(|| SweepFileError::UnknownKey { key: key_name() })?;
         if entries.iter().any(|(a, _)| *a == axis) {
-            return Err(format!("`{key}` is given twice (as `{}`)", axis.name()));
+            let name = axis.name().to_string();
+            return Err(SweepFileError::Twice {
+                key: key_name(),
+                name,
+            });
         }
-        let shape = || {
-            format!(
-                "`{key}` must be a number, a string \"START:STOP:STEP\" or \"A,B,C\", or an array \
-                 of numbers"
-            )
+        let shape = || SweepFileError::Shape { key: key_name() };
+        // the value's error without its parameter: the key names it
+        let value_error = |e: InputError| SweepFileError::Value {
+            key: key_name(),
+            reason: match e {
+                InputError::BadValue { reason, .. } => reason,
+                e => Box::new(e),
+            },
         };
         let as_number = |v: &toml::Value| match v {
             toml::Value::Integer(i) => Some(*i as f64),
@@ -55,29 +90,33 @@ pub(crate) fn parse_sweep_toml(
         };
         let values = match value {
             toml::Value::String(spec) if axis == Axis::Style => {
-                parse_styles(spec).map_err(|e| format!("`{key}`: {e}"))?
+                parse_styles(spec).map_err(value_error)?
             }
             toml::Value::Array(items) if axis == Axis::Style => {
                 let names: Option<Vec<&str>> = items.iter().map(|v| v.as_str()).collect();
-                let names = names.ok_or_else(|| format!("`{key}` must be style names"))?;
-                parse_styles(&names.join(",")).map_err(|e| format!("`{key}`: {e}"))?
+                let names = names.ok_or_else(|| SweepFileError::StyleNames { key: key_name() })?;
+                parse_styles(&names.join(",")).map_err(value_error)?
             }
-            toml::Value::String(spec) => {
-                parse_spec(axis.name(), spec).map_err(|e| format!("`{key}`: {e}"))?
-            }
+            toml::Value::String(spec) => values(spec).map_err(|e| SweepFileError::Value {
+                key: key_name(),
+                reason: Box::new(e),
+            })?,
             toml::Value::Array(items) => {
                 if items.is_empty() {
-                    return Err(format!("`{key}` is an empty array"));
+                    return Err(SweepFileError::EmptyArray { key: key_name() });
                 }
                 items
                     .iter()
                     .map(|v| as_number(v).ok_or_else(shape))
-                    .collect::<std::result::Result<Vec<_>, _>>()?
+                    .collect::<Result<Vec<_>, _>>()?
             }
             v => vec![as_number(v).ok_or_else(shape)?],
         };
-        if let Some(x) = values.iter().find(|x| !x.is_finite()) {
-            return Err(format!("`{key}`: {x} is not a finite number"));
+        if let Some(&value) = values.iter().find(|x| !x.is_finite()) {
+            return Err(SweepFileError::NotFinite {
+                key: key_name(),
+                value,
+            });
         }
         entries.push((axis, values));
     }
@@ -131,7 +170,7 @@ mod tests {
             ("[velocity]\nx = 1", "`velocity` must be a number"),
             ("velocity = nan", "not a finite number"),
         ] {
-            let e = parse_sweep_toml(text, &table()).unwrap_err();
+            let e = parse_sweep_toml(text, &table()).unwrap_err().to_string();
             assert!(e.contains(expect), "{text:?}: {e}");
         }
         let dir = tempfile::tempdir().unwrap();
@@ -141,14 +180,13 @@ mod tests {
         assert!(
             matches!(
                 e,
-                Error::Malformed {
+                Error::Input(InputError::Malformed {
                     what: "sweep file",
                     ..
-                }
+                })
             ),
             "{e}"
         );
-        assert_eq!(e.exit_code(), 2);
         let e = read_sweep_file(&dir.path().join("none.toml"), &table()).unwrap_err();
         assert!(matches!(e, Error::Io { .. }), "{e}");
     }

@@ -6,8 +6,9 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use super::output::{RowReader, malformed};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::export::file::AtomicFile;
+use crate::model::InputError;
 use crate::sweep::Format;
 
 /// What a merge did.
@@ -34,10 +35,7 @@ pub struct MergeStats {
 pub fn merge(out: &Path, inputs: &[PathBuf], allow_missing: bool) -> Result<MergeStats> {
     let format = Format::from_path(out)?;
     if inputs.is_empty() {
-        return Err(Error::BadSpec {
-            flag: "merge".into(),
-            reason: "no input files".into(),
-        });
+        return Err(InputError::bad_value("merge", "no input files").into());
     }
     let mut heads = Heads::open(out, inputs, format)?;
     let mut file = AtomicFile::create(out)?;
@@ -59,16 +57,13 @@ pub fn merge(out: &Path, inputs: &[PathBuf], allow_missing: bool) -> Result<Merg
         .collect();
     if stats.missing > 0 && !allow_missing {
         let list: Vec<String> = stats.first_missing.iter().map(|p| p.to_string()).collect();
-        return Err(Error::Malformed {
-            what: "merge of sweep outputs",
-            path: out.to_path_buf(),
-            reason: format!(
-                "{} points are missing (first: {}): is a shard missing or unfinished? \
-                 (--allow-missing writes the rows anyway)",
-                stats.missing,
-                list.join(", ")
-            ),
-        });
+        let reason = format!(
+            "{} points are missing (first: {}): is a shard missing or unfinished? \
+             (--allow-missing writes the rows anyway)",
+            stats.missing,
+            list.join(", ")
+        );
+        return Err(InputError::malformed("merge of sweep outputs", out, reason).into());
     }
     file.commit()?;
     Ok(stats)

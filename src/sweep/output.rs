@@ -16,6 +16,8 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use crate::error::{Error, Result};
+use crate::model::InputError;
+use crate::model::error::Reason;
 use crate::sweep::{Format, Shard, Sweep};
 
 /// The partial output of a sweep writing `target`: `.NAME.partial` in the same directory.
@@ -35,12 +37,26 @@ fn io_err<'a>(action: &'static str, path: &'a Path) -> impl Fn(std::io::Error) -
     }
 }
 
-pub(super) fn malformed(path: &Path, reason: String) -> Error {
-    Error::Malformed {
-        what: "sweep output",
-        path: path.to_path_buf(),
-        reason,
-    }
+pub(super) fn malformed(path: &Path, reason: impl Into<Reason>) -> Error {
+    InputError::malformed("sweep output", path, reason).into()
+}
+
+/// A line of a sweep output that is not a row, `line` counted from 1.
+#[derive(Debug, thiserror::Error)]
+#[error("line {line}: {reason}")]
+pub struct LineError {
+    pub line: usize,
+    #[source]
+    pub reason: Reason,
+}
+
+/// A line that is not one CSV record.
+#[derive(Debug, thiserror::Error)]
+enum CsvLineError {
+    #[error("empty line")]
+    Empty,
+    #[error("not a CSV record: {0}")]
+    NotCsv(#[source] csv::Error),
 }
 
 /// The column names of a file as they are compared: the CSV header in order, or the sorted keys
@@ -87,7 +103,7 @@ impl RowReader {
         if format == Format::Csv
             && let Some(text) = r.read_line()?
         {
-            r.columns = Some(parse_csv(&text).map_err(|e| r.error(e))?);
+            r.columns = Some(parse_csv(&text).map_err(|e| r.error(Box::new(e)))?);
         }
         Ok(r)
     }
@@ -97,8 +113,9 @@ impl RowReader {
         self.columns.as_deref()
     }
 
-    fn error(&self, reason: String) -> Error {
-        malformed(&self.path, format!("line {}: {reason}", self.line))
+    fn error(&self, reason: Reason) -> Error {
+        let line = self.line;
+        malformed(&self.path, LineError { line, reason })
     }
 
     /// The next complete line, with its newline.
@@ -127,19 +144,17 @@ impl RowReader {
         };
         let point = match self.format {
             Format::Csv => {
-                let fields = parse_csv(&text).map_err(|e| self.error(e))?;
+                let fields = parse_csv(&text).map_err(|e| self.error(Box::new(e)))?;
                 let want = self.columns.as_ref().map_or(0, Vec::len);
                 if fields.len() != want {
-                    return Err(
-                        self.error(format!("{} fields, the header has {want}", fields.len()))
-                    );
+                    let n = fields.len();
+                    return Err(self.error(format!("{n} fields, the header has {want}").into()));
                 }
                 fields[0].parse::<usize>().ok()
             }
             Format::Jsonl => {
                 let map: serde_json::Map<String, serde_json::Value> =
-                    serde_json::from_str(&text)
-                        .map_err(|e| self.error(format!("not a JSON object: {e}")))?;
+                    serde_json::from_str(&text).map_err(|e| self.error(Box::new(NotJson(e))))?;
                 let mut keys: Vec<String> = map.keys().cloned().collect();
                 keys.sort();
                 match &self.columns {
@@ -155,26 +170,31 @@ impl RowReader {
             }
         };
         let point = point.ok_or_else(|| self.error("no whole-number `point`".into()))?;
-        if self.last.is_some_and(|l| point <= l) {
-            return Err(self.error(format!(
-                "point {point} after point {}: rows must be in increasing point order",
-                self.last.unwrap_or(0)
-            )));
+        if let Some(last) = self.last.filter(|&l| point <= l) {
+            return Err(self.error(
+                format!("point {point} after point {last}: rows must be in increasing point order")
+                    .into(),
+            ));
         }
         self.last = Some(point);
         Ok(Some((point, text)))
     }
 }
 
-fn parse_csv(text: &str) -> std::result::Result<Vec<String>, String> {
+/// A line that is not one JSON object.
+#[derive(Debug, thiserror::Error)]
+#[error("not a JSON object: {0}")]
+struct NotJson(#[source] serde_json::Error);
+
+fn parse_csv(text: &str) -> Result<Vec<String>, CsvLineError> {
     let mut r = csv::ReaderBuilder::new()
         .has_headers(false)
         .from_reader(text.as_bytes());
     let mut record = csv::StringRecord::new();
     match r.read_record(&mut record) {
         Ok(true) => Ok(record.iter().map(str::to_string).collect()),
-        Ok(false) => Err("empty line".into()),
-        Err(e) => Err(format!("not a CSV record: {e}")),
+        Ok(false) => Err(CsvLineError::Empty),
+        Err(e) => Err(CsvLineError::NotCsv(e)),
     }
 }
 
@@ -234,20 +254,26 @@ fn scan(
     while let Some((p, line)) = reader.next_row()? {
         check_columns(&reader)?;
         if p >= sweep.len() || !shard.contains(p) {
-            return Err(reader.error(format!(
-                "point {p} is not in this sweep's shard {}/{} of {} points",
-                shard.index,
-                shard.count,
-                sweep.len()
-            )));
+            return Err(reader.error(
+                format!(
+                    "point {p} is not in this sweep's shard {}/{} of {} points",
+                    shard.index,
+                    shard.count,
+                    sweep.len()
+                )
+                .into(),
+            ));
         }
         let prefix = format.input_prefix(&input_header, &sweep.inputs(p).cells());
         if !line.starts_with(&prefix) {
-            return Err(reader.error(format!(
-                "point {p} has other inputs than this sweep's (`{}`): it was written by a \
-                 different sweep",
-                prefix.trim_end_matches(',')
-            )));
+            return Err(reader.error(
+                format!(
+                    "point {p} has other inputs than this sweep's (`{}`): it was written by a \
+                     different sweep",
+                    prefix.trim_end_matches(',')
+                )
+                .into(),
+            ));
         }
         each(p);
     }

@@ -1,8 +1,8 @@
 //! The sweep as a Cartesian product: its axes in product order, built from a sweep file's and
 //! the flags' entries, its points numbered 0.. in row-major order, and the inputs of the walk of
 //! each point.
-use super::spec::{bad, tidy};
-use crate::error::{Error, Result};
+use super::spec::{SpecError, bad, tidy};
+use crate::model::InputError;
 use crate::model::attributes::AttributeTable;
 use crate::plan::gait::GaitRequest;
 
@@ -116,11 +116,11 @@ impl Sweep {
     /// entry of the same axis, and a flag `mass` or `mass_per_height2` drops the file's entries
     /// of both. The axes are put in product order: the quantities in `QUANTITIES` order, then
     /// the attributes (the file's, then the flags' new ones, each in their given order).
-    pub fn build(file: Vec<Entry>, flags: Vec<Entry>) -> Result<Sweep> {
+    pub fn build(file: Vec<Entry>, flags: Vec<Entry>) -> Result<Sweep, InputError> {
         let mut axes: Vec<Entry> = Vec::new();
         for (i, (axis, _)) in flags.iter().enumerate() {
             if flags[..i].iter().any(|(a, _)| a == axis) {
-                return Err(bad(axis.name(), "given twice"));
+                return Err(bad(axis.name(), SpecError::GivenTwice));
             }
         }
         let flags_mass = flags
@@ -141,19 +141,16 @@ impl Sweep {
         if axes.iter().any(|(a, _)| *a == Axis::Mass)
             && axes.iter().any(|(a, _)| *a == Axis::MassPerHeight2)
         {
-            return Err(bad(
-                "mass-per-height2",
-                "mass and mass_per_height2 exclude each other (M = K · H²): give one",
-            ));
+            return Err(bad("mass-per-height2", SpecError::MassTwice));
         }
         for (axis, values) in &axes {
             if values.is_empty() {
-                return Err(bad(axis.name(), "no values"));
+                return Err(bad(axis.name(), SpecError::NoValues));
             }
             if *axis == Axis::Steps
                 && let Some(x) = values.iter().find(|x| x.fract() != 0.0)
             {
-                return Err(bad("steps", format!("{x} is not a whole number of steps")));
+                return Err(bad("steps", SpecError::NotWholeSteps { value: *x }));
             }
         }
         // stable: attributes keep their order
@@ -161,7 +158,7 @@ impl Sweep {
         let sweep = Sweep { axes };
         let total = sweep.len();
         if total > MAX_POINTS {
-            return Err(Error::OutOfRange {
+            return Err(InputError::OutOfRange {
                 name: "sweep size (product of the value counts)".into(),
                 value: total as f64,
                 min: 1.0,
@@ -330,7 +327,7 @@ mod tests {
         )
         .unwrap_err();
         assert!(
-            matches!(e, Error::BadSpec { .. }) && e.to_string().contains("exclude"),
+            matches!(e, InputError::BadValue { .. }) && e.to_string().contains("exclude"),
             "{e}"
         );
         let e = Sweep::build(

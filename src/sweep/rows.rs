@@ -3,7 +3,8 @@
 use std::path::Path;
 
 use super::product::{Axis, Inputs, Sweep};
-use crate::error::{Error, Result};
+use crate::error::Result;
+use crate::model::InputError;
 use crate::model::attributes::STYLES;
 
 /// One cell of an output row.
@@ -53,10 +54,10 @@ pub(crate) const OUTPUT_COLUMNS: [&str; 14] = [
 ];
 
 /// The row of one walk: its inputs and its outcome (a summary, or the reason it failed).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Debug)]
 pub(crate) struct Row {
     pub inputs: Inputs,
-    pub outcome: std::result::Result<Summary, String>,
+    pub outcome: Result<Summary>,
 }
 
 impl Sweep {
@@ -147,7 +148,7 @@ impl Row {
             }
             Err(e) => {
                 c.push(Cell::Bool(false));
-                c.push(Cell::Text(e.clone()));
+                c.push(Cell::Text(e.to_string().replace(['\n', '\r'], " ")));
                 c.extend(std::iter::repeat_n(Cell::Empty, OUTPUT_COLUMNS.len() - 2));
             }
         }
@@ -188,18 +189,18 @@ pub enum Format {
 
 impl Format {
     /// `.csv` or `.jsonl` (case-insensitive); anything else is an error.
-    pub fn from_path(path: &Path) -> Result<Format> {
+    pub fn from_path(path: &Path) -> Result<Format, InputError> {
         let ext = path
             .extension()
             .map(|e| e.to_string_lossy().to_ascii_lowercase());
         match ext.as_deref() {
             Some("csv") => Ok(Format::Csv),
             Some("jsonl") => Ok(Format::Jsonl),
-            _ => Err(Error::Malformed {
-                what: "output path",
-                path: path.to_path_buf(),
-                reason: "a sweep is written as .csv or .jsonl".into(),
-            }),
+            _ => Err(InputError::malformed(
+                "output path",
+                path,
+                "a sweep is written as .csv or .jsonl",
+            )),
         }
     }
 

@@ -1,6 +1,5 @@
 //! Shards: interleaved slices of a sweep's points, for running one sweep as several jobs.
-use super::spec::bad;
-use crate::error::Result;
+use crate::model::InputError;
 
 /// The K-th of N disjoint slices of a sweep (1 ≤ K ≤ N): the points with `point mod N = K − 1`.
 /// Interleaved rather than contiguous so that every shard gets a like mix of fast and slow walks.
@@ -15,27 +14,40 @@ pub struct Shard {
 /// Largest shard count.
 pub(crate) const MAX_SHARDS: usize = 1_000_000;
 
+/// A shard `text` that is not K/N with whole numbers 1 ≤ K ≤ N ≤ [`MAX_SHARDS`].
+#[derive(Debug, thiserror::Error)]
+pub enum ShardError {
+    #[error("`{text}` must be K/N with whole numbers 1 ≤ K ≤ N ≤ {MAX_SHARDS}")]
+    Shape { text: String },
+    #[error(
+        "`{text}`: `{part}` is not a whole number; K/N with whole numbers 1 ≤ K ≤ N ≤ {MAX_SHARDS}"
+    )]
+    Part { text: String, part: String },
+    #[error("`{text}` is out of range: K/N with whole numbers 1 ≤ K ≤ N ≤ {MAX_SHARDS}")]
+    Range { text: String },
+}
+
 impl Shard {
     /// The whole sweep, 1/1.
     pub const ALL: Shard = Shard { index: 1, count: 1 };
 
     /// Parse `K/N` with 1 ≤ K ≤ N ≤ 1 000 000.
-    pub fn parse(text: &str) -> Result<Shard> {
-        let range = format!("K/N with whole numbers 1 ≤ K ≤ N ≤ {MAX_SHARDS}");
-        let (k, n) = text
-            .split_once('/')
-            .ok_or_else(|| bad("shard", format!("`{text}` must be {range}")))?;
+    pub fn parse(text: &str) -> Result<Shard, InputError> {
+        let bad = |e: ShardError| InputError::bad_value("shard", e);
+        let (k, n) = text.split_once('/').ok_or_else(|| {
+            let text = text.into();
+            bad(ShardError::Shape { text })
+        })?;
         let whole = |t: &str| {
             t.trim().parse::<usize>().map_err(|_| {
-                bad(
-                    "shard",
-                    format!("`{text}`: `{}` is not a whole number; {range}", t.trim()),
-                )
+                let (text, part) = (text.into(), t.trim().into());
+                bad(ShardError::Part { text, part })
             })
         };
         let (index, count) = (whole(k)?, whole(n)?);
         if index < 1 || count < 1 || index > count || count > MAX_SHARDS {
-            return Err(bad("shard", format!("`{text}` is out of range: {range}")));
+            let text = text.into();
+            return Err(bad(ShardError::Range { text }));
         }
         Ok(Shard { index, count })
     }
@@ -60,7 +72,6 @@ impl Shard {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::error::Error;
 
     #[test]
     fn shard_specs_are_validated() {
@@ -83,13 +94,12 @@ mod tests {
             "2/2000000",
         ] {
             let e = Shard::parse(bad).unwrap_err();
-            assert!(matches!(e, Error::BadSpec { .. }), "{bad}: {e}");
+            assert!(matches!(e, InputError::BadValue { .. }), "{bad}: {e}");
             let text = e.to_string();
             assert!(
-                text.starts_with("--shard:") && text.contains("1 ≤ K ≤ N"),
+                text.starts_with("shard:") && text.contains("1 ≤ K ≤ N"),
                 "{bad}: {text}"
             );
-            assert_eq!(e.exit_code(), 2);
         }
     }
 

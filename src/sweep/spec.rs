@@ -1,19 +1,54 @@
 //! Value specifications of the sweep flags and files: a number `X`, an inclusive range
 //! `START:STOP:STEP` or a list `A,B,C`; `NAME=SPEC` of `--attr`; style names.
-use crate::error::{Error, Result};
-use crate::model::attributes::{AttributeTable, STYLES};
+use crate::model::InputError;
+use crate::model::attributes::{AttributeTable, STYLES, unknown_style};
 
 /// Largest number of values one flag may expand to.
 pub(crate) const MAX_VALUES: usize = 1_000_000;
 /// Relative tolerance with which a range's STOP is included.
 const RANGE_TOLERANCE: f64 = 1e-9;
 
-/// The error of a bad value for `--flag`.
-pub(super) fn bad(flag: &str, reason: impl Into<String>) -> Error {
-    Error::BadSpec {
-        flag: flag.to_string(),
-        reason: reason.into(),
-    }
+/// Why the values given for a sweep's parameter cannot be used (an
+/// [`InputError::BadValue`] naming the parameter).
+#[derive(Debug, thiserror::Error)]
+pub enum SpecError {
+    #[error("empty value")]
+    Empty,
+    #[error("`{text}` is not a number")]
+    NotANumber { text: String },
+    #[error("`{text}` is not a finite number")]
+    NotFinite { text: String },
+    #[error("range `{spec}` must be START:STOP:STEP (three numbers)")]
+    RangeShape { spec: String },
+    #[error("range `{spec}`: STEP must not be 0")]
+    ZeroStep { spec: String },
+    /// STOP lies `side` ("below" or "above") START, against STEP's sign.
+    #[error("range `{spec}`: STOP is {side} START for this STEP's sign")]
+    Backwards { spec: String, side: &'static str },
+    #[error("range `{spec}` has more than {MAX_VALUES} values")]
+    LongRange { spec: String },
+    #[error("empty item in list `{spec}`")]
+    EmptyItem { spec: String },
+    #[error("more than {MAX_VALUES} values")]
+    LongList,
+    #[error("`{arg}` must be NAME=SPEC")]
+    AttributeShape { arg: String },
+    /// `--attr` naming no locomotion attribute; `known` lists them.
+    #[error("unknown attribute `{name}`; known attributes: {known}")]
+    UnknownAttribute { name: String, known: String },
+    #[error("given twice")]
+    GivenTwice,
+    #[error("no values")]
+    NoValues,
+    #[error("mass and mass_per_height2 exclude each other (M = K · H²): give one")]
+    MassTwice,
+    #[error("{value} is not a whole number of steps")]
+    NotWholeSteps { value: f64 },
+}
+
+/// The error of a bad value for the parameter `parameter`.
+pub(super) fn bad(parameter: &str, reason: SpecError) -> InputError {
+    InputError::bad_value(parameter, reason)
 }
 
 /// Round to 12 significant digits, so that `0.6 + 3 · 0.1` is written `0.9`.
@@ -24,53 +59,53 @@ pub(super) fn tidy(x: f64) -> f64 {
     format!("{x:.11e}").parse().unwrap_or(x)
 }
 
-fn number(flag: &str, text: &str) -> Result<f64> {
+fn number(text: &str) -> Result<f64, SpecError> {
     let t = text.trim();
     let v: f64 = t
         .parse()
-        .map_err(|_| bad(flag, format!("`{t}` is not a number")))?;
+        .map_err(|_| SpecError::NotANumber { text: t.into() })?;
     if !v.is_finite() {
-        return Err(bad(flag, format!("`{t}` is not a finite number")));
+        return Err(SpecError::NotFinite { text: t.into() });
     }
     Ok(v)
 }
 
-/// Parse a value specification for `--flag`: a single number `X`, an inclusive range
-/// `START:STOP:STEP` (STOP included within 1e-9 relative; STEP may be negative when
-/// STOP < START) or a list `A,B,C`. Errors name the flag.
-pub fn parse_spec(flag: &str, spec: &str) -> Result<Vec<f64>> {
+/// Parse a value specification for the parameter `parameter` (e.g. `velocity`): a single
+/// number `X`, an inclusive range `START:STOP:STEP` (STOP included within 1e-9 relative; STEP
+/// may be negative when STOP < START) or a list `A,B,C`. Errors name the parameter.
+pub fn parse_spec(parameter: &str, spec: &str) -> Result<Vec<f64>, InputError> {
+    values(spec).map_err(|e| bad(parameter, e))
+}
+
+/// [`parse_spec`]'s values, or why there are none.
+pub fn values(spec: &str) -> Result<Vec<f64>, SpecError> {
     let spec = spec.trim();
     if spec.is_empty() {
-        return Err(bad(flag, "empty value"));
+        return Err(SpecError::Empty);
     }
     if spec.contains(':') {
+        let range = || spec.to_string();
         let parts: Vec<&str> = spec.split(':').collect();
         if parts.len() != 3 {
-            return Err(bad(
-                flag,
-                format!("range `{spec}` must be START:STOP:STEP (three numbers)"),
-            ));
+            return Err(SpecError::RangeShape { spec: range() });
         }
-        let start = number(flag, parts[0])?;
-        let stop = number(flag, parts[1])?;
-        let step = number(flag, parts[2])?;
+        let start = number(parts[0])?;
+        let stop = number(parts[1])?;
+        let step = number(parts[2])?;
         if step == 0.0 {
-            return Err(bad(flag, format!("range `{spec}`: STEP must not be 0")));
+            return Err(SpecError::ZeroStep { spec: range() });
         }
         let span = (stop - start) / step;
         if span < 0.0 {
-            let dir = if step > 0.0 { "below" } else { "above" };
-            return Err(bad(
-                flag,
-                format!("range `{spec}`: STOP is {dir} START for this STEP's sign"),
-            ));
+            let side = if step > 0.0 { "below" } else { "above" };
+            return Err(SpecError::Backwards {
+                spec: range(),
+                side,
+            });
         }
         let n = (span + RANGE_TOLERANCE * span.max(1.0)).floor();
         if !n.is_finite() || n + 1.0 > MAX_VALUES as f64 {
-            return Err(bad(
-                flag,
-                format!("range `{spec}` has more than {MAX_VALUES} values"),
-            ));
+            return Err(SpecError::LongRange { spec: range() });
         }
         let n = n as usize;
         return Ok((0..=n)
@@ -87,40 +122,36 @@ pub fn parse_spec(flag: &str, spec: &str) -> Result<Vec<f64>> {
         .split(',')
         .map(|t| {
             if t.trim().is_empty() {
-                Err(bad(flag, format!("empty item in list `{spec}`")))
+                Err(SpecError::EmptyItem { spec: spec.into() })
             } else {
-                number(flag, t)
+                number(t)
             }
         })
-        .collect::<Result<Vec<_>>>()?;
+        .collect::<Result<Vec<_>, _>>()?;
     if values.len() > MAX_VALUES {
-        return Err(bad(flag, format!("more than {MAX_VALUES} values")));
+        return Err(SpecError::LongList);
     }
     Ok(values)
 }
 
 /// Parse `NAME=SPEC` of `--attr`; the name must be a locomotion attribute.
-pub fn parse_attr(arg: &str, table: &AttributeTable) -> Result<(String, Vec<f64>)> {
-    let (name, spec) = arg
-        .split_once('=')
-        .ok_or_else(|| bad("attr", format!("`{arg}` must be NAME=SPEC")))?;
+pub fn parse_attr(arg: &str, table: &AttributeTable) -> Result<(String, Vec<f64>), InputError> {
+    let (name, spec) = arg.split_once('=').ok_or_else(|| {
+        let arg = arg.into();
+        bad("attr", SpecError::AttributeShape { arg })
+    })?;
     let name = name.trim();
     if !table.0.contains_key(name) {
         let known: Vec<&str> = table.0.keys().map(String::as_str).collect();
-        return Err(bad(
-            "attr",
-            format!(
-                "unknown attribute `{name}`; known attributes: {}",
-                known.join(", ")
-            ),
-        ));
+        let (name, known) = (name.into(), known.join(", "));
+        return Err(bad("attr", SpecError::UnknownAttribute { name, known }));
     }
     let values = parse_spec(&format!("attr {name}"), spec)?;
     Ok((name.to_string(), values))
 }
 
 /// Parse a list of style names `A,B,C` into their indices in `attributes::STYLES`.
-pub fn parse_styles(spec: &str) -> Result<Vec<f64>> {
+pub fn parse_styles(spec: &str) -> Result<Vec<f64>, InputError> {
     spec.split(',')
         .map(|name| {
             let name = name.trim();
@@ -128,19 +159,7 @@ pub fn parse_styles(spec: &str) -> Result<Vec<f64>> {
                 .iter()
                 .position(|(n, _)| *n == name)
                 .map(|i| i as f64)
-                .ok_or_else(|| {
-                    bad(
-                        "style",
-                        format!(
-                            "unknown style `{name}`; the styles are {}",
-                            STYLES
-                                .iter()
-                                .map(|(n, _)| *n)
-                                .collect::<Vec<_>>()
-                                .join(", ")
-                        ),
-                    )
-                })
+                .ok_or_else(|| InputError::bad_value("style", unknown_style(name)))
         })
         .collect()
 }
@@ -190,17 +209,16 @@ mod tests {
             ("velocity", "0:1e300:1e-300"),
         ] {
             let e = parse_spec(flag, spec).unwrap_err();
-            assert!(matches!(e, Error::BadSpec { .. }), "{spec}: {e}");
-            assert!(e.to_string().starts_with("--velocity:"), "{spec}: {e}");
-            assert_eq!(e.exit_code(), 2);
+            assert!(matches!(e, InputError::BadValue { .. }), "{spec}: {e}");
+            assert!(e.to_string().starts_with("velocity:"), "{spec}: {e}");
         }
         let table = AttributeTable::builtin();
         let e = parse_attr("nonsense=1", &table).unwrap_err().to_string();
-        assert!(e.contains("--attr") && e.contains("nonsense"), "{e}");
+        assert!(e.starts_with("attr:") && e.contains("nonsense"), "{e}");
         let e = parse_attr("bounciness", &table).unwrap_err().to_string();
-        assert!(e.contains("--attr"), "{e}");
+        assert!(e.starts_with("attr:"), "{e}");
         let e = parse_attr("bounciness=x", &table).unwrap_err().to_string();
-        assert!(e.contains("--attr bounciness"), "{e}");
+        assert!(e.starts_with("attr bounciness:"), "{e}");
         let (n, v) = parse_attr("bounciness=0.2,0.5", &table).unwrap();
         assert_eq!((n.as_str(), v), ("bounciness", vec![0.2, 0.5]));
     }

@@ -117,7 +117,7 @@ pub(crate) struct GaitArgs {
 impl GaitArgs {
     /// The body of the flags.
     pub(crate) fn body(&self) -> Result<Body> {
-        Body::standard(self.height, self.mass)
+        Ok(Body::standard(self.height, self.mass)?)
     }
 
     /// The defaults, then the style preset's values, then the attribute file's.
@@ -135,7 +135,7 @@ impl GaitArgs {
                 let rows = input::read_schedule(path)?;
                 let n = self.steps.unwrap_or(rows.len());
                 check_count("steps", n, 1, MAX_STEPS, "steps")?;
-                input::schedule_gaits(path, &rows, n, body, attrs)
+                Ok(input::schedule_gaits(path, &rows, n, body, attrs)?)
             }
             None => {
                 let mut request = GaitRequest {

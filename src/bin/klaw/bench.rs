@@ -5,7 +5,8 @@ use std::time::Instant;
 
 use clap::Args;
 use klaw::engine::walker::simulate;
-use klaw::{AttributeTable, Attributes, Body, Error, Gait, GaitRequest, Result, export};
+use klaw::model::InputError;
+use klaw::{AttributeTable, Attributes, Body, Gait, GaitRequest, Result, export};
 
 use crate::{
     DEFAULT_FPS, DEFAULT_HEIGHT, DEFAULT_MASS, DEFAULT_STEPS, DEFAULT_VELOCITY, MAX_FPS, MAX_STEPS,
@@ -60,7 +61,7 @@ pub(crate) fn run(args: &BenchArgs) -> Result<()> {
     }
     .complete(&body, &attrs)?;
     let gaits = vec![gait; steps];
-    let fps = Error::check_range("fps", args.fps, MIN_FPS, MAX_FPS, "frames/s")?;
+    let fps = InputError::check_range("fps", args.fps, MIN_FPS, MAX_FPS, "frames/s")?;
     let csv_path = std::env::temp_dir().join(format!("klaw-bench-{}.csv", std::process::id()));
     let mut t = Timings::default();
     for _ in 0..repeat {

@@ -1,9 +1,11 @@
 //! The `klaw` command line: parse the flags, call the library, write the files, print a summary;
-//! one module per subcommand with its flags and its `run`. No physics here. Errors print `error: <message>` and exit with `Error::exit_code()` (2 for bad
-//! input, 1 for a simulation or output failure); clap's usage errors exit 2 as well.
+//! one module per subcommand with its flags and its `run`. No physics here. Errors print
+//! `error: <message>` and exit with the status of `failure::exit_code` (2 for bad input, 1 for a
+//! simulation or output failure); clap's usage errors exit 2 as well.
 mod animate;
 mod args;
 mod bench;
+mod failure;
 mod merge;
 mod plot;
 mod plot_sweep;
@@ -15,6 +17,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use klaw::export::file::parent_dir;
+use klaw::model::InputError;
 use klaw::{Error, Result};
 
 const DEFAULT_HEIGHT: f64 = 1.8;
@@ -178,15 +181,15 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(1))
+            eprintln!("error: {}", failure::message(&e));
+            ExitCode::from(failure::exit_code(&e))
         }
     }
 }
 
-/// `value` if it lies in [min, max], else an `Error::OutOfRange` naming it.
+/// `value` if it lies in [min, max], else an `InputError::OutOfRange` naming it.
 fn check_count(name: &str, value: usize, min: usize, max: usize, unit: &str) -> Result<usize> {
-    Error::check_range(name, value as f64, min as f64, max as f64, unit)?;
+    InputError::check_range(name, value as f64, min as f64, max as f64, unit)?;
     Ok(value)
 }
 

@@ -154,7 +154,7 @@ fn build(args: &SweepArgs) -> Result<Sweep> {
         let (name, values) = sw::parse_attr(arg, &table)?;
         flags.push((Axis::Attribute(name), values));
     }
-    Sweep::build(file, flags)
+    Ok(Sweep::build(file, flags)?)
 }
 
 /// Run the sweep into --out, with a progress bar when stderr is a terminal and a line every 5 %

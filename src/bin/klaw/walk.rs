@@ -5,8 +5,9 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 use klaw::engine::report::Report;
+use klaw::model::InputError;
 use klaw::simulation::stream::{Gather, WalkStream};
-use klaw::{Body, Error, Result, export, plot};
+use klaw::{Body, Result, export, plot};
 
 use crate::args::GaitArgs;
 use crate::{DEFAULT_FPS, MAX_FPS, MIN_FPS, check_output_dir, font_note};
@@ -100,7 +101,7 @@ pub(crate) struct WalkArgs {
 }
 
 pub(crate) fn run(args: &WalkArgs) -> Result<()> {
-    let fps = Error::check_range("fps", args.fps, MIN_FPS, MAX_FPS, "frames/s")?;
+    let fps = InputError::check_range("fps", args.fps, MIN_FPS, MAX_FPS, "frames/s")?;
     let body = args.gait.body()?;
     let attrs = args.gait.attributes()?;
     let gaits = args.gait.gaits(&body, &attrs)?;
@@ -116,7 +117,7 @@ pub(crate) fn run(args: &WalkArgs) -> Result<()> {
         // the state frames are kept for the figure: refuse a count that would not fit in memory
         // (the walk lasts Σ 60 / sf)
         let duration: f64 = gaits.iter().map(|g| 60.0 / g.step_frequency).sum();
-        Error::check_range(
+        InputError::check_range(
             "frame count with --plot or --state-out (duration · fps + 1)",
             (duration * fps).round() + 1.0,
             1.0,
@@ -137,13 +138,11 @@ pub(crate) fn run(args: &WalkArgs) -> Result<()> {
 /// unless --no-plot.
 fn check_outputs(args: &WalkArgs, steps: usize) -> Result<Option<&Path>> {
     if args.cycle_out.is_some() && steps < 5 {
-        return Err(Error::BadSpec {
-            flag: "cycle-out".into(),
-            reason: format!(
-                "the gait cycle is averaged over the right heel strike to right heel strike \
-                 cycles after the first: at least 5 steps are needed, not {steps}"
-            ),
-        });
+        let reason = format!(
+            "the gait cycle is averaged over the right heel strike to right heel strike cycles \
+             after the first: at least 5 steps are needed, not {steps}"
+        );
+        return Err(InputError::bad_value("cycle-out", reason).into());
     }
     let plot = (!args.no_plot).then_some(args.plot.as_path());
     let outputs = [
@@ -161,11 +160,8 @@ fn check_outputs(args: &WalkArgs, steps: usize) -> Result<Option<&Path>> {
     for (i, (path, flag)) in outputs.iter().enumerate() {
         check_output_dir(path)?;
         if let Some((_, other)) = outputs[..i].iter().find(|(p, _)| p == path) {
-            return Err(Error::Malformed {
-                what: "output path",
-                path: path.to_path_buf(),
-                reason: format!("{other} and {flag} name the same file"),
-            });
+            let reason = format!("{other} and {flag} name the same file");
+            return Err(InputError::malformed("output path", path, reason).into());
         }
     }
     Ok(plot)

@@ -93,8 +93,6 @@ pub(crate) struct BisectionSecant {
     fail_above: Option<f64>,
     /// Consecutive failed trials.
     failures: usize,
-    /// Message of the last `Err` returned by the residual.
-    last_error: Option<String>,
 }
 
 impl BisectionSecant {
@@ -121,7 +119,6 @@ impl BisectionSecant {
             fail_below: None,
             fail_above: None,
             failures: 0,
-            last_error: None,
         }
     }
 
@@ -157,11 +154,6 @@ impl BisectionSecant {
         }
     }
 
-    /// The message of the last `Err` returned by the residual, if any.
-    pub(crate) fn last_error(&self) -> Option<&str> {
-        self.last_error.as_deref()
-    }
-
     fn evaluate<O>(&mut self, problem: &mut Problem<O>, x: f64) -> Option<f64>
     where
         O: CostFunction<Param = f64, Output = f64>,
@@ -169,11 +161,8 @@ impl BisectionSecant {
         self.evaluations += 1;
         match problem.cost(&x) {
             Ok(f) if f.is_finite() => Some(f),
-            Ok(_) => None,
-            Err(e) => {
-                self.last_error = Some(e.to_string());
-                None
-            }
+            // a non-finite residual or a failed trial
+            _ => None,
         }
     }
 

@@ -65,8 +65,6 @@ pub(crate) struct Broyden2 {
     evaluations: usize,
     /// Solver-side termination (stall, failure).
     exit: Option<&'static str>,
-    /// Message of the last `Err` returned by the residual.
-    last_error: Option<String>,
 }
 
 type State2 = IterState<Vector2<f64>, (), Matrix2<f64>, (), Vector2<f64>, f64>;
@@ -95,7 +93,6 @@ impl Broyden2 {
             best: None,
             evaluations: 0,
             exit: None,
-            last_error: None,
         }
     }
 
@@ -137,11 +134,6 @@ impl Broyden2 {
         self.jacobian
     }
 
-    /// The message of the last `Err` returned by the residual, if any.
-    pub(crate) fn last_error(&self) -> Option<&str> {
-        self.last_error.as_deref()
-    }
-
     fn evaluate<O>(&mut self, problem: &mut Problem<O>, x: &Vector2<f64>) -> Option<Vector2<f64>>
     where
         O: Operator<Param = Vector2<f64>, Output = Vector2<f64>>,
@@ -149,11 +141,8 @@ impl Broyden2 {
         self.evaluations += 1;
         let r = match problem.apply(x) {
             Ok(r) if r.iter().all(|v| v.is_finite()) => r,
-            Ok(_) => return None,
-            Err(e) => {
-                self.last_error = Some(e.to_string());
-                return None;
-            }
+            // a non-finite residual or a failed trial
+            _ => return None,
         };
         if self.best.is_none_or(|(_, b)| r.amax() < b.amax()) {
             self.best = Some((*x, r));
@@ -380,6 +369,7 @@ where
 #[cfg(test)]
 mod tests {
     use crate::control::shooting::{Memory2, Options, Start2, solve2};
+    use crate::numerics::ode::IntegrationError;
     use nalgebra::{Matrix2, Vector2};
     use proptest::prelude::*;
     use std::cell::Cell;
@@ -427,7 +417,7 @@ mod tests {
         }
     }
 
-    fn mild(c: f64) -> impl Fn(Vector2<f64>) -> Result<Vector2<f64>, String> {
+    fn mild(c: f64) -> impl Fn(Vector2<f64>) -> Result<Vector2<f64>, IntegrationError> {
         move |x: Vector2<f64>| {
             Ok(Vector2::new(
                 x[0] + 0.3 * x[1] + 0.1 * x[0] * x[0] - c,
@@ -570,7 +560,7 @@ mod tests {
         );
         assert!(
             solve2(
-                |_| Err("boom".into()),
+                |_| Err(IntegrationError::NonFinite { t: 0.0 }),
                 cold2([0.0, 0.0], 1e-6),
                 &Options::default()
             )

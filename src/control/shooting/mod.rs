@@ -24,9 +24,13 @@
 //! - `warm_start`: what a solve remembers ([`Memory1`], [`Memory2`]) and how the next one starts
 //!   from it ([`Start1`], [`Start2`]), extrapolated along the step sequence.
 
+use std::cell::Cell;
+
 use argmin::core::{CostFunction, Error as ArgminError, Operator, Problem, Solver, State};
 use nalgebra::{Matrix2, Vector2};
 use thiserror::Error;
+
+use crate::numerics::ode::IntegrationError;
 
 mod bisection_secant;
 mod broyden;
@@ -40,7 +44,7 @@ use warm_start::extrapolate;
 
 /// Invalid solver parameters, or a start point where nothing can be done.
 #[derive(Debug, Error, Clone, PartialEq)]
-pub(crate) enum ShootingError {
+pub enum ShootingError {
     /// The tolerance must be a non-negative number.
     #[error("shooting: tolerance must be non-negative, got {0}")]
     BadTolerance(f64),
@@ -50,6 +54,18 @@ pub(crate) enum ShootingError {
     /// Start point, initial step or finite-difference steps are not finite (or a step is zero).
     #[error("shooting: bad start: {0}")]
     BadStart(&'static str),
+}
+
+/// Why [`solve1`] or [`solve2`] returned no point.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum SolveError {
+    /// Invalid options or start point.
+    #[error(transparent)]
+    Shooting(#[from] ShootingError),
+    /// The trial at the start point failed (and no later one succeeded): there is nothing to step
+    /// back to.
+    #[error("residual failed at the start point: {0}")]
+    StartFailed(#[source] IntegrationError),
 }
 
 /// Options of [`solve1`] and [`solve2`].
@@ -81,41 +97,55 @@ pub struct SolveReport {
     pub converged: bool,
 }
 
-/// A closure residual `f64 -> f64` as an argmin cost function.
-struct Residual1<R>(R);
+/// A closure residual as an argmin problem, which keeps the error of the last failed trial (for
+/// [`SolveError::StartFailed`]: argmin's errors are type-erased).
+struct Residual<'a, R> {
+    residual: R,
+    failed: &'a Cell<Option<IntegrationError>>,
+}
 
-impl<R: Fn(f64) -> Result<f64, String>> CostFunction for Residual1<R> {
-    type Param = f64;
-    type Output = f64;
-    fn cost(&self, x: &f64) -> Result<f64, ArgminError> {
-        (self.0)(*x).map_err(ArgminError::msg)
+impl<R> Residual<'_, R> {
+    fn trial<T>(&self, r: Result<T, IntegrationError>) -> Result<T, ArgminError> {
+        r.map_err(|e| {
+            self.failed.set(Some(e));
+            ArgminError::new(e)
+        })
     }
 }
 
-/// A closure residual `R^2 -> R^2` as an argmin operator.
-struct Residual2<R>(R);
+/// `f64 -> f64` as an argmin cost function.
+impl<R: Fn(f64) -> Result<f64, IntegrationError>> CostFunction for Residual<'_, R> {
+    type Param = f64;
+    type Output = f64;
+    fn cost(&self, x: &f64) -> Result<f64, ArgminError> {
+        self.trial((self.residual)(*x))
+    }
+}
 
-impl<R: Fn(Vector2<f64>) -> Result<Vector2<f64>, String>> Operator for Residual2<R> {
+/// `R^2 -> R^2` as an argmin operator.
+impl<R: Fn(Vector2<f64>) -> Result<Vector2<f64>, IntegrationError>> Operator for Residual<'_, R> {
     type Param = Vector2<f64>;
     type Output = Vector2<f64>;
     fn apply(&self, x: &Vector2<f64>) -> Result<Vector2<f64>, ArgminError> {
-        (self.0)(*x).map_err(ArgminError::msg)
+        self.trial((self.residual)(*x))
     }
 }
 
 /// Drive a solver from `init` until it terminates (argmin's Executor without its per-iteration
 /// bookkeeping: observers, timers and key-value logs the shooting loop does not use).
-fn run_to_end<O, S, I>(solver: &mut S, problem: &mut Problem<O>) -> Result<(), String>
+fn run_to_end<O, S, I>(solver: &mut S, problem: &mut Problem<O>) -> Result<(), ShootingError>
 where
     S: Solver<O, I>,
     I: State,
 {
-    let (mut state, _) = solver.init(problem, I::new()).map_err(|e| e.to_string())?;
+    // the two solvers fail only in `init`, with a ShootingError (a failed trial is not an error)
+    let shooting = |e: ArgminError| {
+        e.downcast::<ShootingError>()
+            .expect("the shooting solvers fail only with a ShootingError")
+    };
+    let (mut state, _) = solver.init(problem, I::new()).map_err(shooting)?;
     while !state.terminated() {
-        state = solver
-            .next_iter(problem, state)
-            .map_err(|e| e.to_string())?
-            .0;
+        state = solver.next_iter(problem, state).map_err(shooting)?.0;
     }
     Ok(())
 }
@@ -126,11 +156,11 @@ where
 /// evaluations, at most `opts.max_iterations`) and the memory for a warm start. Not converging
 /// is not an error (`converged == false`). `Err` for invalid options or start, or when the
 /// residual returned `Err` at the start point (nothing to step back to).
-pub(crate) fn solve1<R: Fn(f64) -> Result<f64, String>>(
+pub(crate) fn solve1<R: Fn(f64) -> Result<f64, IntegrationError>>(
     residual: R,
     start: Start1,
     opts: &Options,
-) -> Result<(f64, SolveReport, Memory1), String> {
+) -> Result<(f64, SolveReport, Memory1), SolveError> {
     let mut solver = match start {
         Start1::Cold { x0, dx } => BisectionSecant::cold(x0, dx, opts.tol, opts.max_iterations),
         Start1::Warm(m) => BisectionSecant::warm(
@@ -144,11 +174,15 @@ pub(crate) fn solve1<R: Fn(f64) -> Result<f64, String>>(
         Start1::Cold { .. } => [f64::NAN; 2],
         Start1::Warm(m) => [m.x, m.earlier[0]],
     };
-    let mut problem = Problem::new(Residual1(residual));
+    let failed = Cell::new(None);
+    let mut problem = Problem::new(Residual {
+        residual,
+        failed: &failed,
+    });
     run_to_end(&mut solver, &mut problem)?;
     let Some((x, f)) = solver.best() else {
-        return match solver.last_error() {
-            Some(msg) => Err(format!("residual failed at the start point: {msg}")),
+        return match failed.get() {
+            Some(e) => Err(SolveError::StartFailed(e)),
             None => {
                 let x = match start {
                     Start1::Cold { x0, .. } => x0,
@@ -195,11 +229,11 @@ pub(crate) fn solve1<R: Fn(f64) -> Result<f64, String>>(
 /// evaluations, difference trials included, at most `opts.max_iterations`) and the memory for a
 /// warm start. Not converging is not an error (`converged == false`). `Err` for invalid
 /// options or start, or when the residual returned `Err` at the start point.
-pub(crate) fn solve2<R: Fn(Vector2<f64>) -> Result<Vector2<f64>, String>>(
+pub(crate) fn solve2<R: Fn(Vector2<f64>) -> Result<Vector2<f64>, IntegrationError>>(
     residual: R,
     start: Start2,
     opts: &Options,
-) -> Result<(Vector2<f64>, SolveReport, Memory2), String> {
+) -> Result<(Vector2<f64>, SolveReport, Memory2), SolveError> {
     let (mut solver, x0) = match start {
         Start2::Cold { x0, h } => (Broyden2::cold(x0, h, opts.tol, opts.max_iterations), x0),
         Start2::Warm(m) => {
@@ -219,12 +253,16 @@ pub(crate) fn solve2<R: Fn(Vector2<f64>) -> Result<Vector2<f64>, String>>(
         Start2::Cold { .. } => [Vector2::repeat(f64::NAN); 2],
         Start2::Warm(m) => [m.x, m.earlier[0]],
     };
-    let mut problem = Problem::new(Residual2(residual));
+    let failed = Cell::new(None);
+    let mut problem = Problem::new(Residual {
+        residual,
+        failed: &failed,
+    });
     run_to_end(&mut solver, &mut problem)?;
     let jacobian = solver.jacobian().unwrap_or(Matrix2::repeat(f64::NAN));
     let Some((x, r)) = solver.best() else {
-        return match solver.last_error() {
-            Some(msg) => Err(format!("residual failed at the start point: {msg}")),
+        return match failed.get() {
+            Some(e) => Err(SolveError::StartFailed(e)),
             None => {
                 let report = SolveReport {
                     iterations: solver.evaluations(),

@@ -3,7 +3,7 @@
 use nalgebra::{Vector2, Vector3};
 
 use crate::dynamics::impact;
-use crate::numerics::ode::{self, Segment};
+use crate::numerics::ode::{self, IntegrationError, Segment};
 use crate::numerics::trig::sin_cos;
 
 use super::{StanceForces, StanceSetup, StanceState, TORQUE_OFF};
@@ -39,7 +39,7 @@ impl StanceRun {
         y0: StanceState,
         tau1: f64,
         p: f64,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, IntegrationError> {
         Self::simulate_with(setup, y0, tau1, p, ode::TOLERANCE)
     }
 
@@ -50,7 +50,7 @@ impl StanceRun {
         tau1: f64,
         p: f64,
         tol: f64,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, IntegrationError> {
         let mut run = Self::simulate_on(setup, y0, tau1, p, tol, None)?;
         run.evaluations += run.densify(setup);
         Ok(run)
@@ -68,7 +68,7 @@ impl StanceRun {
         p: f64,
         tol: f64,
         mesh: Option<&StanceRun>,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, IntegrationError> {
         let breaks = [TORQUE_OFF * setup.t_step, 0.5 * setup.t_step, setup.t_step];
         let mut run = StanceRun {
             tau1,

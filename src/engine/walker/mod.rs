@@ -5,15 +5,16 @@
 mod stance;
 mod swing;
 
-use crate::control::shooting::{Memory1, Memory2, Options, SolveReport};
+use crate::control::shooting::{Memory1, Memory2, Options, SolveError, SolveReport};
 use crate::control::stance::{StanceRun, StanceState};
 use crate::control::swing::{Subphase, SwingSetup, SwingTrial};
 use crate::dynamics::{StanceModel, SwingModel};
+use crate::engine::error::{Invariant, SimulationError};
 use crate::engine::parameters::EngineParameters;
 use crate::engine::report::{SolveRecord, StepReport};
 use crate::engine::startup::Startup;
 use crate::engine::work::{self, Work};
-use crate::error::{Error, Result};
+use crate::kinematics::GeometryError;
 use crate::kinematics::foot::Foot;
 use crate::kinematics::pelvis::{Determinants, PelvisMotion, Side};
 use crate::kinematics::stance_leg::StanceLeg;
@@ -81,28 +82,36 @@ impl StepPlan {
         self.det.at(self.side, tau, self.c.timing.t_step)
     }
 
-    /// A failed integration of `phase` as the step's error.
-    pub fn integration(&self, phase: &'static str) -> impl Fn(String) -> Error {
+    /// A failed solve of `phase` as the step's error.
+    pub fn integration(&self, phase: &'static str) -> impl Fn(SolveError) -> SimulationError {
         let step = self.index;
-        move |reason| Error::Integration {
+        move |source| SimulationError::Integration {
             step,
             phase,
-            reason,
+            source,
         }
     }
 
-    /// A broken geometric invariant of `phase` as the step's error.
-    pub fn invariant(&self, phase: &'static str) -> impl Fn(String) -> Error {
+    /// A pose the stance leg cannot take in `phase` as the step's error.
+    pub fn invariant(&self, phase: &'static str) -> impl Fn(GeometryError) -> SimulationError {
         let step = self.index;
-        move |what| Error::Invariant { step, phase, what }
+        move |e| SimulationError::Invariant {
+            step,
+            phase,
+            source: Invariant::Geometry(e),
+        }
     }
 
     /// The record of `phase`'s solve, or the step's error if it did not converge.
-    pub fn converged(&self, phase: &'static str, report: SolveReport) -> Result<SolveRecord> {
+    pub fn converged(
+        &self,
+        phase: &'static str,
+        report: SolveReport,
+    ) -> Result<SolveRecord, SimulationError> {
         if report.converged {
             Ok(SolveRecord { phase, report })
         } else {
-            Err(Error::NotConverged {
+            Err(SimulationError::NotConverged {
                 step: self.index,
                 phase,
                 residual: report.residual,
@@ -113,12 +122,12 @@ impl StepPlan {
 }
 
 /// Simulate one step per entry of `gaits` (parameters may change from step to step).
-pub fn simulate(body: Body, attrs: Attributes, gaits: &[Gait]) -> Result<Walk> {
+pub fn simulate(body: Body, attrs: Attributes, gaits: &[Gait]) -> Result<Walk, SimulationError> {
     let mut walker = Walker::new(body, attrs.clone());
     let steps = gaits
         .iter()
         .map(|g| walker.step(*g))
-        .collect::<Result<Vec<_>>>()?;
+        .collect::<Result<Vec<_>, _>>()?;
     Ok(Walk { body, attrs, steps })
 }
 
@@ -187,7 +196,7 @@ impl Walker {
     /// half the list, then none \[ours\]: the list lowers the swing hip by (l0/2) sin L at mid
     /// step, ≈ 5 mm, which the fastest walks of short bodies (v = 2 m/s at H = 1.5 m) cannot
     /// spare. The list used is in the step's `determinants`.
-    pub fn step(&mut self, gait: Gait) -> Result<Step> {
+    pub fn step(&mut self, gait: Gait) -> Result<Step, SimulationError> {
         let saved = self.memories();
         let mut list = self.attrs.pelvic_list;
         self.evaluations = 0;
@@ -212,7 +221,7 @@ impl Walker {
     }
 
     /// One step with pelvic list `list`, phase after phase.
-    fn step_with_list(&mut self, gait: Gait, list: f64) -> Result<Step> {
+    fn step_with_list(&mut self, gait: Gait, list: f64) -> Result<Step, SimulationError> {
         let plan = self.plan(gait, list)?;
         let (prev_c, y0, impact) = self.heel_strike(&plan);
         let setup = self.stance_setup(&prev_c, &plan);
@@ -262,7 +271,7 @@ impl Walker {
     }
 
     /// The step's constraints (the high level, KLAW 1989 §3, spec §3), side, determinants and start.
-    fn plan(&self, gait: Gait, list: f64) -> Result<StepPlan> {
+    fn plan(&self, gait: Gait, list: f64) -> Result<StepPlan, SimulationError> {
         let c = StepConstraints::new(&self.body, &self.attrs, gait)?;
         let index = self.index;
         Ok(StepPlan {
@@ -312,7 +321,7 @@ impl Walker {
     }
 
     /// Measure the step, check its invariants, and carry its end to the next step.
-    fn finish(&mut self, mut step: Step, gait: Gait) -> Result<Step> {
+    fn finish(&mut self, mut step: Step, gait: Gait) -> Result<Step, SimulationError> {
         step.measure(&Foot::new(&self.body), &self.parameters);
         step.report.rhs_evaluations = self.evaluations;
         step.check_invariants(&self.parameters)?;

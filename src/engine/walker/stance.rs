@@ -9,10 +9,10 @@ use crate::control::shooting::{self, Memory2, Start2};
 use crate::control::stance::{StanceRun, StanceSetup, StanceState, TerminalStance};
 use crate::control::swing::SwingState;
 use crate::dynamics::impact::{self, ImpactReport};
+use crate::engine::error::SimulationError;
 use crate::engine::report::SolveRecord;
 use crate::engine::startup::{tables, with_fallback};
 use crate::engine::trials::Trials;
-use crate::error::Result;
 use crate::kinematics::pelvis::Side;
 use crate::kinematics::stance_leg::{KneeCurve, StanceLeg};
 use crate::plan::StepConstraints;
@@ -121,7 +121,7 @@ impl Walker {
         plan: &StepPlan,
         setup: &StanceSetup,
         y0: StanceState,
-    ) -> Result<(StanceRun, SolveRecord)> {
+    ) -> Result<(StanceRun, SolveRecord), SimulationError> {
         let (torque, l1) = (self.torque_unit(), self.body.l1);
         // the plain cold start (the fallback): a body-scaled step-0 solution of the default walk
         let (start, fallback) = plan.startup.start2(
@@ -180,7 +180,11 @@ impl Walker {
 
     /// Double support (spec §7): the previous step's stance leg completes its stance to toe-off
     /// at t_ds, the knee reaching κ_TO; θ̇3 at toe-off by a 4th-order central difference.
-    pub(super) fn double_support(&self, plan: &StepPlan, hips: &HipJoints) -> Result<ToeOff> {
+    pub(super) fn double_support(
+        &self,
+        plan: &StepPlan,
+        hips: &HipJoints,
+    ) -> Result<ToeOff, SimulationError> {
         let (t, t0) = (plan.c.timing, plan.t0);
         let kappa_to = self.attrs.toe_off_knee;
         let mut hind = self.prev_leg.unwrap_or_else(|| self.first_hind_leg(plan));
@@ -238,7 +242,7 @@ impl Walker {
         plan: &StepPlan,
         hips: &HipJoints,
         sole_angle: f64,
-    ) -> Result<StanceLeg> {
+    ) -> Result<StanceLeg, SimulationError> {
         let (t, t0) = (plan.c.timing, plan.t0);
         let mut leg = StanceLeg::new(
             &self.body,

@@ -5,16 +5,16 @@
 use nalgebra::Vector2;
 
 use super::{StepPlan, Walker};
-use crate::control::shooting::{self, Memory1, Memory2, SolveReport, Start1, Start2};
+use crate::control::shooting::{self, Memory1, Memory2, SolveError, SolveReport, Start1, Start2};
 use crate::control::stance::{HipPath, StanceRun, StanceSetup};
 use crate::control::swing::{Subphase, SwingSetup, SwingState, SwingTrial};
 use crate::dynamics::impact;
+use crate::engine::error::SimulationError;
 use crate::engine::pose::swing_hip_offset;
 use crate::engine::report::SolveRecord;
 use crate::engine::startup::{tables, with_fallback};
 use crate::engine::trials::Trials;
-use crate::error::Result;
-use crate::numerics::ode::Segment;
+use crate::numerics::ode::{IntegrationError, Segment};
 
 /// The swing-side hip's vertical velocity at heel strike: the stance hip's plus the rate of the
 /// determinants' `offset` (a backward difference over 1e-6 t_step).
@@ -56,7 +56,7 @@ impl Walker {
         sw: &SwingSetup,
         y_off: SwingState,
         mesh: Option<Segment<4>>,
-    ) -> Result<(SwingTrial, SolveRecord)> {
+    ) -> Result<(SwingTrial, SolveRecord), SimulationError> {
         let torque = self.torque_unit();
         let start = plan.startup.start2(
             self.swing1_memory,
@@ -87,7 +87,7 @@ impl Walker {
         sw: &SwingSetup,
         y1: SwingState,
         mesh: Option<Segment<4>>,
-    ) -> Result<(SwingTrial, SolveRecord)> {
+    ) -> Result<(SwingTrial, SolveRecord), SimulationError> {
         let torque = self.torque_unit();
         let start = plan.startup.start1(
             self.swing2_memory,
@@ -119,7 +119,7 @@ impl Walker {
         sw: &SwingSetup,
         y2: SwingState,
         mesh: Option<Segment<4>>,
-    ) -> Result<(SwingTrial, SolveRecord)> {
+    ) -> Result<(SwingTrial, SolveRecord), SimulationError> {
         let q2 = Vector2::new(y2[0], y2[1]);
         let qd2 = impact::knee_lock(&self.swing_model, &q2, &Vector2::new(y2[2], y2[3]));
         let y2 = SwingState::from([y2[0], plan.c.theta4, qd2[0], 0.0]);
@@ -153,7 +153,7 @@ impl Walker {
         sw: &SwingSetup,
         sub: Subphase,
         (t0, y0): (f64, SwingState),
-    ) -> std::result::Result<Vector2<f64>, String> {
+    ) -> Result<Vector2<f64>, IntegrationError> {
         let tol = sub.tolerance(self.parameters.ode_tolerance);
         trials.run(|mesh| SwingTrial::simulate_on(sw, sub, t0, y0, tol, mesh))
     }
@@ -168,7 +168,7 @@ impl Walker {
         from: (f64, SwingState),
         mesh: Option<Segment<4>>,
         tol: f64,
-    ) -> std::result::Result<(SwingTrial, SolveReport, Memory2), String> {
+    ) -> Result<(SwingTrial, SolveReport, Memory2), SolveError> {
         let trials = Trials::new(mesh);
         let residual = |x| self.swing_trial(&trials, sw, sub(x), from);
         let options = self.options(tol);
@@ -187,7 +187,7 @@ impl Walker {
         from: (f64, SwingState),
         mesh: Option<Segment<4>>,
         tol: f64,
-    ) -> std::result::Result<(SwingTrial, SolveReport, Memory1), String> {
+    ) -> Result<(SwingTrial, SolveReport, Memory1), SolveError> {
         let trials = Trials::new(mesh);
         let residual = |x| Ok(self.swing_trial(&trials, sw, sub(x), from)?[0]);
         let options = self.options(tol);
@@ -202,12 +202,12 @@ impl Walker {
         &mut self,
         sw: &SwingSetup,
         trials: Trials<SwingTrial>,
-        solved: std::result::Result<(M, SolveReport), String>,
-    ) -> std::result::Result<(SwingTrial, SolveReport, M), String> {
+        solved: Result<(M, SolveReport), SolveError>,
+    ) -> Result<(SwingTrial, SolveReport, M), SolveError> {
         let (best, evaluations) = trials.finish();
         self.evaluations += evaluations;
         let (memory, report) = solved?;
-        let mut trial = best.ok_or("no trial ran")?;
+        let mut trial = best.expect("a solve that returns has run a trial");
         self.evaluations += u64::from(trial.densify(sw));
         Ok((trial, report, memory))
     }

@@ -68,6 +68,24 @@ pub struct Segment<const N: usize> {
     pending: Vec<Stages<N>>,
 }
 
+/// Why an integration stopped before its end time (Hairer's DOP853 driver gives up the same
+/// ways: a non-finite start, too many steps, a step size below the time's resolution).
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum IntegrationError {
+    /// The initial state has a NaN or an infinity.
+    #[error("non-finite state at t = {t}")]
+    NonFiniteStart { t: f64 },
+    /// The integration took `limit` steps without reaching its end time.
+    #[error("more than {limit} steps at t = {t}")]
+    TooManySteps { limit: usize, t: f64 },
+    /// The step size fell below the resolution of the time t.
+    #[error("step size underflow at t = {t}")]
+    StepSizeUnderflow { t: f64 },
+    /// An attempted step's error estimate is not finite: the state blew up.
+    #[error("the state became non-finite at t = {t}")]
+    NonFinite { t: f64 },
+}
+
 /// How an integration ended.
 #[derive(Clone, Debug)]
 pub struct Outcome<const N: usize> {
@@ -116,7 +134,7 @@ pub fn integrate_with<P: Phase<N, K>, const N: usize, const K: usize>(
     y0: SVector<f64, N>,
     t1: f64,
     tol: f64,
-) -> Result<Outcome<N>, String> {
+) -> Result<Outcome<N>, IntegrationError> {
     integrate_on(phase, t0, y0, t1, tol, Mesh::Adaptive)
 }
 
@@ -153,7 +171,7 @@ pub fn integrate_on<P: Phase<N, K>, const N: usize, const K: usize>(
     t1: f64,
     tol: f64,
     mesh: Mesh<'_, N>,
-) -> Result<Outcome<N>, String> {
+) -> Result<Outcome<N>, IntegrationError> {
     integrate_by(METHOD, phase, t0, y0, t1, tol, mesh)
 }
 
@@ -167,7 +185,7 @@ pub(crate) fn integrate_trial<P: Phase<N, K>, const N: usize, const K: usize>(
     t1: f64,
     tol: f64,
     mesh: Mesh<'_, N>,
-) -> Result<Outcome<N>, String> {
+) -> Result<Outcome<N>, IntegrationError> {
     stepping::run(METHOD, true, phase, t0, y0, t1, tol, mesh)
 }
 
@@ -194,7 +212,7 @@ pub fn integrate_by<P: Phase<N, K>, const N: usize, const K: usize>(
     t1: f64,
     tol: f64,
     mesh: Mesh<'_, N>,
-) -> Result<Outcome<N>, String> {
+) -> Result<Outcome<N>, IntegrationError> {
     stepping::run(method, false, phase, t0, y0, t1, tol, mesh)
 }
 

@@ -8,7 +8,7 @@ use nalgebra::SVector;
 use super::dense::{DenseStep, Stages};
 use super::events;
 use super::tableau::{dop853, dopri5};
-use super::{FROZEN_MESH_LIMIT, Mesh, Method, Outcome, Phase, Segment};
+use super::{FROZEN_MESH_LIMIT, IntegrationError, Mesh, Method, Outcome, Phase, Segment};
 
 /// Accepted steps allowed in one integration.
 const MAX_STEPS: usize = 100_000;
@@ -289,9 +289,9 @@ pub(super) fn run<P: Phase<N, K>, const N: usize, const K: usize>(
     t1: f64,
     tol: f64,
     mesh: Mesh<'_, N>,
-) -> Result<Outcome<N>, String> {
+) -> Result<Outcome<N>, IntegrationError> {
     if !y0.iter().all(|v| v.is_finite()) {
-        return Err(format!("non-finite state at t = {t0}"));
+        return Err(IntegrationError::NonFiniteStart { t: t0 });
     }
     let (follow, h_first) = mesh.follow(t0, t1);
     let mut next = 0;
@@ -318,10 +318,13 @@ pub(super) fn run<P: Phase<N, K>, const N: usize, const K: usize>(
     let mut hit = None;
     loop {
         if steps.len() >= MAX_STEPS {
-            return Err(format!("more than {MAX_STEPS} steps at t = {t}"));
+            return Err(IntegrationError::TooManySteps {
+                limit: MAX_STEPS,
+                t,
+            });
         }
         if 0.1 * h.abs() <= f64::EPSILON * t.abs() {
-            return Err(format!("step size underflow at t = {t}"));
+            return Err(IntegrationError::StepSizeUnderflow { t });
         }
         // the last step takes up a remainder under 1 % of it (under 10 % on a mesh, whose
         // steps end where the mesh's phase ended: a start moved back would otherwise add a
@@ -341,7 +344,7 @@ pub(super) fn run<P: Phase<N, K>, const N: usize, const K: usize>(
         };
         let err = attempt.err;
         if !err.is_finite() {
-            return Err(format!("the state became non-finite at t = {t}"));
+            return Err(IntegrationError::NonFinite { t });
         }
         let following = next < follow.len();
         if following && err > FROZEN_MESH_LIMIT {

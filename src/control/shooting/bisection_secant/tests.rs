@@ -1,13 +1,14 @@
 //! Tests of [`BisectionSecant`](super::BisectionSecant), alone and through [`solve1`].
 use super::*;
 use crate::control::shooting::{Memory1, Options, Start1, solve1};
+use crate::numerics::ode::IntegrationError;
 use argmin::core::Executor;
 use argmin::solver::brent::BrentRoot;
 use std::cell::Cell;
 
 const CUBIC_ROOT: f64 = 2.094_551_481_542_326_5;
 
-fn cubic(c: f64) -> impl Fn(f64) -> Result<f64, String> {
+fn cubic(c: f64) -> impl Fn(f64) -> Result<f64, IntegrationError> {
     move |x: f64| Ok(x * x * x - 2.0 * x - c)
 }
 
@@ -149,7 +150,7 @@ fn nan_region_is_stepped_back_from() {
     // The same with a residual that returns Err (failed integration).
     let r = |x: f64| {
         if x > 3.0 {
-            Err("integration blew up".to_string())
+            Err(IntegrationError::NonFinite { t: x })
         } else {
             Ok(x.exp() - 10.0)
         }
@@ -187,7 +188,7 @@ fn always_nan_is_not_converged_and_err_at_start_is_err() {
     assert!(!rep.converged && rep.iterations == 1 && rep.residual.is_infinite());
     assert!(
         solve1(
-            |_| Err("boom".to_string()),
+            |_| Err(IntegrationError::NonFinite { t: 0.0 }),
             cold1(0.0, 1.0),
             &Options::default()
         )

@@ -1,0 +1,43 @@
+//! How a failed command is reported: the message after `error: ` and the exit status, 2 for bad
+//! input (a value, a file or a path), 1 when the simulation or writing the output fails.
+use klaw::Error;
+use klaw::analysis::cycle::CycleError;
+use klaw::engine::SimulationError;
+use klaw::figure::FigureError;
+use klaw::model::InputError;
+
+/// The message of `e`: a bad value names the flag it was given for (`--velocity: …`).
+pub(crate) fn message(e: &Error) -> String {
+    match e {
+        Error::Input(InputError::BadValue { parameter, reason }) => {
+            format!("--{parameter}: {reason}")
+        }
+        e => e.to_string(),
+    }
+}
+
+/// The exit status of `e`.
+pub(crate) fn exit_code(e: &Error) -> u8 {
+    const BAD_INPUT: u8 = 2;
+    const FAILED: u8 = 1;
+    let figure = |f: &FigureError| match f {
+        FigureError::Pose { .. } => FAILED,
+        FigureError::NotFinite { .. }
+        | FigureError::ZeroLength { .. }
+        | FigureError::Parallel { .. } => BAD_INPUT,
+    };
+    match e {
+        Error::Input(_) | Error::Export(_) => BAD_INPUT,
+        Error::Simulation(SimulationError::Plan(_)) => BAD_INPUT,
+        Error::Simulation(
+            SimulationError::NotConverged { .. }
+            | SimulationError::Integration { .. }
+            | SimulationError::Invariant { .. },
+        ) => FAILED,
+        Error::Figure(f) | Error::Cycle(CycleError::Frame(f)) => figure(f),
+        Error::Cycle(_) => BAD_INPUT,
+        Error::Io { action, .. } if *action == "writing" => FAILED,
+        Error::Io { .. } => BAD_INPUT,
+        Error::Draw { .. } => FAILED,
+    }
+}

@@ -1,0 +1,70 @@
+//! How a simulated step fails: its constraints, a shooting solve that does not converge or
+//! whose trials fail, or an invariant the converged step breaks (spec §4, §5, §10).
+use crate::control::shooting::SolveError;
+use crate::kinematics::GeometryError;
+use crate::model::InputError;
+
+/// A step that could not be simulated. `phase` names where: `stance`, `double_support`,
+/// `swing1`, `swing2`, `swing3`, `swing` (the swing's invariants) or `figure` (a pose of the
+/// converged walk).
+#[derive(Debug, thiserror::Error)]
+pub enum SimulationError {
+    /// The step's constraints cannot be planned for the gait (KLAW 1989 §3).
+    #[error(transparent)]
+    Plan(#[from] InputError),
+    /// A shooting solve ended without meeting its end conditions.
+    #[error(
+        "step {step}, {phase}: shooting did not converge: residual {residual:.3e} after {iterations} trial integrations"
+    )]
+    NotConverged {
+        step: usize,
+        phase: &'static str,
+        residual: f64,
+        iterations: usize,
+    },
+    /// A shooting solve returned no point: bad options, or its first trial integration failed.
+    #[error("step {step}, {phase}: integration failed: {source}")]
+    Integration {
+        step: usize,
+        phase: &'static str,
+        source: SolveError,
+    },
+    /// The step breaks an invariant.
+    #[error("step {step}, {phase}: {source}")]
+    Invariant {
+        step: usize,
+        phase: &'static str,
+        source: Invariant,
+    },
+}
+
+/// An invariant a simulated step breaks.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum Invariant {
+    /// The virtual stance leg cannot take its pose (the hind leg through double support, the
+    /// stance leg's heel-off).
+    #[error(transparent)]
+    Geometry(#[from] GeometryError),
+    /// The hip goes below its heel-strike height, by `depth` (m).
+    #[error("the hip drops {depth:.3e} m below its heel-strike height")]
+    HipDrops { depth: f64 },
+    /// The toe's mid-swing clearance (m) is not positive.
+    #[error("the toe touches the ground in mid swing (clearance {clearance:.3e} m)")]
+    ToeTouches { clearance: f64 },
+    /// A point of the swing foot goes `depth` (m) under the ground at `at` (fraction of the
+    /// swing).
+    #[error("the swing foot goes {depth:.3e} m under the ground at {:.0} % of the swing", 100.0 * at)]
+    FootUnderGround { depth: f64, at: f64 },
+}
+
+impl SimulationError {
+    /// A failure of the swing: its shooting, or its foot under the ground.
+    pub fn is_swing_failure(&self) -> bool {
+        match self {
+            SimulationError::NotConverged { phase, .. }
+            | SimulationError::Integration { phase, .. } => phase.starts_with("swing"),
+            SimulationError::Invariant { phase, .. } => *phase == "swing",
+            SimulationError::Plan(_) => false,
+        }
+    }
+}
