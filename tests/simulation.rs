@@ -62,6 +62,36 @@ fn default_walk_is_the_engines_walk_of_the_same_inputs() {
     assert_eq!(stream.events, walk.events());
 }
 
+/// At a frame rate whose last frame comes before the last steps start (0.05 frames/s: frames
+/// at 0 s and 20 s would need 20 s, so only t = 0 is sampled for a 5.5 s walk), the stream
+/// still walks every step: the same reports and events as the full-rate stream.
+#[test]
+fn a_low_frame_rate_still_walks_every_step() {
+    let gather = Gather {
+        events: true,
+        reports: true,
+        ..Gather::default()
+    };
+    let run = |fps: f64| {
+        let prepared = Simulation::default().prepare().unwrap();
+        let mut stream = prepared.stream(fps, gather).unwrap();
+        let frames = (&mut stream).collect::<klaw::Result<Vec<_>>>().unwrap();
+        stream.finish();
+        (
+            frames.len(),
+            stream.steps,
+            stream.reports.len(),
+            stream.events.len(),
+        )
+    };
+    let (frames, steps, reports, events) = run(0.05);
+    assert_eq!(frames, 1);
+    let (full_frames, full_steps, full_reports, full_events) = run(100.0);
+    assert!(full_frames > 500);
+    assert_eq!((steps, reports, events), (10, 10, full_events));
+    assert_eq!((full_steps, full_reports), (10, 10));
+}
+
 /// A schedule of requests of each kind, held for two more steps: every step's target is its
 /// completed request, achieved to 0.5 % in step length (tests/walk.rs's bound).
 #[test]

@@ -66,8 +66,9 @@ pub enum CycleError {
     #[error(
         "no complete steady-state gait cycle: {strikes} right heel strikes give {} cycles, the \
          first {skip} skipped as the start-up, and the frames cover {t_first} … {t_last} s; \
-         walk more steps",
-        strikes.saturating_sub(1)
+         walk more steps: a steady cycle of a leg needs {} of its heel strikes, i.e. at least {} \
+         steps for the right leg (which strikes first) and {} for both legs",
+        strikes.saturating_sub(1), skip + 2, 2 * skip + 3, 2 * skip + 4
     )]
     NoSteadyCycle {
         strikes: usize,

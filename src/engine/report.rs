@@ -129,7 +129,9 @@ pub struct StepReport {
     pub min_toe_clearance: f64,
     /// Heel vertical velocity at contact (m/s, ≤ 0).
     pub heel_contact_velocity: f64,
-    /// Largest knee flexion of the swing (rad).
+    /// Largest knee flexion of the swing (rad; in degrees in the JSON, as
+    /// `peak_swing_knee_flexion_deg`, like every joint angle the user sees).
+    #[serde(rename = "peak_swing_knee_flexion_deg", serialize_with = "degrees")]
     pub peak_swing_knee_flexion: f64,
     /// Right-hand-side evaluations of the step's dynamic models over all its shooting trials
     /// (count).
@@ -190,4 +192,9 @@ pub struct Report {
     pub mass: f64,
     /// One report per step, in order.
     pub steps: Vec<StepReport>,
+}
+
+/// Serialize an angle given in radians as degrees.
+fn degrees<S: serde::Serializer>(radians: &f64, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_f64(radians.to_degrees())
 }

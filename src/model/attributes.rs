@@ -231,6 +231,8 @@ attribute_struct! {
     velocity_min,
     /// v_max (m/s).
     velocity_max,
+    /// v_pref (m/s): the speed walked when no gait is given.
+    preferred_velocity,
     /// sl_min as a fraction of the leg length.
     step_length_min,
     /// sl_max as a fraction of the leg length.

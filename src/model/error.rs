@@ -12,13 +12,19 @@ pub type Reason = Box<dyn Error + Send + Sync>;
 #[derive(Debug, thiserror::Error)]
 pub enum InputError {
     /// A number outside its valid range.
-    #[error("{name} = {value} {unit} is out of range: valid range is [{min}, {max}] {unit}")]
+    #[error(
+        "{name} = {} {unit}{note} is out of range: valid range is [{}, {}] {unit}",
+        Shown(*value), Shown(*min), Shown(*max)
+    )]
     OutOfRange {
         name: String,
         value: f64,
         min: f64,
         max: f64,
         unit: String,
+        /// Where the value came from when the user did not give it, as ` (…)`: derived by the
+        /// normalizing formula, or a default; empty for a value given as it is.
+        note: String,
     },
     /// NaN or infinity where a number was expected.
     #[error("{name} is {value}: a finite number is required")]
@@ -28,8 +34,9 @@ pub enum InputError {
     NotWhole { name: &'static str, value: f64 },
     /// v, sl and sf all given but v ≠ sl·sf/60.
     #[error(
-        "inconsistent gait: velocity {velocity} m/s, step length {step_length} m and step frequency \
-         {step_frequency} steps/min imply {implied:.4} m/s (v = sl·sf/60); they must agree to within {tolerance_pct}%"
+        "inconsistent gait: velocity {} m/s, step length {} m and step frequency {} steps/min \
+         imply {implied:.4} m/s (v = sl·sf/60); they must agree to within {tolerance_pct}%",
+        Shown(*velocity), Shown(*step_length), Shown(*step_frequency)
     )]
     Inconsistent {
         velocity: f64,
@@ -40,13 +47,14 @@ pub enum InputError {
     },
     /// The gait leaves no double support (KLAW 1989 eq. 2): that is running, not walking.
     #[error(
-        "step frequency {step_frequency} steps/min leaves no double support (t_ds = {t_ds:.4} s): \
-         walking needs sf < 181.75 steps/min"
+        "step frequency {} steps/min leaves no double support (t_ds = {t_ds:.4} s): \
+         walking needs sf < 181.75 steps/min",
+        Shown(*step_frequency)
     )]
     NoDoubleSupport { step_frequency: f64, t_ds: f64 },
     /// A step too long for the leg: the swing heel cannot reach the ground at heel strike (the
     /// step constraints, spec §3).
-    #[error("step length {step_length} m: the swing heel cannot reach the ground")]
+    #[error("step length {} m: the swing heel cannot reach the ground", Shown(*step_length))]
     StepTooLong { step_length: f64 },
     /// Neither velocity, step length nor step frequency was given.
     #[error("no gait given: give at least one of velocity, step length, step frequency")]
@@ -102,9 +110,22 @@ impl InputError {
                 min,
                 max,
                 unit: unit.to_string(),
+                note: String::new(),
             });
         }
         Ok(value)
+    }
+
+    /// `self` with the origin of its value (`derived from …`, `the default …`) added to its
+    /// note, when it is an [`InputError::OutOfRange`]; any other error unchanged.
+    pub fn with_note(mut self, origin: &str) -> Self {
+        if let InputError::OutOfRange { note, .. } = &mut self {
+            *note = match note.strip_suffix(')') {
+                Some(inner) => format!("{inner}; {origin})"),
+                None => format!(" ({origin})"),
+            };
+        }
+        self
     }
 
     /// [`InputError::BadValue`] for `parameter`.
@@ -122,5 +143,71 @@ impl InputError {
             path: path.to_path_buf(),
             reason: reason.into(),
         }
+    }
+}
+
+/// A number as a message shows it: at most 9 significant digits, so that a derived value reads
+/// `3.9705132`, not `3.9705132000000005`, and in exponent form outside [1e-4, 1e9), so that
+/// `1e308` is not 309 digits.
+#[derive(Clone, Copy, Debug)]
+pub struct Shown(pub f64);
+
+impl std::fmt::Display for Shown {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        const DIGITS: i32 = 9;
+        let x = self.0;
+        let a = x.abs();
+        if !x.is_finite() || x == 0.0 {
+            return write!(f, "{}", if x == 0.0 { 0.0 } else { x });
+        }
+        if (1e-4..1e9).contains(&a) {
+            let decimals = (DIGITS - 1 - a.log10().floor() as i32).max(0) as usize;
+            let text = format!("{x:.decimals$}");
+            let text = if text.contains('.') {
+                text.trim_end_matches('0').trim_end_matches('.')
+            } else {
+                &text
+            };
+            f.write_str(text)
+        } else {
+            let text = format!("{x:.*e}", (DIGITS - 1) as usize);
+            let (mantissa, exponent) = text.split_once('e').expect("exponent form");
+            let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+            write!(f, "{mantissa}e{exponent}")
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shown_numbers_have_no_float_noise_and_no_runs_of_digits() {
+        let shown = |x: f64| Shown(x).to_string();
+        assert_eq!(shown(3.9705132000000005), "3.9705132");
+        assert_eq!(shown(1e308), "1e308");
+        assert_eq!(shown(-2.5e-7), "-2.5e-7");
+        assert_eq!(shown(1.4), "1.4");
+        assert_eq!(shown(-5.0), "-5");
+        assert_eq!(shown(0.1736), "0.1736");
+        assert_eq!(shown(1_000_000.0), "1000000");
+        assert_eq!(shown(123_456_789_012.0), "1.23456789e11");
+        assert_eq!(shown(-0.0), "0");
+        assert_eq!(shown(f64::NAN), "NaN");
+        // exact values keep every digit they have up to 9 significant
+        assert_eq!(shown(0.123456789), "0.123456789");
+        assert_eq!(shown(0.1234567891), "0.123456789");
+    }
+
+    #[test]
+    fn a_note_names_where_an_out_of_range_value_came_from() {
+        let e = InputError::check_range("velocity", 1.4, 0.5, 1.1, "m/s")
+            .unwrap_err()
+            .with_note("the default");
+        assert_eq!(
+            e.to_string(),
+            "velocity = 1.4 m/s (the default) is out of range: valid range is [0.5, 1.1] m/s"
+        );
     }
 }

@@ -4,7 +4,7 @@ pub mod attributes;
 pub mod body;
 pub mod error;
 
-pub use error::InputError;
+pub use error::{InputError, Shown};
 
 /// Standard gravity (m/s²).
 pub const GRAVITY: f64 = 9.81;

@@ -3,9 +3,9 @@
 //! the anatomical limits checked before anything is simulated.
 use serde::{Deserialize, Serialize};
 
-use crate::model::InputError;
 use crate::model::attributes::Attributes;
 use crate::model::body::Body;
+use crate::model::{InputError, Shown};
 
 /// Normalizing constant of eq. 1: metres of step per (step/min · m of body height).
 pub(crate) const NORMALIZING_CONSTANT: f64 = 0.004;
@@ -36,6 +36,22 @@ pub struct Gait {
 }
 
 impl GaitRequest {
+    /// The gait walked when none is given: the attributes' `preferred_velocity` (a style's own
+    /// speed, 1.4 m/s by default), sl and sf by the normalizing formula; out of range, the error
+    /// says the speed was the default.
+    pub fn preferred(body: &Body, attrs: &Attributes) -> Result<Gait, InputError> {
+        let request = GaitRequest {
+            velocity: Some(attrs.preferred_velocity),
+            ..GaitRequest::default()
+        };
+        request.complete(body, attrs).map_err(|e| {
+            e.with_note(
+                "the default speed: attribute preferred_velocity, which must lie in the \
+                 attributes' [velocity_min, velocity_max]; give a gait or set it",
+            )
+        })
+    }
+
     /// Complete the request by the normalizing formula and check it against the anatomical
     /// limits of `attrs` (KLAW 1989 §3.1): only v → sf = √(15000 v / (k H)), sl = 60 v / sf;
     /// only sf → sl = 0.004 k sf H; only sl → sf = sl / (0.004 k H) (k the `stride_factor`
@@ -113,12 +129,28 @@ impl GaitRequest {
             ),
         ];
         // what the user gave is named first, what was derived from it after
-        for given in [true, false] {
-            for (name, value, min, max, unit, asked) in checks {
-                if asked.is_some() == given {
-                    InputError::check_range(name, value, min, max, unit)?;
-                }
-            }
+        for (name, value, min, max, unit, _) in checks.iter().filter(|c| c.5.is_some()) {
+            InputError::check_range(name, *value, *min, *max, unit)?;
+        }
+        let given: Vec<String> = checks
+            .iter()
+            .filter(|c| c.5.is_some())
+            .map(|(name, value, _, _, unit, _)| format!("{name} = {} {unit}", Shown(*value)))
+            .collect();
+        let origin = if given.len() == 1 {
+            format!(
+                "derived from {} and H = {} m by the normalizing formula sl = {} · sf · H, \
+                 v = sl · sf / 60",
+                given[0],
+                Shown(h),
+                Shown(k)
+            )
+        } else {
+            format!("derived from {} by v = sl · sf / 60", given.join(" and "))
+        };
+        for (name, value, min, max, unit, _) in checks.iter().filter(|c| c.5.is_none()) {
+            InputError::check_range(name, *value, *min, *max, unit)
+                .map_err(|e| e.with_note(&origin))?;
         }
         Ok(Gait {
             velocity: v,
@@ -229,5 +261,26 @@ mod tests {
             req(None, None, None).complete(&b, &a),
             Err(InputError::MissingGait)
         ));
+    }
+
+    /// The issue's example: sf = 181.9 steps/min alone for H = 1.8 m gives, by hand,
+    /// v = 0.004 · 181.9² · 1.8 / 60 = 238.230792 / 60 = 3.9705132 m/s, over v_max: the message
+    /// shows it without float noise and says it was derived, and from what.
+    #[test]
+    fn a_derived_value_out_of_range_says_it_was_derived() {
+        let (b, a) = setup();
+        let e = req(None, None, Some(181.9)).complete(&b, &a).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "velocity = 3.9705132 m/s (derived from step_frequency = 181.9 steps/min and H = 1.8 m \
+             by the normalizing formula sl = 0.004 · sf · H, v = sl · sf / 60) is out of range: \
+             valid range is [0.4, 2.5] m/s"
+        );
+        // a given value out of range has no note
+        let e = req(Some(3.0), None, None).complete(&b, &a).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "velocity = 3 m/s is out of range: valid range is [0.4, 2.5] m/s"
+        );
     }
 }

@@ -110,9 +110,19 @@ pub fn parse_size(text: &str) -> Result<(u32, u32), InputError> {
         InputError::bad_value("size", reason)
     };
     let (w, h) = text.trim().split_once(['x', 'X', '×']).ok_or_else(bad)?;
-    let w = w.trim().parse::<u32>().map_err(|_| bad())?;
-    let h = h.trim().parse::<u32>().map_err(|_| bad())?;
-    Ok((w, h))
+    // parsed signed, so that a negative size gets its range rather than "not WIDTHxHEIGHT"
+    let w = w.trim().parse::<i64>().map_err(|_| bad())?;
+    let h = h.trim().parse::<i64>().map_err(|_| bad())?;
+    let (wr, hr) = (WIDTH_RANGE, HEIGHT_RANGE);
+    InputError::check_range("width", w as f64, wr.0.into(), wr.1.into(), "px")?;
+    InputError::check_range(
+        "height of the image",
+        h as f64,
+        hr.0.into(),
+        hr.1.into(),
+        "px",
+    )?;
+    Ok((w as u32, h as u32))
 }
 
 /// The animation's path must end in `.gif` (any case); else [`InputError::Malformed`].

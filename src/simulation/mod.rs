@@ -31,9 +31,6 @@ use crate::simulation::stream::{Gather, WalkStream};
 pub const DEFAULT_HEIGHT: f64 = 1.8;
 /// Body mass M of [`Simulation::default`] (kg).
 pub const DEFAULT_MASS: f64 = 80.0;
-/// Walking speed when no gait is given (m/s); the normalizing formula completes it
-/// (sf ≈ 108 steps/min, sl ≈ 0.78 m for H = 1.8 m).
-pub const DEFAULT_VELOCITY: f64 = 1.4;
 /// Number of steps (heel strike to heel strike) of a walk with one gait, when not given.
 pub const DEFAULT_STEPS: usize = 10;
 /// Most steps of one walk, as the command line allows.
@@ -46,7 +43,8 @@ pub const MAX_FPS: f64 = 10_000.0;
 /// Where the walk's attributes come from.
 #[derive(Clone, Debug)]
 enum AttributeSource {
-    Given(Attributes),
+    /// Attributes given whole (boxed: they are 29 numbers).
+    Given(Box<Attributes>),
     /// A bundled style preset (`models/styles/`) over the defaults.
     Style(String),
 }
@@ -54,6 +52,8 @@ enum AttributeSource {
 /// What the walk's steps ask for.
 #[derive(Clone, Debug)]
 enum Requests {
+    /// The attributes' preferred gait ([`GaitRequest::preferred`]) for every step.
+    Preferred,
     /// One gait for every step.
     One(GaitRequest),
     /// One gait per step, the last one held.
@@ -87,7 +87,8 @@ pub struct Simulation {
 }
 
 impl Default for Simulation {
-    /// The default walk: H = [`DEFAULT_HEIGHT`], M = [`DEFAULT_MASS`], v = [`DEFAULT_VELOCITY`],
+    /// The default walk: H = [`DEFAULT_HEIGHT`], M = [`DEFAULT_MASS`], v = the attributes'
+    /// `preferred_velocity` (1.4 m/s),
     /// [`DEFAULT_STEPS`] steps, the default attributes.
     fn default() -> Self {
         let body = Body::standard(DEFAULT_HEIGHT, DEFAULT_MASS)
@@ -101,11 +102,8 @@ impl Simulation {
     pub fn new(body: Body) -> Self {
         Simulation {
             body,
-            attributes: AttributeSource::Given(AttributeTable::builtin().defaults()),
-            requests: Requests::One(GaitRequest {
-                velocity: Some(DEFAULT_VELOCITY),
-                ..GaitRequest::default()
-            }),
+            attributes: AttributeSource::Given(Box::new(AttributeTable::builtin().defaults())),
+            requests: Requests::Preferred,
             steps: None,
         }
     }
@@ -113,7 +111,7 @@ impl Simulation {
     /// Walk with these attributes (SI units, e.g. from [`AttributeTable::resolve`]); replaces a
     /// [`style`](Simulation::style) set before.
     pub fn attributes(mut self, attributes: Attributes) -> Self {
-        self.attributes = AttributeSource::Given(attributes);
+        self.attributes = AttributeSource::Given(Box::new(attributes));
         self
     }
 
@@ -167,13 +165,17 @@ impl Simulation {
             check_steps(n)?;
         }
         let attributes = match &self.attributes {
-            AttributeSource::Given(a) => a.clone(),
+            AttributeSource::Given(a) => (**a).clone(),
             AttributeSource::Style(name) => {
                 AttributeTable::builtin().resolve(&style(name)?, &format!("style {name}"))?
             }
         };
         let complete = |r: &GaitRequest| r.complete(&self.body, &attributes);
         let gaits = match &self.requests {
+            Requests::Preferred => {
+                let n = self.steps.unwrap_or(DEFAULT_STEPS);
+                vec![GaitRequest::preferred(&self.body, &attributes)?; n]
+            }
             Requests::One(request) => {
                 let n = self.steps.unwrap_or(DEFAULT_STEPS);
                 vec![complete(request)?; n]

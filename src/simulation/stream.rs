@@ -171,7 +171,18 @@ impl Iterator for WalkStream<'_> {
     type Item = Result<Landmarks>;
 
     fn next(&mut self) -> Option<Self::Item> {
-        if self.failed || self.next_frame > self.last_frame {
+        if self.failed {
+            return None;
+        }
+        if self.next_frame > self.last_frame {
+            // the steps after the last frame (a low frame rate) are walked too: their reports,
+            // events and failures belong to the walk
+            while self.gaits.len() > 0 {
+                if let Some(Err(e)) = self.advance() {
+                    self.failed = true;
+                    return Some(Err(e));
+                }
+            }
             return None;
         }
         let t = self.next_frame as f64 / self.fps;

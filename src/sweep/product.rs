@@ -164,6 +164,7 @@ impl Sweep {
                 min: 1.0,
                 max: MAX_POINTS as f64,
                 unit: "walks".into(),
+                note: String::new(),
             });
         }
         Ok(sweep)

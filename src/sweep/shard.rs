@@ -39,17 +39,20 @@ impl Shard {
             bad(ShardError::Shape { text })
         })?;
         let whole = |t: &str| {
-            t.trim().parse::<usize>().map_err(|_| {
+            t.trim().parse::<i64>().map_err(|_| {
                 let (text, part) = (text.into(), t.trim().into());
                 bad(ShardError::Part { text, part })
             })
         };
         let (index, count) = (whole(k)?, whole(n)?);
-        if index < 1 || count < 1 || index > count || count > MAX_SHARDS {
+        if index < 1 || count < 1 || index > count || count > MAX_SHARDS as i64 {
             let text = text.into();
             return Err(bad(ShardError::Range { text }));
         }
-        Ok(Shard { index, count })
+        Ok(Shard {
+            index: index as usize,
+            count: count as usize,
+        })
     }
 
     /// Whether point `p` belongs to this shard.

@@ -25,7 +25,12 @@ pub(crate) struct AnimateArgs {
     )]
     fps: f64,
     /// Image size in pixels, WIDTHxHEIGHT (not --height: that is the body height)
-    #[arg(long, value_name = "WxH", default_value = "900x450")]
+    #[arg(
+        long,
+        value_name = "WxH",
+        default_value = "900x450",
+        allow_hyphen_values = true
+    )]
     size: String,
 }
 

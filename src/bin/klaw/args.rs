@@ -5,22 +5,21 @@ use clap::Args;
 use klaw::engine::walker::{Walk, simulate};
 use klaw::{Attributes, Body, Gait, GaitRequest, Result, input};
 
-use crate::{
-    DEFAULT_HEIGHT, DEFAULT_MASS, DEFAULT_STEPS, DEFAULT_VELOCITY, MAX_STEPS, check_count,
-};
+use crate::{DEFAULT_HEIGHT, DEFAULT_MASS, DEFAULT_STEPS, MAX_STEPS, check_count};
 
 /// The gait, body and attribute flags of `klaw walk`, `klaw plot` and `klaw animate`.
 #[derive(Args)]
 pub(crate) struct GaitArgs {
-    /// Walking speed v in m/s, range [0.4, 2.5] [default: 1.4 if no gait flag is given]
+    /// Walking speed v in m/s, range [0.4, 2.5] [default: the style's speed, 1.4 if no gait flag is given]
     #[arg(
         long,
         value_name = "M/S",
         allow_negative_numbers = true,
         long_help = "Walking speed v in m/s; valid range [0.4, 2.5] m/s (attributes velocity_min/max). Given\n\
             alone, step frequency and step length follow from the normalizing formula:\n\
-            sf = √(15000 · v / H) steps/min, sl = 60 · v / sf. [default: 1.4 when none of\n\
-            --velocity, --step-length, --step-frequency is given]"
+            sf = √(15000 · v / H) steps/min, sl = 60 · v / sf. [default when none of --velocity,\n\
+            --step-length, --step-frequency is given: the attribute preferred_velocity, 1.4 m/s;\n\
+            --style brisk 1.7, --style elderly 0.8]"
     )]
     velocity: Option<f64>,
 
@@ -73,11 +72,12 @@ pub(crate) struct GaitArgs {
     #[arg(
         long,
         value_name = "N",
+        allow_negative_numbers = true,
         long_help = "Number of steps to simulate; valid range [1, 1000000]. With --schedule: the first N rows\n\
             are used, and if N exceeds the schedule's length the last row is held for the remaining\n\
             steps. [default: 10, or the schedule's length with --schedule]"
     )]
-    steps: Option<usize>,
+    steps: Option<i64>,
 
     /// Per-step gait requests from a .toml or .csv file (instead of the gait flags)
     #[arg(
@@ -127,27 +127,29 @@ impl GaitArgs {
 
     /// The gait of every step: the schedule's rows (the last one held) or the flags' one gait.
     pub(crate) fn gaits(&self, body: &Body, attrs: &Attributes) -> Result<Vec<Gait>> {
-        if let Some(steps) = self.steps {
-            check_count("steps", steps, 1, MAX_STEPS, "steps")?;
-        }
+        let steps = match self.steps {
+            Some(n) => Some(check_count("steps", n, 1, MAX_STEPS, "steps")?),
+            None => None,
+        };
         match &self.schedule {
             Some(path) => {
                 let rows = input::read_schedule(path)?;
-                let n = self.steps.unwrap_or(rows.len());
-                check_count("steps", n, 1, MAX_STEPS, "steps")?;
+                let n = self.steps.unwrap_or(rows.len() as i64);
+                let n = check_count("steps", n, 1, MAX_STEPS, "steps")?;
                 Ok(input::schedule_gaits(path, &rows, n, body, attrs)?)
             }
             None => {
-                let mut request = GaitRequest {
+                let request = GaitRequest {
                     velocity: self.velocity,
                     step_length: self.step_length,
                     step_frequency: self.step_frequency,
                 };
-                if request == GaitRequest::default() {
-                    request.velocity = Some(DEFAULT_VELOCITY);
-                }
-                let gait = request.complete(body, attrs)?;
-                Ok(vec![gait; self.steps.unwrap_or(DEFAULT_STEPS)])
+                let gait = if request == GaitRequest::default() {
+                    GaitRequest::preferred(body, attrs)?
+                } else {
+                    request.complete(body, attrs)?
+                };
+                Ok(vec![gait; steps.unwrap_or(DEFAULT_STEPS)])
             }
         }
     }

@@ -9,8 +9,8 @@ use klaw::model::InputError;
 use klaw::{AttributeTable, Attributes, Body, Gait, GaitRequest, Result, export};
 
 use crate::{
-    DEFAULT_FPS, DEFAULT_HEIGHT, DEFAULT_MASS, DEFAULT_STEPS, DEFAULT_VELOCITY, MAX_FPS, MAX_STEPS,
-    MIN_FPS, check_count,
+    DEFAULT_FPS, DEFAULT_HEIGHT, DEFAULT_MASS, DEFAULT_STEPS, MAX_FPS, MAX_STEPS, MIN_FPS,
+    check_count,
 };
 
 const MAX_REPEAT: usize = 100_000;
@@ -18,11 +18,16 @@ const MAX_REPEAT: usize = 100_000;
 #[derive(Args)]
 pub(crate) struct BenchArgs {
     /// Steps per walk, range [1, 1000000]
-    #[arg(long, value_name = "N", default_value_t = DEFAULT_STEPS)]
-    steps: usize,
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_STEPS as i64, allow_negative_numbers = true)]
+    steps: i64,
     /// Number of walks timed, range [1, 100000]
-    #[arg(long, value_name = "R", default_value_t = 20)]
-    repeat: usize,
+    #[arg(
+        long,
+        value_name = "R",
+        default_value_t = 20,
+        allow_negative_numbers = true
+    )]
+    repeat: i64,
     /// Also time the kinematics: the figure (landmarks) and the clinical angles of every frame
     #[arg(long)]
     frames: bool,
@@ -55,11 +60,7 @@ pub(crate) fn run(args: &BenchArgs) -> Result<()> {
     let repeat = check_count("repeat", args.repeat, 1, MAX_REPEAT, "walks")?;
     let body = Body::standard(DEFAULT_HEIGHT, DEFAULT_MASS)?;
     let attrs = AttributeTable::builtin().defaults();
-    let gait = GaitRequest {
-        velocity: Some(DEFAULT_VELOCITY),
-        ..GaitRequest::default()
-    }
-    .complete(&body, &attrs)?;
+    let gait = GaitRequest::preferred(&body, &attrs)?;
     let gaits = vec![gait; steps];
     let fps = InputError::check_range("fps", args.fps, MIN_FPS, MAX_FPS, "frames/s")?;
     let csv_path = std::env::temp_dir().join(format!("klaw-bench-{}.csv", std::process::id()));

@@ -22,7 +22,6 @@ use klaw::{Error, Result};
 
 const DEFAULT_HEIGHT: f64 = 1.8;
 const DEFAULT_MASS: f64 = 80.0;
-const DEFAULT_VELOCITY: f64 = 1.4;
 const DEFAULT_STEPS: usize = 10;
 const DEFAULT_FPS: f64 = 100.0;
 const MAX_STEPS: usize = 1_000_000;
@@ -60,7 +59,7 @@ enum Command {
             sl = 0.004 · sf · H and v = sl · sf / 60. Only v → sf = √(15000 · v / H), sl = 60 · v / sf; only\n\
             sf → sl = 0.004 · sf · H; only sl → sf = sl / (0.004 · H); two given → the third from\n\
             v = sl · sf / 60; all three → they must agree (v = sl · sf / 60 within 1 %). With none,\n\
-            v = 1.4 m/s. The completed gait is checked against the\n\
+            v = the style's speed (attribute preferred_velocity, 1.4 m/s). The completed gait is checked against the\n\
             anatomical limits of the attributes (by default v in [0.4, 2.5] m/s, sf in [50, 182] steps/min,\n\
             sl in [0.2, 1.3] leg lengths, i.e. [0.1736, 1.1285] m for H = 1.8 m).\n\
             \n\
@@ -187,10 +186,11 @@ fn main() -> ExitCode {
     }
 }
 
-/// `value` if it lies in [min, max], else an `InputError::OutOfRange` naming it.
-fn check_count(name: &str, value: usize, min: usize, max: usize, unit: &str) -> Result<usize> {
+/// `value` if it lies in [min, max], else an `InputError::OutOfRange` naming it (counts are
+/// parsed signed, so that `--steps -5` gets the range rather than clap's "unexpected argument").
+fn check_count(name: &str, value: i64, min: usize, max: usize, unit: &str) -> Result<usize> {
     InputError::check_range(name, value as f64, min as f64, max as f64, unit)?;
-    Ok(value)
+    Ok(value as usize)
 }
 
 /// Fail before simulating if an output file could not be created: its directory must exist.
@@ -207,6 +207,15 @@ fn check_output_dir(path: &Path) -> Result<()> {
                 format!("directory {} does not exist", dir.display()),
             ),
         })
+    }
+}
+
+/// `n` and the noun, singular for one: `1 step`, `2 steps`.
+fn count(n: usize, noun: &str) -> String {
+    if n == 1 {
+        format!("1 {noun}")
+    } else {
+        format!("{n} {noun}s")
     }
 }
 

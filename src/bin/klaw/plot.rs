@@ -9,7 +9,7 @@ use klaw::plot::cycle::write_cycle_figure;
 use klaw::{Result, plot};
 
 use crate::args::GaitArgs;
-use crate::{check_output_dir, font_note};
+use crate::{check_output_dir, count, font_note};
 
 #[derive(Args)]
 pub(crate) struct PlotArgs {
@@ -34,8 +34,9 @@ pub(crate) fn run(args: &PlotArgs) -> Result<()> {
     let mut out = std::io::stdout().lock();
     let _ = writeln!(
         out,
-        "gait cycle of {title}: mean of {} right / {} left cycles",
-        cycle.cycles.0, cycle.cycles.1
+        "gait cycle of {title}: mean of {} right / {} left",
+        count(cycle.cycles.0, "cycle"),
+        count(cycle.cycles.1, "cycle")
     );
     for c in &figure.checks {
         let _ = writeln!(out, "  {}", c.describe());

@@ -64,6 +64,7 @@ pub(crate) struct SweepArgs {
     #[arg(
         long,
         value_name = "K/N",
+        allow_hyphen_values = true,
         long_help = "Run only the K-th of N disjoint slices of the sweep, 1-based: 1 ≤ K ≤ N (K = Slurm's\n\
             SLURM_ARRAY_TASK_ID with --array=1-N). Shard K holds the points whose index (the point\n\
             column) satisfies point mod N = K − 1, so every shard gets a like mix of fast and slow\n\

@@ -5,12 +5,12 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 use klaw::engine::report::Report;
-use klaw::model::InputError;
+use klaw::model::{InputError, Shown};
 use klaw::simulation::stream::{Gather, WalkStream};
 use klaw::{Body, Result, export, plot};
 
 use crate::args::GaitArgs;
-use crate::{DEFAULT_FPS, MAX_FPS, MIN_FPS, check_output_dir, font_note};
+use crate::{DEFAULT_FPS, MAX_FPS, MIN_FPS, check_output_dir, count, font_note};
 
 /// Frames are held in memory before they are written (≈ 200 bytes each): cap the count.
 const MAX_FRAMES: f64 = 5_000_000.0;
@@ -216,16 +216,16 @@ fn print_summary(args: &WalkArgs, stream: &WalkStream, fps: f64, plot: Option<&P
     let mut out = std::io::stdout().lock();
     let _ = writeln!(
         out,
-        "walked {} steps: {:.3} s simulated, {} frames at {} frames/s",
-        stream.steps,
+        "walked {}: {:.3} s simulated, {} at {} frames/s",
+        count(stream.steps, "step"),
         stream.duration(),
-        frames,
-        fps
+        count(frames, "frame"),
+        Shown(fps)
     );
     let _ = writeln!(
         out,
-        "shooting: {} solves, {:.1} iterations per solve on average, {} at most",
-        stream.solves,
+        "shooting: {}, {:.1} iterations per solve on average, {} at most",
+        count(stream.solves, "solve"),
         stream.iterations as f64 / stream.solves.max(1) as f64,
         stream.max_iterations
     );
