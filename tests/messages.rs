@@ -100,15 +100,14 @@ fn negative_numbers_are_values_with_a_range() {
 
 #[test]
 fn a_gait_cycle_of_too_short_a_walk_names_the_minimum() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = klaw(dir.path(), &["plot", "--steps", "4", "--out", "c.png"]);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_ne!(out.status.code(), Some(0), "{stderr}");
-    assert!(
-        stderr.contains("at least 5 steps for the right leg"),
-        "{stderr}"
+    refused(
+        &["plot", "--steps", "5", "--out", "c.png"],
+        &["--steps", "at least 6 steps are needed, not 5"],
     );
-    assert!(stderr.contains("6 for both legs"), "{stderr}");
+    refused(
+        &["walk", "--steps", "4", "--cycle-out", "c.csv"],
+        &["at least 5 steps are needed, not 4"],
+    );
 }
 
 /// The report's knee peak is in degrees, like every angle the user sees: the swing knee of a

@@ -9,7 +9,7 @@ mod common;
 
 use common::default_walk;
 use klaw::Error;
-use klaw::analysis::cycle::{Curve, CycleError, GaitCycle, Panel};
+use klaw::analysis::cycle::{Curve, CycleError, GaitCycle, Panel, min_steps};
 use klaw::analysis::norms::{Measure, NormTable, check};
 use klaw::figure::clinical::Clinical;
 use klaw::figure::skeleton::Side;
@@ -420,4 +420,34 @@ fn cli_writes_the_figure_and_prints_the_checks() {
     let o = run(&["plot", "--out", bad.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));
     assert!(!bad.exists());
+}
+
+/// `min_steps` is the least walk `GaitCycle::from_walk` averages: one step fewer has no steady
+/// cycle of the left leg (both legs) or of the right (the right leg alone, by its own count).
+#[test]
+fn the_least_walk_of_a_gait_cycle_is_min_steps() {
+    let walk = |n: usize| common::walk(common::default_body(), 1.4, n).unwrap();
+    assert!(GaitCycle::from_walk(&walk(min_steps(true))).is_ok());
+    assert!(matches!(
+        GaitCycle::from_walk(&walk(min_steps(true) - 1)),
+        Err(CycleError::NoSteadyCycle { .. })
+    ));
+    // the right leg alone, as `klaw walk --cycle-out` averages it from the stream
+    let right = |n: usize| {
+        let prepared = klaw::Simulation::default().steps(n).prepare().unwrap();
+        let gather = klaw::Gather {
+            clinical: true,
+            ..klaw::Gather::default()
+        };
+        let mut stream = prepared.stream(100.0, gather).unwrap();
+        (&mut stream).for_each(|f| {
+            f.unwrap();
+        });
+        klaw::analysis::cycle::cycle_average(&stream.clinical, &stream.right_heel_strikes, 1)
+    };
+    assert!(right(min_steps(false)).is_ok());
+    assert!(matches!(
+        right(min_steps(false) - 1),
+        Err(CycleError::NoSteadyCycle { .. })
+    ));
 }

@@ -28,6 +28,13 @@ pub(crate) const CYCLE_FPS: f64 = 200.0;
 /// conditions.
 pub(crate) const CYCLE_SKIP: usize = 1;
 
+/// The fewest steps of a walk with a steady cycle (after the `CYCLE_SKIP` skipped) of the right
+/// leg, which strikes first (`both_legs` false), or of both legs: a leg's cycle runs between two
+/// of its heel strikes, at the starts of every other step, and the walk ends with a heel strike.
+pub fn min_steps(both_legs: bool) -> usize {
+    2 * CYCLE_SKIP + if both_legs { 4 } else { 3 }
+}
+
 /// Cycle-normalized curves: 101 rows (0…100 %) of the column values.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CycleCurves {

@@ -38,7 +38,7 @@ pub(crate) fn run(args: &AnimateArgs) -> Result<()> {
     let options = Options::new(args.fps, animation::parse_size(&args.size)?)?;
     animation::check_path(&args.out)?;
     check_output_dir(&args.out)?;
-    let (walk, title) = args.walk.simulate()?;
+    let (walk, title) = args.walk.simulate(1)?;
     let summary = animation::animate_walk(&walk, &title, &args.out, &options)?;
     let mut out = std::io::stdout().lock();
     let _ = writeln!(

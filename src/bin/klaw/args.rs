@@ -154,11 +154,20 @@ impl GaitArgs {
         }
     }
 
-    /// Simulate the walk; also the title line of its parameters.
-    pub(crate) fn simulate(&self) -> Result<(Walk, String)> {
+    /// Simulate the walk, refused before any work when it has fewer than `min_steps` steps;
+    /// also the title line of its parameters.
+    pub(crate) fn simulate(&self, min_steps: usize) -> Result<(Walk, String)> {
         let body = self.body()?;
         let attrs = self.attributes()?;
         let gaits = self.gaits(&body, &attrs)?;
+        if gaits.len() < min_steps {
+            let reason = format!(
+                "the gait cycle of both legs is averaged over their cycles after the first: at \
+                 least {min_steps} steps are needed, not {}",
+                gaits.len()
+            );
+            return Err(klaw::model::InputError::bad_value("steps", reason).into());
+        }
         let style = match (&self.style, &self.attributes) {
             (Some(s), Some(a)) => format!("{s} + {}", a.display()),
             (Some(s), None) => s.clone(),

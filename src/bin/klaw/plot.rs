@@ -3,7 +3,7 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use klaw::analysis::cycle::GaitCycle;
+use klaw::analysis::cycle::{GaitCycle, min_steps};
 use klaw::analysis::norms::NormTable;
 use klaw::plot::cycle::write_cycle_figure;
 use klaw::{Result, plot};
@@ -27,7 +27,7 @@ pub(crate) struct PlotArgs {
 pub(crate) fn run(args: &PlotArgs) -> Result<()> {
     plot::figure_format(&args.out)?;
     check_output_dir(&args.out)?;
-    let (walk, title) = args.walk.simulate()?;
+    let (walk, title) = args.walk.simulate(min_steps(true))?;
     let cycle = GaitCycle::from_walk(&walk)?;
     let norms = NormTable::builtin();
     let figure = write_cycle_figure(&cycle, &norms, &title, &args.out)?;

@@ -137,10 +137,11 @@ pub(crate) fn run(args: &WalkArgs) -> Result<()> {
 /// format, an output in a missing directory and two outputs to one file; the figure's path
 /// unless --no-plot.
 fn check_outputs(args: &WalkArgs, steps: usize) -> Result<Option<&Path>> {
-    if args.cycle_out.is_some() && steps < 5 {
+    let least = klaw::analysis::cycle::min_steps(false);
+    if args.cycle_out.is_some() && steps < least {
         let reason = format!(
             "the gait cycle is averaged over the right heel strike to right heel strike cycles \
-             after the first: at least 5 steps are needed, not {steps}"
+             after the first: at least {least} steps are needed, not {steps}"
         );
         return Err(InputError::bad_value("cycle-out", reason).into());
     }
