@@ -147,10 +147,13 @@ fn bad_paths_options_and_frames_are_typed_errors() {
     }
     assert_eq!(parse_size("900x450").unwrap(), (900, 450));
     assert_eq!(parse_size(" 640X360 ").unwrap(), (640, 360));
-    for bad in ["900", "x450", "900x", "a x b", "-1x3"] {
+    for bad in ["900", "x450", "900x", "a x b"] {
         let e = parse_size(bad).unwrap_err();
         assert!(matches!(e, InputError::BadValue { .. }), "{bad}: {e}");
     }
+    // a negative size is a size, out of range
+    let e = parse_size("-1x3").unwrap_err();
+    assert!(matches!(e, InputError::OutOfRange { .. }), "{e}");
 
     let walk = default_walk(1);
     let options = Options::new(10.0, (300, 150)).unwrap();

@@ -424,7 +424,8 @@ fn help_explains_every_flag_with_units_and_defaults() {
         "[default: 80]",
         "[default: 100]",
         "[default: walk.csv]",
-        "[default: 1.4 when none",
+        "[default when none of --velocity",
+        "preferred_velocity, 1.4 m/s",
     ] {
         assert!(
             help.contains(needle),
