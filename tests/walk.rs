@@ -308,3 +308,37 @@ fn the_walker_runs_with_its_parameters() {
     let mut w = Walker::new(body, default_attributes()).with_parameters(one);
     assert!(w.step(g).is_err());
 }
+
+/// The integrator's limits and the hip table's grid reach the integrations through the
+/// walker's parameters: five integrator steps per integration cannot walk a stance (≈ 140
+/// steps), and a hip table four times coarser moves the swing foot's measured toe clearance, though
+/// by far less than the walk's 1e-6 promise.
+#[test]
+fn the_integrator_limits_come_from_the_parameters() {
+    use klaw::engine::parameters::EngineParameters;
+    use klaw::engine::walker::Walker;
+    use klaw::numerics::ode::Tolerance;
+    let body = default_body();
+    let g = gait(&body, 1.4);
+    let default = EngineParameters::default();
+    let few = EngineParameters {
+        ode: Tolerance {
+            max_steps: 5,
+            ..default.ode
+        },
+        ..default
+    };
+    let mut w = Walker::new(body, default_attributes()).with_parameters(few);
+    let err = w.step(g).unwrap_err().to_string();
+    assert!(err.contains("more than 5 steps"), "{err}");
+    let clearance = |parameters: EngineParameters| {
+        let mut w = Walker::new(body, default_attributes()).with_parameters(parameters);
+        w.step(g).unwrap().report.min_toe_clearance
+    };
+    let coarse = EngineParameters {
+        hip_path_step: 4.0 * default.hip_path_step,
+        ..default
+    };
+    let (a, b) = (clearance(default), clearance(coarse));
+    assert!(a != b && (a - b).abs() < 1e-6, "{a} vs {b}");
+}

@@ -157,11 +157,11 @@ pub enum Subphase {
 pub(crate) const SWING2_TOLERANCE_SCALE: f64 = 100.0;
 
 impl Subphase {
-    /// The integrator tolerance of this subphase for the walk's tolerance `tol`
-    /// ([`SWING2_TOLERANCE_SCALE`]).
-    pub(crate) fn tolerance(&self, tol: f64) -> f64 {
+    /// The integrator tolerance of this subphase for the walk's tolerance `tol`: `tol` scaled
+    /// by `swing2_scale` in swing2 (by default [`SWING2_TOLERANCE_SCALE`]).
+    pub(crate) fn tolerance(&self, tol: ode::Tolerance, swing2_scale: f64) -> ode::Tolerance {
         match self {
-            Subphase::Swing2 { .. } => tol * SWING2_TOLERANCE_SCALE,
+            Subphase::Swing2 { .. } => tol.scaled(swing2_scale),
             _ => tol,
         }
     }
@@ -273,7 +273,8 @@ impl SwingTrial {
         t0: f64,
         y0: SwingState,
     ) -> Result<Self, IntegrationError> {
-        Self::simulate_with(setup, sub, t0, y0, sub.tolerance(ode::TOLERANCE))
+        let tol = sub.tolerance(ode::Tolerance::default(), SWING2_TOLERANCE_SCALE);
+        Self::simulate_with(setup, sub, t0, y0, tol)
     }
 
     /// [`Self::simulate`] at integrator tolerance `tol` (to measure the integration error),
@@ -283,9 +284,9 @@ impl SwingTrial {
         sub: Subphase,
         t0: f64,
         y0: SwingState,
-        tol: f64,
+        tol: impl Into<ode::Tolerance>,
     ) -> Result<Self, IntegrationError> {
-        let mut trial = Self::simulate_on(setup, sub, t0, y0, tol, None)?;
+        let mut trial = Self::simulate_on(setup, sub, t0, y0, tol.into(), None)?;
         trial.evaluations += trial.densify(setup);
         Ok(trial)
     }
@@ -310,7 +311,7 @@ impl SwingTrial {
         sub: Subphase,
         t0: f64,
         y0: SwingState,
-        tol: f64,
+        tol: ode::Tolerance,
         mesh: Option<&Segment<4>>,
     ) -> Result<Self, IntegrationError> {
         let t_end = match sub {

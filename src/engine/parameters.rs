@@ -2,6 +2,8 @@
 //! spend, how its measurements sample a step, and what a step's invariants allow (spec §4, §5;
 //! the decisions behind each value: docs/engine.md, "Decisions" and "Engine").
 
+use crate::numerics::ode::Tolerance;
+
 /// The tolerances and limits of a walker: [`crate::engine::walker::Walker`] runs with the
 /// `Default`, today's values.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -18,10 +20,17 @@ pub struct EngineParameters {
     /// Trial integrations allowed per solve (count): about twice the most any solve of the
     /// grid of `tests/walk.rs` needs (13).
     pub max_iterations: usize,
-    /// Integrator tolerance of every shooting trial (relative and absolute, 1): the ODE
-    /// integrator's own, [`crate::numerics::ode::TOLERANCE`], set by the accuracy of the end
-    /// conditions.
-    pub ode_tolerance: f64,
+    /// Integrator tolerance of every shooting trial (relative and absolute, 1) and the
+    /// integrator's limits (event location, steps, frozen mesh): the ODE integrator's own,
+    /// [`Tolerance::default`], its step tolerance set by the accuracy of the end conditions.
+    pub ode: Tolerance,
+    /// \[ours\] How much looser swing2 integrates than the other phases (factor on
+    /// `ode.step`): [`crate::control::swing`]'s default, 100, since swing2's stiff servos damp
+    /// the local errors away.
+    pub swing2_tolerance_scale: f64,
+    /// Largest grid step of the stance hip's acceleration table the swing reads (s): 4 ms, its quintic
+    /// interpolation 7e-7 m/s² from the stance dynamics (docs/engine.md, "Engine").
+    pub hip_path_step: f64,
     /// The least mid-swing toe clearance a step may have (m): the feet's placement precision.
     pub toe_clearance_min: f64,
     /// How far the hip may drop below its heel-strike height and the swing foot go under the
@@ -48,7 +57,9 @@ impl Default for EngineParameters {
             solve_tolerance: 1e-8,
             waypoint_tolerance: 1e-7,
             max_iterations: 25,
-            ode_tolerance: crate::numerics::ode::TOLERANCE,
+            ode: Tolerance::default(),
+            swing2_tolerance_scale: crate::control::swing::SWING2_TOLERANCE_SCALE,
+            hip_path_step: crate::control::stance::HIP_PATH_STEP,
             toe_clearance_min: 1e-6,
             invariant_slack: 1e-6,
             coarse_samples: 32,

@@ -63,7 +63,8 @@ impl Piece {
     }
 }
 
-/// Largest grid step of [`HipPath`] (s).
+/// Largest grid step of [`HipPath::new`] (s); the walker's is
+/// `EngineParameters::hip_path_step`.
 pub const HIP_PATH_STEP: f64 = 4e-3;
 
 /// The step of [`HipPath::new`]'s central difference of the swing hip's offset (s).
@@ -79,16 +80,18 @@ impl HipPath {
         t1: f64,
         offset: &dyn Fn(f64) -> [f64; 2],
     ) -> Self {
-        Self::with_offset_acceleration(run, setup, t0, t1, offset, &|_| None)
+        Self::with_offset_acceleration(run, setup, t0, t1, HIP_PATH_STEP, offset, &|_| None)
     }
 
-    /// [`Self::new`] with the offset's acceleration where `offset_acceleration(t)` gives it (in
-    /// closed form); elsewhere the offset is differenced as in [`Self::new`].
+    /// [`Self::new`] on a grid step of at most `step`, with the offset's acceleration where
+    /// `offset_acceleration(t)` gives it (in closed form); elsewhere the offset is differenced
+    /// as in [`Self::new`].
     pub(crate) fn with_offset_acceleration(
         run: &StanceRun,
         setup: &StanceSetup,
         t0: f64,
         t1: f64,
+        step: f64,
         offset: &dyn Fn(f64) -> [f64; 2],
         offset_acceleration: &dyn Fn(f64) -> Option<[f64; 2]>,
     ) -> Self {
@@ -118,7 +121,7 @@ impl HipPath {
             .windows(2)
             .map(|w| {
                 let (a, b) = (w[0], w[1]);
-                let n = ((b - a) / HIP_PATH_STEP).ceil().max(5.0) as usize;
+                let n = ((b - a) / step).ceil().max(5.0) as usize;
                 let dt = (b - a) / n as f64;
                 let mut acc = Vec::with_capacity(n + 1);
                 for i in 0..=n {

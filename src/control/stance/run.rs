@@ -40,7 +40,7 @@ impl StanceRun {
         tau1: f64,
         p: f64,
     ) -> Result<Self, IntegrationError> {
-        Self::simulate_with(setup, y0, tau1, p, ode::TOLERANCE)
+        Self::simulate_with(setup, y0, tau1, p, ode::Tolerance::default())
     }
 
     /// [`Self::simulate`] at integrator tolerance `tol` (to measure the integration error).
@@ -49,9 +49,9 @@ impl StanceRun {
         y0: StanceState,
         tau1: f64,
         p: f64,
-        tol: f64,
+        tol: impl Into<ode::Tolerance>,
     ) -> Result<Self, IntegrationError> {
-        let mut run = Self::simulate_on(setup, y0, tau1, p, tol, None)?;
+        let mut run = Self::simulate_on(setup, y0, tau1, p, tol.into(), None)?;
         run.evaluations += run.densify(setup);
         Ok(run)
     }
@@ -66,7 +66,7 @@ impl StanceRun {
         y0: StanceState,
         tau1: f64,
         p: f64,
-        tol: f64,
+        tol: ode::Tolerance,
         mesh: Option<&StanceRun>,
     ) -> Result<Self, IntegrationError> {
         let breaks = [TORQUE_OFF * setup.t_step, 0.5 * setup.t_step, setup.t_step];

@@ -135,7 +135,7 @@ impl Walker {
             },
         );
         let trials = Trials::new(self.stance_mesh.take());
-        let tol = self.parameters.ode_tolerance;
+        let tol = self.parameters.ode;
         let residual = |x: Vector2<f64>| {
             trials.run(|mesh| StanceRun::simulate_on(setup, y0, x[0], x[1], tol, mesh))
         };

@@ -29,8 +29,13 @@ pub fn swing_hip_vy_end(
 }
 
 /// The swing side's hip path over the swing (the stance's hip moved by the determinants of
-/// gait, spec §7) and its vertical velocity at heel strike.
-pub(super) fn hip_path(plan: &StepPlan, stance: &StanceRun, setup: &StanceSetup) -> (HipPath, f64) {
+/// gait, spec §7), tabulated every `step` s at most, and its vertical velocity at heel strike.
+pub(super) fn hip_path(
+    plan: &StepPlan,
+    stance: &StanceRun,
+    setup: &StanceSetup,
+    step: f64,
+) -> (HipPath, f64) {
     let t = plan.c.timing;
     let offset = |tau: f64| swing_hip_offset(&plan.det, plan.side, &plan.c, &plan.pelvis(tau));
     let offset_acceleration = |tau: f64| {
@@ -42,6 +47,7 @@ pub(super) fn hip_path(plan: &StepPlan, stance: &StanceRun, setup: &StanceSetup)
         setup,
         t.t_ds,
         t.t_step,
+        step,
         &offset,
         &offset_acceleration,
     );
@@ -154,7 +160,8 @@ impl Walker {
         sub: Subphase,
         (t0, y0): (f64, SwingState),
     ) -> Result<Vector2<f64>, IntegrationError> {
-        let tol = sub.tolerance(self.parameters.ode_tolerance);
+        let p = &self.parameters;
+        let tol = sub.tolerance(p.ode, p.swing2_tolerance_scale);
         trials.run(|mesh| SwingTrial::simulate_on(sw, sub, t0, y0, tol, mesh))
     }
 

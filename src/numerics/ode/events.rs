@@ -2,8 +2,8 @@
 //! integration stops after the accepted step in which an event function goes from positive to
 //! ≤ 0, and the crossing is root-found on that step's dense output (Hairer, Nørsett & Wanner,
 //! *Solving ODEs I*, II.6) by the Illinois method ([`roots::illinois`]) to
-//! [`EVENT_TIME_TOLERANCE`].
-use super::{EVENT_TIME_TOLERANCE, Phase, Segment};
+//! [`super::Tolerance::event_time`].
+use super::{Phase, Segment};
 use crate::numerics::roots;
 
 /// The first event that fires over an accepted step: positive at its start (`before`), ≤ 0 at
@@ -20,6 +20,7 @@ pub(super) fn locate<P: Phase<N, K>, const N: usize, const K: usize>(
     phase: &P,
     segment: &mut Segment<N>,
     k: usize,
+    event_time: f64,
 ) -> u32 {
     let mut evaluations = 0;
     let last = segment.steps.len() - 1;
@@ -31,7 +32,7 @@ pub(super) fn locate<P: Phase<N, K>, const N: usize, const K: usize>(
     let step = *step;
     let g = |t: f64| phase.events(t, &step.eval(t))[k];
     let (a, b) = (step.t, segment.t1);
-    let (_, b) = roots::illinois(g, (a, g(a)), (b, g(b)), EVENT_TIME_TOLERANCE, 100);
+    let (_, b) = roots::illinois(g, (a, g(a)), (b, g(b)), event_time, 100);
     segment.y1 = step.eval(b);
     segment.t1 = b;
     evaluations

@@ -28,8 +28,54 @@ use dense::{DenseStep, Stages};
 /// `swing::SWING2_TOLERANCE_SCALE`).
 pub const TOLERANCE: f64 = 5e-8;
 
-/// How precisely event times are located (s).
-pub(crate) const EVENT_TIME_TOLERANCE: f64 = 1e-13;
+/// The accuracy and the limits of one integration: the error allowed per step, how precisely
+/// events are located, how many steps it may take, how far a frozen mesh may be followed. An
+/// `f64` converts to the step tolerance with the other three at their defaults.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tolerance {
+    /// Relative and absolute error allowed per step (1), [`TOLERANCE`] by default.
+    pub step: f64,
+    /// How precisely event times are located (s), 1e-13 by default.
+    pub event_time: f64,
+    /// Steps one integration may take before it fails (count), 100 000 by default.
+    pub max_steps: usize,
+    /// A frozen mesh ([`integrate_on`]) is followed while every step's error estimate stays
+    /// within this multiple of the step tolerance, 2 by default; beyond it the step-size control
+    /// takes over from that step on.
+    pub frozen_mesh: f64,
+}
+
+impl Tolerance {
+    /// `step` as the error allowed per step, the limits at their defaults.
+    pub const fn new(step: f64) -> Self {
+        Tolerance {
+            step,
+            event_time: 1e-13,
+            max_steps: 100_000,
+            frozen_mesh: 2.0,
+        }
+    }
+
+    /// This tolerance with its step tolerance multiplied by `factor`.
+    pub fn scaled(self, factor: f64) -> Self {
+        Tolerance {
+            step: self.step * factor,
+            ..self
+        }
+    }
+}
+
+impl Default for Tolerance {
+    fn default() -> Self {
+        Tolerance::new(TOLERANCE)
+    }
+}
+
+impl From<f64> for Tolerance {
+    fn from(step: f64) -> Self {
+        Tolerance::new(step)
+    }
+}
 
 /// A right-hand side with up to `K` event functions. Event `k` fires when `events(t, y)[k]`
 /// goes from positive to ≤ 0.
@@ -126,14 +172,14 @@ impl<const N: usize> Outcome<N> {
     }
 }
 
-/// Integrate `phase` from (t0, y0) to t1 with relative and absolute tolerance `tol`, stopping at
-/// the first event.
+/// Integrate `phase` from (t0, y0) to t1 with relative and absolute tolerance `tol` (and its
+/// limits, [`Tolerance`]), stopping at the first event.
 pub fn integrate_with<P: Phase<N, K>, const N: usize, const K: usize>(
     phase: &P,
     t0: f64,
     y0: SVector<f64, N>,
     t1: f64,
-    tol: f64,
+    tol: impl Into<Tolerance>,
 ) -> Result<Outcome<N>, IntegrationError> {
     integrate_on(phase, t0, y0, t1, tol, Mesh::Adaptive)
 }
@@ -152,24 +198,20 @@ pub enum Mesh<'a, const N: usize> {
     Shifted(&'a Segment<N>),
 }
 
-/// A frozen mesh is followed while every step's error estimate stays within this multiple of
-/// the tolerance; beyond it the step-size control takes over from that step on.
-pub const FROZEN_MESH_LIMIT: f64 = 2.0;
-
 /// [`integrate_with`] on the step sequence of `mesh` (a previous integration from the same t0,
 /// typically the previous shooting trial), so that the end state is a smooth function of the
 /// phase's parameters: an adaptive integrator's end state jumps by about its global error
 /// whenever a trial changes the step sequence, and in ill-conditioned phases (swing1 at the
 /// grid's corners) those jumps reach 1e3 times the tolerance and stall the shooting. The mesh
-/// is followed while each step's error estimate stays within [`FROZEN_MESH_LIMIT`] times the
-/// tolerance (and, past its end, the control takes over); `Outcome::adapted` tells whether any
+/// is followed while each step's error estimate stays within [`Tolerance::frozen_mesh`] times
+/// the tolerance (and, past its end, the control takes over); `Outcome::adapted` tells whether any
 /// step was chosen by the control, i.e. whether this integration's mesh should replace it.
 pub fn integrate_on<P: Phase<N, K>, const N: usize, const K: usize>(
     phase: &P,
     t0: f64,
     y0: SVector<f64, N>,
     t1: f64,
-    tol: f64,
+    tol: impl Into<Tolerance>,
     mesh: Mesh<'_, N>,
 ) -> Result<Outcome<N>, IntegrationError> {
     integrate_by(METHOD, phase, t0, y0, t1, tol, mesh)
@@ -183,10 +225,10 @@ pub(crate) fn integrate_trial<P: Phase<N, K>, const N: usize, const K: usize>(
     t0: f64,
     y0: SVector<f64, N>,
     t1: f64,
-    tol: f64,
+    tol: impl Into<Tolerance>,
     mesh: Mesh<'_, N>,
 ) -> Result<Outcome<N>, IntegrationError> {
-    stepping::run(METHOD, true, phase, t0, y0, t1, tol, mesh)
+    stepping::run(METHOD, true, phase, t0, y0, t1, tol.into(), mesh)
 }
 
 /// The Runge–Kutta pair of an integration.
@@ -210,10 +252,10 @@ pub fn integrate_by<P: Phase<N, K>, const N: usize, const K: usize>(
     t0: f64,
     y0: SVector<f64, N>,
     t1: f64,
-    tol: f64,
+    tol: impl Into<Tolerance>,
     mesh: Mesh<'_, N>,
 ) -> Result<Outcome<N>, IntegrationError> {
-    stepping::run(method, false, phase, t0, y0, t1, tol, mesh)
+    stepping::run(method, false, phase, t0, y0, t1, tol.into(), mesh)
 }
 
 /// Test problems with analytic solutions, shared by the integrator's tests.

@@ -8,10 +8,7 @@ use nalgebra::SVector;
 use super::dense::{DenseStep, Stages};
 use super::events;
 use super::tableau::{dop853, dopri5};
-use super::{FROZEN_MESH_LIMIT, IntegrationError, Mesh, Method, Outcome, Phase, Segment};
-
-/// Accepted steps allowed in one integration.
-const MAX_STEPS: usize = 100_000;
+use super::{IntegrationError, Mesh, Method, Outcome, Phase, Segment, Tolerance};
 
 // PI step-size controller (Hairer's DOPRI5 defaults, as in ode_solvers).
 const BETA: f64 = 0.04;
@@ -287,9 +284,10 @@ pub(super) fn run<P: Phase<N, K>, const N: usize, const K: usize>(
     t0: f64,
     y0: SVector<f64, N>,
     t1: f64,
-    tol: f64,
+    tolerance: Tolerance,
     mesh: Mesh<'_, N>,
 ) -> Result<Outcome<N>, IntegrationError> {
+    let tol = tolerance.step;
     if !y0.iter().all(|v| v.is_finite()) {
         return Err(IntegrationError::NonFiniteStart { t: t0 });
     }
@@ -317,9 +315,9 @@ pub(super) fn run<P: Phase<N, K>, const N: usize, const K: usize>(
     let mut reject = false;
     let mut hit = None;
     loop {
-        if steps.len() >= MAX_STEPS {
+        if steps.len() >= tolerance.max_steps {
             return Err(IntegrationError::TooManySteps {
-                limit: MAX_STEPS,
+                limit: tolerance.max_steps,
                 t,
             });
         }
@@ -347,11 +345,11 @@ pub(super) fn run<P: Phase<N, K>, const N: usize, const K: usize>(
             return Err(IntegrationError::NonFinite { t });
         }
         let following = next < follow.len();
-        if following && err > FROZEN_MESH_LIMIT {
+        if following && err > tolerance.frozen_mesh {
             next = follow.len();
             adapted = true;
         }
-        if err <= 1.0 || (following && err <= FROZEN_MESH_LIMIT) {
+        if err <= 1.0 || (following && err <= tolerance.frozen_mesh) {
             // PI control of the next step (needed only off the mesh: two `powf`)
             let (h_acc, err_old, rejected) = (h, fac_old, reject);
             let h_new = move || {
@@ -420,7 +418,7 @@ pub(super) fn run<P: Phase<N, K>, const N: usize, const K: usize>(
         pending,
     };
     if let Some(k) = hit {
-        evaluations += events::locate(phase, &mut segment, k);
+        evaluations += events::locate(phase, &mut segment, k, tolerance.event_time);
     }
     Ok(Outcome {
         segment,
