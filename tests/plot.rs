@@ -45,7 +45,7 @@ fn default_walk_figure_is_written_as_png_and_svg() {
     let dir = tempfile::tempdir().unwrap();
 
     let png = dir.path().join("walk.png");
-    walk_figure(&frames, &png).unwrap();
+    walk_figure(&frames, 4, &png).unwrap();
     let bytes = fs::read(&png).unwrap();
     assert_eq!(png_size(&bytes), (1600, 1000));
     assert_eq!(png_size(&bytes), FIGURE_SIZE);
@@ -53,7 +53,7 @@ fn default_walk_figure_is_written_as_png_and_svg() {
     assert!(bytes.len() > 20_000, "{} bytes", bytes.len());
 
     let svg = dir.path().join("walk.SVG");
-    walk_figure(&frames, &svg).unwrap();
+    walk_figure(&frames, 4, &svg).unwrap();
     let text = fs::read_to_string(&svg).unwrap();
     assert!(text.starts_with("<svg"), "{}", &text[..text.len().min(200)]);
     assert!(
@@ -67,7 +67,7 @@ fn default_walk_figure_is_written_as_png_and_svg() {
     assert!(polylines >= 2 * 22, "{polylines} polylines");
 
     // rewriting replaces the file; nothing else is left in the directory
-    walk_figure(&frames[..50], &png).unwrap();
+    walk_figure(&frames[..50], 1, &png).unwrap();
     assert_eq!(png_size(&fs::read(&png).unwrap()), (1600, 1000));
     assert_eq!(files(dir.path()), ["walk.SVG", "walk.png"]);
 }
@@ -79,7 +79,7 @@ fn unwritable_figure_path_errors_without_leaving_a_file() {
     let d = dir.path();
 
     for name in ["no/such/dir/w.png", "no/such/dir/w.svg"] {
-        let e = walk_figure(&frames, &d.join(name)).unwrap_err();
+        let e = walk_figure(&frames, 4, &d.join(name)).unwrap_err();
         assert!(
             matches!(
                 e,
@@ -96,13 +96,13 @@ fn unwritable_figure_path_errors_without_leaving_a_file() {
 
     // the path is a directory: the final rename fails, the temporary file is removed
     fs::create_dir(d.join("taken.png")).unwrap();
-    let e = walk_figure(&frames, &d.join("taken.png")).unwrap_err();
+    let e = walk_figure(&frames, 4, &d.join("taken.png")).unwrap_err();
     assert!(matches!(e, Error::Io { .. }), "{e:?}");
     assert_eq!(files(d), ["taken.png"]);
     assert!(fs::read_dir(d.join("taken.png")).unwrap().next().is_none());
 
     // an extension that is neither .png nor .svg is bad input, and nothing is written
-    let e = walk_figure(&frames, &d.join("walk.jpg")).unwrap_err();
+    let e = walk_figure(&frames, 4, &d.join("walk.jpg")).unwrap_err();
     assert!(
         matches!(e, Error::Input(InputError::Malformed { .. })),
         "{e:?}"

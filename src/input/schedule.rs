@@ -49,6 +49,16 @@ pub enum ScheduleError {
     Toml(#[source] toml::de::Error),
     #[error("header: {0}")]
     CsvHeader(#[source] CsvError),
+    /// A blank line before the last row of a CSV schedule: a CSV reader would skip it, and
+    /// with it the step the user may have meant (a step needs at least one value).
+    #[error(
+        "line {line} is blank: every line after the header is a step and needs at least one \
+         value (remove the line, or start it with # to make it a comment)"
+    )]
+    BlankLine {
+        /// The blank line (1-based).
+        line: usize,
+    },
     /// CSV row `row` (1-based, the header not counted).
     #[error("row {row}: {source}")]
     CsvRow { row: usize, source: CsvError },
@@ -115,7 +125,8 @@ fn within_step(step: usize) -> String {
 /// - a TOML file (`.toml`): `[[step]]` tables with any of `velocity` (m/s), `step_length` (m),
 ///   `step_frequency` (steps/min), no other keys;
 /// - a CSV file (`.csv`): a header naming any subset of those three columns, then one row per
-///   step; empty cells are absent values; lines starting with `#` are comments.
+///   step; empty cells are absent values; lines starting with `#` are comments; a blank line
+///   before the last step is an error ([`ScheduleError::BlankLine`]).
 ///
 /// Values are not range-checked here: that is `GaitRequest::complete`'s job.
 pub fn read_schedule(path: &Path) -> Result<Vec<GaitRequest>> {
@@ -208,6 +219,15 @@ fn parse_schedule_toml(text: &str) -> Result<Vec<GaitRequest>, ScheduleError> {
 }
 
 fn parse_schedule_csv(text: &str) -> Result<Vec<GaitRequest>, ScheduleError> {
+    let lines: Vec<&str> = text.lines().collect();
+    let last = lines.iter().rposition(|l| !l.trim().is_empty());
+    if let Some(last) = last
+        && let Some(blank) = lines[..last].iter().position(|l| l.trim().is_empty())
+    {
+        return Err(ScheduleError::BlankLine { line: blank + 1 });
+    }
+    // (the blank lines after the last step are the file's end, not empty steps)
+    let text = lines[..last.map_or(0, |l| l + 1)].join("\n");
     let mut reader = csv::ReaderBuilder::new()
         .has_headers(true)
         .trim(csv::Trim::All)
@@ -387,6 +407,12 @@ mod tests {
         assert!(m.contains("no steps"), "{m}");
         let m = schedule_error(d, "f.csv", "");
         assert!(m.contains("line 1") || m.contains("no steps"), "{m}");
+        // a blank line among the steps is refused, not skipped with its step; blank lines
+        // after the last step are the file's end
+        let m = schedule_error(d, "g.csv", "velocity\n1.4\n\n1.3\n");
+        assert!(m.contains("line 3 is blank"), "{m}");
+        let p = write_file(d, "h.csv", "velocity\n1.4\n1.3\n\n  \n");
+        assert_eq!(read_schedule(&p).unwrap().len(), 2);
 
         let m = schedule_error(
             d,

@@ -13,8 +13,8 @@ pub type Reason = Box<dyn Error + Send + Sync>;
 pub enum InputError {
     /// A number outside its valid range.
     #[error(
-        "{name} = {} {unit}{note} is out of range: valid range is [{}, {}] {unit}",
-        Shown(*value), Shown(*min), Shown(*max)
+        "{name} = {}{}{note} is out of range: valid range is [{}, {}]{}",
+        Shown(*value), spaced(unit), Shown(*min), Shown(*max), spaced(unit)
     )]
     OutOfRange {
         name: String,
@@ -143,6 +143,15 @@ impl InputError {
             path: path.to_path_buf(),
             reason: reason.into(),
         }
+    }
+}
+
+/// A unit after a number: ` m/s`, or nothing for a number without one.
+fn spaced(unit: &str) -> String {
+    if unit.is_empty() {
+        String::new()
+    } else {
+        format!(" {unit}")
     }
 }
 

@@ -18,8 +18,10 @@ use crate::plot::{
 pub const FIGURE_SIZE: (u32, u32) = (1600, 1000);
 /// Stick figures are drawn this often (s of walk time).
 pub(crate) const FIGURE_INTERVAL_S: f64 = 0.1;
-/// The side view shows at most this many steps (the first ones); the time plots show all.
-pub(crate) const SIDE_VIEW_MAX_STEPS: usize = 12;
+/// The figure shows at most this many steps, the walk's first: a longer walk would shrink the
+/// stick figures to nothing and fill the time plots solid, and the frames it holds stay
+/// bounded however long the walk.
+pub const FIGURE_STEPS: usize = 12;
 
 const HIP_PATH: RGBColor = RGBColor(150, 150, 150);
 const STEP_LINE: RGBColor = RGBColor(215, 215, 215);
@@ -36,22 +38,29 @@ const THETA_LABELS: [&str; 4] = [
     "θ4 swing knee flexion",
 ];
 
-/// Write the figure of a walk to `path` (PNG or SVG by its extension, 1600 × 1000 px): the
-/// side view on top, hip height (bottom left) and θ1..θ4 (bottom right) against time. The file is
-/// written whole or not at all; rendering and writing failures are `Error::Io { action: "writing" }`.
-pub fn walk_figure(frames: &[StateFrame], path: &Path) -> Result<()> {
+/// Write the figure of a walk of `steps` steps to `path` (PNG or SVG by its extension, 1600 ×
+/// 1000 px) from its `frames`: the side view on top, hip height (bottom left) and θ1..θ4
+/// (bottom right) against time, over the first [`FIGURE_STEPS`] steps of the frames (the title
+/// says so when the walk has more). The file is written whole or not at all; rendering and
+/// writing failures are `Error::Io { action: "writing" }`.
+pub fn walk_figure(frames: &[StateFrame], steps: usize, path: &Path) -> Result<()> {
     let format = plot::figure_format(path)?;
-    render_figure(frames, path, format, plot::text_available())
+    render_figure(frames, steps, path, format, plot::text_available())
 }
 
 /// `walk_figure` with the text switched on or off (off needs no font).
 fn render_figure(
     frames: &[StateFrame],
+    steps: usize,
     path: &Path,
     format: FigureFormat,
     text: bool,
 ) -> Result<()> {
-    let mut figure = WalkFigure { frames, text };
+    let mut figure = WalkFigure {
+        frames: shown_frames(frames),
+        steps,
+        text,
+    };
     plot::write_figure(
         &mut figure,
         path,
@@ -64,13 +73,15 @@ fn render_figure(
 
 struct WalkFigure<'a> {
     frames: &'a [StateFrame],
+    /// The walk's steps, shown or not.
+    steps: usize,
     text: bool,
 }
 
 impl Draw for WalkFigure<'_> {
     type Output = ();
     fn draw<DB: DrawingBackend>(&mut self, root: &DrawingArea<DB, Shift>) -> Drawn {
-        draw(root, self.frames, self.text)
+        draw(root, self.frames, self.steps, self.text)
     }
 }
 
@@ -141,12 +152,11 @@ fn step_starts(frames: &[StateFrame]) -> Vec<f64> {
         .collect()
 }
 
-/// The frames of the side view: its first [`SIDE_VIEW_MAX_STEPS`] steps (a long walk would
-/// shrink the stick figures to nothing).
-fn side_frames(frames: &[StateFrame]) -> &[StateFrame] {
+/// The frames the figure shows: those of their first [`FIGURE_STEPS`] steps.
+fn shown_frames(frames: &[StateFrame]) -> &[StateFrame] {
     match frames.first() {
         Some(first) => {
-            let n = frames.partition_point(|f| f.step < first.step + SIDE_VIEW_MAX_STEPS);
+            let n = frames.partition_point(|f| f.step < first.step + FIGURE_STEPS);
             &frames[..n.max(1)]
         }
         None => frames,
@@ -156,17 +166,17 @@ fn side_frames(frames: &[StateFrame]) -> &[StateFrame] {
 fn draw<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     frames: &[StateFrame],
+    steps: usize,
     text: bool,
 ) -> Drawn {
     root.fill(&WHITE).map_err(msg)?;
     let (w, _) = root.dim_in_pixel();
-    let side = side_frames(frames);
-    let title = side_title(frames, side);
-    let extent = side_extent(side);
+    let title = side_title(frames, steps);
+    let extent = side_extent(frames);
     let top_h = side_view_height(root, &title, extent, text)?;
     let (top, bottom) = root.split_vertically(top_h);
     let (left, right) = bottom.split_horizontally(w / 2);
-    side_view(&top, side, text, &title, extent)?;
+    side_view(&top, frames, text, &title, extent)?;
     let starts = step_starts(frames);
     let hip = vec![finite(frames.iter().map(|f| (f.time_s, f.hip_y_m)))];
     time_plot(
@@ -250,19 +260,18 @@ fn builder<'a, 'b, DB: DrawingBackend>(
     b
 }
 
-fn side_title(frames: &[StateFrame], side: &[StateFrame]) -> String {
-    match (frames.first(), frames.last(), side.last()) {
-        (Some(a), Some(b), Some(c)) => {
-            let steps = b.step + 1 - a.step.min(b.step);
-            let shown = if c.step == b.step {
-                String::new()
+fn side_title(frames: &[StateFrame], steps: usize) -> String {
+    match (frames.first(), frames.last()) {
+        (Some(a), Some(b)) => {
+            let shown = b.step + 1 - a.step.min(b.step);
+            let what = if shown < steps {
+                format!("steps 1–{shown} of {steps} shown,")
             } else {
-                format!(" (first {} shown)", c.step + 1 - a.step.min(c.step))
+                format!("{shown} step{}", if shown == 1 { "" } else { "s" })
             };
             format!(
-                "Side view: {steps} step{}{shown} in {:.2} s, hip advances {:.2} m. Legs every {} s \
+                "Side view: {what} in {:.2} s, hip advances {:.2} m. Legs every {} s \
                  (blue right, red left), grey hip path, dots at stance ankles",
-                if steps == 1 { "" } else { "s" },
                 b.time_s - a.time_s,
                 b.hip_x_m - a.hip_x_m,
                 FIGURE_INTERVAL_S
@@ -560,11 +569,16 @@ mod tests {
     }
 
     #[test]
-    fn side_view_title_tells_when_only_the_first_steps_are_shown() {
+    fn figure_title_tells_when_only_the_first_steps_are_shown() {
         let frames: Vec<StateFrame> = (0..=400).map(|k| frame(k as f64 / 20.0, k / 20)).collect();
-        let t = side_title(&frames, side_frames(&frames));
-        assert!(t.starts_with("Side view: 21 steps (first 12 shown)"), "{t}");
-        let t = side_title(&frames[..20], &frames[..20]);
+        let shown = shown_frames(&frames);
+        assert_eq!(shown.last().unwrap().step, FIGURE_STEPS - 1);
+        let t = side_title(shown, 21);
+        assert!(
+            t.starts_with("Side view: steps 1–12 of 21 shown, in"),
+            "{t}"
+        );
+        let t = side_title(&frames[..20], 1);
         assert!(t.starts_with("Side view: 1 step in"), "{t}");
     }
 
@@ -576,18 +590,19 @@ mod tests {
         let frames: Vec<StateFrame> = (0..=120).map(|k| frame(k as f64 / 100.0, k / 60)).collect();
         for (name, format) in [("w.png", FigureFormat::Png), ("w.svg", FigureFormat::Svg)] {
             let p = dir.path().join(name);
-            render_figure(&frames, &p, format, false).unwrap();
+            render_figure(&frames, 2, &p, format, false).unwrap();
             assert!(std::fs::metadata(&p).unwrap().len() > 1000);
         }
         // with text but no font registered, plotters fails: a drawing error, and no file
         let p = dir.path().join("t.png");
-        let e = render_figure(&frames, &p, FigureFormat::Png, true).unwrap_err();
+        let e = render_figure(&frames, 2, &p, FigureFormat::Png, true).unwrap_err();
         assert!(matches!(e, Error::Draw { .. }), "{e}");
         assert!(!p.exists());
         // degenerate input: no frames, one frame
-        render_figure(&[], &dir.path().join("e.png"), FigureFormat::Png, false).unwrap();
+        render_figure(&[], 0, &dir.path().join("e.png"), FigureFormat::Png, false).unwrap();
         render_figure(
             &frames[..1],
+            1,
             &dir.path().join("o.svg"),
             FigureFormat::Svg,
             false,

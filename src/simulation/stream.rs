@@ -20,8 +20,11 @@ pub struct Gather {
     pub reports: bool,
     /// Find the gait events of every step ([`Event`]).
     pub events: bool,
-    /// Sample the engine's state frames ([`StateFrame`]) at the stream's rate.
-    pub state_frames: bool,
+    /// Sample the engine's state frames ([`StateFrame`]) at the stream's rate for the first
+    /// this many steps: 0 for none, `usize::MAX` for every step (a figure of the walk needs
+    /// only its first steps, [`crate::plot::walk::FIGURE_STEPS`], and then holds a bounded
+    /// number of frames however long the walk).
+    pub state_frame_steps: usize,
     /// Compute the clinical angles of every frame, for the gait-cycle average.
     pub clinical: bool,
 }
@@ -50,7 +53,7 @@ pub struct WalkStream<'a> {
     pub max_iterations: usize,
     /// Gait events (with [`Gather::events`]).
     pub events: Vec<Event>,
-    /// The engine's state frames (with [`Gather::state_frames`]).
+    /// The engine's state frames (of the first [`Gather::state_frame_steps`] steps).
     pub state_frames: Vec<StateFrame>,
     /// Clinical angles of every frame (with [`Gather::clinical`]).
     pub clinical: Vec<Clinical>,
@@ -152,7 +155,7 @@ impl<'a> WalkStream<'a> {
         }
         let step = self.current.as_ref()?;
         let lm = landmarks(step, t, &self.walker.attrs).map_err(Error::from);
-        if self.gather.state_frames {
+        if step.index < self.gather.state_frame_steps {
             self.state_frames.push(step.frame(t, &step.stance_leg.foot));
         }
         if self.gather.clinical

@@ -6,6 +6,7 @@
 //! Points are numbered 0.. in product order (the `point` column); a shard `K/N` is the points
 //! with `point mod N = K − 1`. Writing and resuming the output files is [`output`], joining
 //! shards [`merge`].
+pub(crate) mod check;
 pub mod file;
 pub mod merge;
 pub mod output;

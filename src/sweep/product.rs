@@ -200,7 +200,8 @@ impl Sweep {
     }
 
     /// The inputs of the walk of point `k`; unswept quantities take the `klaw walk` defaults
-    /// (H 1.8 m, M 80 kg, 10 steps, v 1.4 m/s when no gait quantity is swept).
+    /// (H 1.8 m, M 80 kg, 10 steps; with no gait quantity swept, the request is empty and the
+    /// walk goes at the attributes' preferred velocity, [`super::run::run_walk`]).
     pub(crate) fn inputs(&self, k: usize) -> Inputs {
         let point = self.point(k);
         let mut inputs = Inputs {
@@ -226,9 +227,6 @@ impl Sweep {
                 Axis::Style => inputs.style = Some(x as usize),
                 Axis::Attribute(n) => inputs.attributes.push((n.clone(), x)),
             }
-        }
-        if inputs.request == GaitRequest::default() {
-            inputs.request.velocity = Some(1.4);
         }
         inputs.mass = match (inputs.mass_per_height2, mass) {
             (Some(k), _) => tidy(k * inputs.height * inputs.height),

@@ -1,4 +1,5 @@
 //! The walks of a sweep, run in parallel on the rayon pool a chunk at a time, each summarized.
+use crate::plan::gait::GaitRequest;
 use std::collections::BTreeMap;
 
 use rayon::prelude::*;
@@ -22,8 +23,8 @@ pub(crate) const CHUNK_PER_THREAD: usize = 32;
 impl Sweep {
     /// Walk point `k` and summarize it; a failure is recorded in the row, never returned.
     pub(crate) fn walk(&self, k: usize, table: &AttributeTable) -> Row {
-        let inputs = self.inputs(k);
-        let outcome = run_walk(&inputs, table);
+        let mut inputs = self.inputs(k);
+        let outcome = run_walk(&mut inputs, table);
         Row { inputs, outcome }
     }
 
@@ -60,8 +61,9 @@ impl Sweep {
     }
 }
 
-/// Simulate one walk and summarize it.
-pub(crate) fn run_walk(inputs: &Inputs, table: &AttributeTable) -> Result<Summary> {
+/// Simulate one walk and summarize it; a point that sweeps no gait quantity walks at its
+/// attributes' preferred velocity (a style's own speed), which becomes its requested velocity.
+pub(crate) fn run_walk(inputs: &mut Inputs, table: &AttributeTable) -> Result<Summary> {
     let steps = InputError::check_range("steps", inputs.steps, 1.0, MAX_STEPS as f64, "steps")?;
     if steps.fract() != 0.0 {
         return Err(InputError::NotWhole {
@@ -77,7 +79,12 @@ pub(crate) fn run_walk(inputs: &Inputs, table: &AttributeTable) -> Result<Summar
     };
     overrides.extend(inputs.attributes.iter().cloned());
     let attrs = table.resolve(&overrides, "--attr")?;
-    let gait = inputs.request.complete(&body, &attrs)?;
+    let gait = if inputs.request == GaitRequest::default() {
+        inputs.request.velocity = Some(attrs.preferred_velocity);
+        GaitRequest::preferred(&body, &attrs)?
+    } else {
+        inputs.request.complete(&body, &attrs)?
+    };
     let timing = Timing::new(gait.step_frequency)?;
     let walk = simulate(body, attrs, &vec![gait; steps as usize])?;
     let report = walk.report();

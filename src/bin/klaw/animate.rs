@@ -7,7 +7,8 @@ use klaw::Result;
 use klaw::plot::animation::{self, Options};
 
 use crate::args::GaitArgs;
-use crate::{check_output_dir, font_note};
+use crate::font_note;
+use crate::outputs::{self, Output};
 
 #[derive(Args)]
 pub(crate) struct AnimateArgs {
@@ -36,8 +37,7 @@ pub(crate) struct AnimateArgs {
 
 pub(crate) fn run(args: &AnimateArgs) -> Result<()> {
     let options = Options::new(args.fps, animation::parse_size(&args.size)?)?;
-    animation::check_path(&args.out)?;
-    check_output_dir(&args.out)?;
+    outputs::check(&[Output::new("out", &args.out, &["gif"])])?;
     let (walk, title) = args.walk.simulate(1)?;
     let summary = animation::animate_walk(&walk, &title, &args.out, &options)?;
     let mut out = std::io::stdout().lock();

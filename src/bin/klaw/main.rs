@@ -7,18 +7,17 @@ mod args;
 mod bench;
 mod failure;
 mod merge;
+mod outputs;
 mod plot;
 mod plot_sweep;
 mod sweep;
 mod walk;
 
-use std::path::Path;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use klaw::export::file::parent_dir;
+use klaw::Result;
 use klaw::model::InputError;
-use klaw::{Error, Result};
 
 const DEFAULT_HEIGHT: f64 = 1.8;
 const DEFAULT_MASS: f64 = 80.0;
@@ -171,7 +170,10 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Walk(args) => walk::run(&args),
         Command::Bench(args) => bench::run(&args),
-        Command::Sweep(args) => sweep::run(&args),
+        Command::Sweep(args) => match sweep::run(&args) {
+            Ok(false) => return ExitCode::FAILURE,
+            other => other.map(|_| ()),
+        },
         Command::Merge(args) => merge::run(&args),
         Command::PlotSweep(args) => plot_sweep::run(&args),
         Command::Plot(args) => plot::run(&args),
@@ -191,23 +193,6 @@ fn main() -> ExitCode {
 fn check_count(name: &str, value: i64, min: usize, max: usize, unit: &str) -> Result<usize> {
     InputError::check_range(name, value as f64, min as f64, max as f64, unit)?;
     Ok(value as usize)
-}
-
-/// Fail before simulating if an output file could not be created: its directory must exist.
-fn check_output_dir(path: &Path) -> Result<()> {
-    let dir = parent_dir(path);
-    if dir.is_dir() {
-        Ok(())
-    } else {
-        Err(Error::Io {
-            action: "writing",
-            path: path.to_path_buf(),
-            source: std::io::Error::new(
-                std::io::ErrorKind::NotFound,
-                format!("directory {} does not exist", dir.display()),
-            ),
-        })
-    }
 }
 
 /// `n` and the noun, singular for one: `1 step`, `2 steps`.

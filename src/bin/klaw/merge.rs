@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use clap::Args;
 use klaw::Result;
 
-use crate::check_output_dir;
+use crate::outputs::{self, Output};
 
 #[derive(Args)]
 pub(crate) struct MergeArgs {
@@ -20,7 +20,7 @@ pub(crate) struct MergeArgs {
 }
 
 pub(crate) fn run(args: &MergeArgs) -> Result<()> {
-    check_output_dir(&args.out)?;
+    outputs::check(&[Output::new("out", &args.out, outputs::SWEEP)])?;
     let stats = klaw::sweep::merge::merge(&args.out, &args.inputs, args.allow_missing)?;
     for path in &stats.cut_off {
         eprintln!(

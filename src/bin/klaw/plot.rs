@@ -3,13 +3,14 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
+use klaw::Result;
 use klaw::analysis::cycle::{GaitCycle, min_steps};
 use klaw::analysis::norms::NormTable;
 use klaw::plot::cycle::write_cycle_figure;
-use klaw::{Result, plot};
 
 use crate::args::GaitArgs;
-use crate::{check_output_dir, count, font_note};
+use crate::outputs::{self, Output};
+use crate::{count, font_note};
 
 #[derive(Args)]
 pub(crate) struct PlotArgs {
@@ -19,14 +20,13 @@ pub(crate) struct PlotArgs {
     #[arg(
         long,
         value_name = "FILE.png|FILE.svg",
-        default_value = "plots/gait-cycle.png"
+        default_value = "gait-cycle.png"
     )]
     out: PathBuf,
 }
 
 pub(crate) fn run(args: &PlotArgs) -> Result<()> {
-    plot::figure_format(&args.out)?;
-    check_output_dir(&args.out)?;
+    outputs::check(&[Output::new("out", &args.out, outputs::FIGURE)])?;
     let (walk, title) = args.walk.simulate(min_steps(true))?;
     let cycle = GaitCycle::from_walk(&walk)?;
     let norms = NormTable::builtin();

@@ -3,10 +3,11 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
+use klaw::Result;
 use klaw::plot::heat_map::heat_map;
-use klaw::{Result, plot};
 
-use crate::{check_output_dir, font_note};
+use crate::font_note;
+use crate::outputs::{self, Output};
 
 #[derive(Args)]
 pub(crate) struct PlotSweepArgs {
@@ -28,8 +29,7 @@ pub(crate) struct PlotSweepArgs {
 }
 
 pub(crate) fn run(args: &PlotSweepArgs) -> Result<()> {
-    plot::figure_format(&args.out)?;
-    check_output_dir(&args.out)?;
+    outputs::check(&[Output::new("out", &args.out, outputs::FIGURE)])?;
     let map = heat_map(&args.input, &args.x, &args.y, &args.column, &args.out)?;
     let failed = map.cells.iter().filter(|c| c.failed()).count();
     let note = font_note();

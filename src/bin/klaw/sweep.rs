@@ -10,7 +10,7 @@ use klaw::sweep::output::{self, RunStats};
 use klaw::sweep::{self as sw, Axis, Shard, Sweep};
 use klaw::{AttributeTable, Result};
 
-use crate::check_output_dir;
+use crate::outputs::{self, Output};
 
 #[derive(Args)]
 pub(crate) struct SweepArgs {
@@ -87,9 +87,10 @@ pub(crate) struct SweepArgs {
     out: PathBuf,
 }
 
-pub(crate) fn run(args: &SweepArgs) -> Result<()> {
-    sw::Format::from_path(&args.out)?;
-    check_output_dir(&args.out)?;
+/// Run the sweep; `Ok(false)` when it ran and every walk failed (exit status 1: their reasons
+/// are in the rows).
+pub(crate) fn run(args: &SweepArgs) -> Result<bool> {
+    outputs::check(&[Output::new("out", &args.out, outputs::SWEEP)])?;
     let shard = match &args.shard {
         Some(text) => Shard::parse(text)?,
         None => Shard::ALL,
@@ -120,7 +121,14 @@ pub(crate) fn run(args: &SweepArgs) -> Result<()> {
         stats.failed
     );
     let _ = writeln!(out, "rows: {}", args.out.display());
-    Ok(())
+    let all_failed = stats.computed > 0 && stats.failed == stats.computed;
+    if all_failed {
+        eprintln!(
+            "error: every walk of the sweep failed (the reasons are in the error column of {})",
+            args.out.display()
+        );
+    }
+    Ok(!all_failed)
 }
 
 /// The sweep of the sweep file's entries and the flags'.
@@ -155,7 +163,9 @@ fn build(args: &SweepArgs) -> Result<Sweep> {
         let (name, values) = sw::parse_attr(arg, &table)?;
         flags.push((Axis::Attribute(name), values));
     }
-    Ok(Sweep::build(file, flags)?)
+    let sweep = Sweep::build(file, flags)?;
+    sweep.check_values(&table)?;
+    Ok(sweep)
 }
 
 /// Run the sweep into --out, with a progress bar when stderr is a terminal and a line every 5 %

@@ -10,9 +10,11 @@ use klaw::simulation::stream::{Gather, WalkStream};
 use klaw::{Body, Result, export, plot};
 
 use crate::args::GaitArgs;
-use crate::{DEFAULT_FPS, MAX_FPS, MIN_FPS, check_output_dir, count, font_note};
+use crate::outputs::{self, Output};
+use crate::{DEFAULT_FPS, MAX_FPS, MIN_FPS, count, font_note};
 
-/// Frames are held in memory before they are written (≈ 200 bytes each): cap the count.
+/// Frames held in memory until the walk ends (--state-out, --cycle-out; ≈ 200 bytes each): cap
+/// the count.
 const MAX_FRAMES: f64 = 5_000_000.0;
 
 #[derive(Args)]
@@ -49,13 +51,14 @@ pub(crate) struct WalkArgs {
     )]
     out: PathBuf,
 
-    /// BVH: keep the root over the origin in the walking direction
+    /// BVH: keep the root over the origin in the walking direction (only with a .bvh --out)
     #[arg(long)]
     in_place: bool,
 
-    /// .mot/.sto: the OpenSim model whose coordinates are written
-    #[arg(long, value_name = "MODEL", default_value = "gait2392", value_parser = ["gait2392", "rajagopal2015"])]
-    opensim_model: String,
+    /// .mot/.sto: the OpenSim model whose coordinates are written [default: gait2392] (only
+    /// with a .mot or .sto --out)
+    #[arg(long, value_name = "MODEL", value_parser = ["gait2392", "rajagopal2015"])]
+    opensim_model: Option<String>,
 
     /// The engine's state per frame (θ1..θ4, w, hip and swing-leg points) as CSV [default: none]
     #[arg(long, value_name = "FILE.csv")]
@@ -70,12 +73,14 @@ pub(crate) struct WalkArgs {
     #[arg(long, value_name = "FILE.csv")]
     cycle_out: Option<PathBuf>,
 
-    /// Figure of the walk to write: PNG or SVG by the extension
+    /// Figure of the walk to write: PNG or SVG by the extension [default: --out with .png]
     #[arg(
         long,
         value_name = "FILE.png|FILE.svg",
-        default_value = "walk.png",
-        long_help = "Figure of the walk to write, 1600 × 1000 px, PNG or SVG by the extension (.png or .svg):\n\
+        long_help = "Figure of the walk to write, 1600 × 1000 px, PNG or SVG by the extension (.png or .svg);\n\
+            by default the --out path with the extension .png (walk.png for walk.csv). It shows the\n\
+            first 12 steps (the title says so when the walk has more), so that its memory and its\n\
+            panels stay bounded however long the walk:\n\
             a side view of the legs as stick figures every 0.1 s over the ground (metres, equal\n\
             aspect ratio; blue the right leg, red the left), the hip height against time and the\n\
             joint angles θ1..θ4 in degrees against time. Titles, tick labels and legends need a\n\
@@ -83,7 +88,7 @@ pub(crate) struct WalkArgs {
             (/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf); without one the figure is drawn\n\
             without text. Written whole or not at all, after the CSV and the report."
     )]
-    plot: PathBuf,
+    plot: Option<PathBuf>,
 
     /// Do not write the figure
     #[arg(long, conflicts_with = "plot")]
@@ -105,38 +110,43 @@ pub(crate) fn run(args: &WalkArgs) -> Result<()> {
     let body = args.gait.body()?;
     let attrs = args.gait.attributes()?;
     let gaits = args.gait.gaits(&body, &attrs)?;
-    let format = export::Format::from_path(&args.out)?;
     let plot = check_outputs(args, gaits.len())?;
+    let format = export::Format::from_path(&args.out)?;
+    let options = options(args, format)?;
     let gather = Gather {
         reports: args.report.is_some(),
         events: args.events.is_some(),
-        state_frames: plot.is_some() || args.state_out.is_some(),
+        state_frame_steps: match (&args.state_out, &plot) {
+            (Some(_), _) => usize::MAX,
+            (None, Some(_)) => plot::walk::FIGURE_STEPS,
+            (None, None) => 0,
+        },
         clinical: args.cycle_out.is_some(),
     };
-    if gather.state_frames {
-        // the state frames are kept for the figure: refuse a count that would not fit in memory
-        // (the walk lasts Σ 60 / sf)
+    if args.state_out.is_some() || args.cycle_out.is_some() {
+        // every frame's state or clinical angles are held until the walk ends: refuse a count
+        // that would not fit in memory (the walk lasts Σ 60 / sf)
         let duration: f64 = gaits.iter().map(|g| 60.0 / g.step_frequency).sum();
         InputError::check_range(
-            "frame count with --plot or --state-out (duration · fps + 1)",
+            "frame count with --state-out or --cycle-out (duration · fps + 1)",
             (duration * fps).round() + 1.0,
             1.0,
             MAX_FRAMES,
-            "frames; use --no-plot for longer walks",
+            "frames",
         )?;
     }
     let mut stream = WalkStream::new(body, attrs, &gaits, fps, gather);
-    export::try_write(&args.out, format, &body, fps, &mut stream, &options(args))?;
+    export::try_write(&args.out, format, &body, fps, &mut stream, &options)?;
     stream.finish();
-    write_outputs(args, &body, &mut stream, plot)?;
-    print_summary(args, &stream, fps, plot);
+    write_outputs(args, &body, &mut stream, plot.as_deref())?;
+    print_summary(args, &stream, fps, plot.as_deref());
     Ok(())
 }
 
-/// Refuse, before anything is simulated, a cycle output of too short a walk, an unknown figure
-/// format, an output in a missing directory and two outputs to one file; the figure's path
-/// unless --no-plot.
-fn check_outputs(args: &WalkArgs, steps: usize) -> Result<Option<&Path>> {
+/// Refuse, before anything is simulated, a cycle output of too short a walk and any output
+/// that could not be written ([`outputs::check`]); the figure's path unless --no-plot (by
+/// default the motion file's with `.png`).
+fn check_outputs(args: &WalkArgs, steps: usize) -> Result<Option<PathBuf>> {
     let least = klaw::analysis::cycle::min_steps(false);
     if args.cycle_out.is_some() && steps < least {
         let reason = format!(
@@ -145,38 +155,51 @@ fn check_outputs(args: &WalkArgs, steps: usize) -> Result<Option<&Path>> {
         );
         return Err(InputError::bad_value("cycle-out", reason).into());
     }
-    let plot = (!args.no_plot).then_some(args.plot.as_path());
+    let plot = (!args.no_plot).then(|| {
+        args.plot
+            .clone()
+            .unwrap_or_else(|| args.out.with_extension("png"))
+    });
     let outputs = [
-        Some((args.out.as_path(), "--out")),
-        args.report.as_deref().map(|p| (p, "--report")),
-        plot.map(|p| (p, "--plot")),
-        args.state_out.as_deref().map(|p| (p, "--state-out")),
-        args.events.as_deref().map(|p| (p, "--events")),
-        args.cycle_out.as_deref().map(|p| (p, "--cycle-out")),
+        Some(Output::new("out", &args.out, outputs::MOTION)),
+        args.report
+            .as_deref()
+            .map(|p| Output::new("report", p, outputs::JSON)),
+        plot.as_deref()
+            .map(|p| Output::new("plot", p, outputs::FIGURE)),
+        args.state_out
+            .as_deref()
+            .map(|p| Output::new("state-out", p, outputs::CSV)),
+        args.events
+            .as_deref()
+            .map(|p| Output::new("events", p, outputs::CSV)),
+        args.cycle_out
+            .as_deref()
+            .map(|p| Output::new("cycle-out", p, outputs::CSV)),
     ];
-    let outputs: Vec<(&Path, &str)> = outputs.into_iter().flatten().collect();
-    if let Some(plot) = plot {
-        plot::figure_format(plot)?;
-    }
-    for (i, (path, flag)) in outputs.iter().enumerate() {
-        check_output_dir(path)?;
-        if let Some((_, other)) = outputs[..i].iter().find(|(p, _)| p == path) {
-            let reason = format!("{other} and {flag} name the same file");
-            return Err(InputError::malformed("output path", path, reason).into());
-        }
-    }
+    let outputs: Vec<Output> = outputs.into_iter().flatten().collect();
+    outputs::check(&outputs)?;
     Ok(plot)
 }
 
-/// The export choices of the flags.
-fn options(args: &WalkArgs) -> export::Options {
-    export::Options {
+/// The export choices of the flags; a choice the motion file's format does not use is refused.
+fn options(args: &WalkArgs, format: export::Format) -> Result<export::Options> {
+    use export::Format::{Bvh, Mot, Sto};
+    if args.in_place && format != Bvh {
+        let reason = "applies to a .bvh --out only (the root kept over the origin)";
+        return Err(InputError::bad_value("in-place", reason).into());
+    }
+    if args.opensim_model.is_some() && !matches!(format, Mot | Sto) {
+        let reason = "applies to a .mot or .sto --out only (the OpenSim model's coordinates)";
+        return Err(InputError::bad_value("opensim-model", reason).into());
+    }
+    Ok(export::Options {
         in_place: args.in_place,
-        opensim_model: match args.opensim_model.as_str() {
-            "rajagopal2015" => export::OpenSimModel::Rajagopal2015,
+        opensim_model: match args.opensim_model.as_deref() {
+            Some("rajagopal2015") => export::OpenSimModel::Rajagopal2015,
             _ => export::OpenSimModel::Gait2392,
         },
-    }
+    })
 }
 
 /// Write what the walk gathered besides the motion: report, state, events, cycle and figure.
@@ -206,7 +229,7 @@ fn write_outputs(
         export::write_cycle_csv(path, &curves)?;
     }
     if let Some(plot) = plot {
-        plot::walk::walk_figure(&stream.state_frames, plot)?;
+        plot::walk::walk_figure(&stream.state_frames, stream.steps, plot)?;
     }
     Ok(())
 }

@@ -1,0 +1,130 @@
+//! A sweep's values checked before any walk runs: each against the range it has whatever the
+//! other values of its point (issue 14 class 3). A value outside it cannot be walked by any point
+//! and is bad input; a point whose values each lie in range but do not go together (a derived
+//! step length outside its body's limits, a velocity outside its own attributes' limits) is a
+//! failed row of the sweep, with the reason.
+use super::product::{Axis, Sweep};
+use crate::model::InputError;
+use crate::model::attributes::AttributeTable;
+use crate::model::body::{Body, BodyTable};
+
+impl Sweep {
+    /// Check every value against the range it has whatever the rest of its point (the module
+    /// doc); the first outside it is the error, naming the quantity, the value and the range.
+    pub fn check_values(&self, table: &AttributeTable) -> Result<(), InputError> {
+        check_values(self, table)
+    }
+}
+
+fn check_values(sweep: &Sweep, table: &AttributeTable) -> Result<(), InputError> {
+    for (axis, values) in &sweep.axes {
+        let Some((min, max, unit, why)) = range(axis, table) else {
+            continue;
+        };
+        for &x in values {
+            InputError::check_range(axis.name(), x, min, max, unit)
+                .map_err(|e| e.with_note(&format!("a value of the sweep; {why}")))?;
+        }
+    }
+    Ok(())
+}
+
+/// The range of a value of `axis` whatever the rest of its point: the gait's loosest anatomical
+/// limits (the widest the limit attributes may be set to, over the body table's heights for the
+/// step length), the body table's height and mass, the mass per height² that some height of the
+/// table makes a mass of the table, 1 to 1 000 000 steps, an attribute's own range. `None` for a
+/// style (checked by name when parsed).
+fn range(axis: &Axis, table: &AttributeTable) -> Option<(f64, f64, &'static str, &'static str)> {
+    let spec = |name: &str| &table.0[name];
+    let body = BodyTable::builtin();
+    let [hmin, hmax] = body.limits.height;
+    let [mmin, mmax] = body.limits.mass;
+    let leg = |h: f64| Body::new(&body, h, mmin).map_or(f64::NAN, |b| b.l1);
+    Some(match axis {
+        Axis::Velocity => (
+            spec("velocity_min").min,
+            spec("velocity_max").max,
+            "m/s",
+            "the widest [velocity_min, velocity_max] the attributes allow",
+        ),
+        Axis::StepFrequency => (
+            spec("step_frequency_min").min,
+            spec("step_frequency_max").max,
+            "steps/min",
+            "the widest [step_frequency_min, step_frequency_max] the attributes allow",
+        ),
+        Axis::StepLength => (
+            spec("step_length_min").min * leg(hmin),
+            spec("step_length_max").max * leg(hmax),
+            "m",
+            "the widest [step_length_min, step_length_max] leg lengths the attributes allow, \
+             for the shortest and the tallest body",
+        ),
+        Axis::Height => (hmin, hmax, "m", "the body table's heights"),
+        Axis::Mass => (mmin, mmax, "kg", "the body table's masses"),
+        Axis::MassPerHeight2 => (
+            mmin / (hmax * hmax),
+            mmax / (hmin * hmin),
+            "kg/m²",
+            "some height of the body table must make it a mass of the table",
+        ),
+        Axis::Steps => (1.0, super::run::MAX_STEPS as f64, "steps", "a walk's steps"),
+        Axis::Attribute(name) => {
+            let s = spec(name);
+            (
+                s.min,
+                s.max,
+                "",
+                "the attribute's range (models/attributes.toml)",
+            )
+        }
+        Axis::Style => return None,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sweep(axis: Axis, values: Vec<f64>) -> Sweep {
+        Sweep::build(Vec::new(), vec![(axis, values)]).unwrap()
+    }
+
+    /// A value outside its range is refused with the range; a value just inside passes, and
+    /// the ranges agree with what a walk accepts (the body table, the attribute table).
+    #[test]
+    fn values_outside_their_range_are_refused() {
+        let table = AttributeTable::builtin();
+        let bad = |axis: Axis, x: f64| {
+            check_values(&sweep(axis, vec![1.0, x]), &table)
+                .unwrap_err()
+                .to_string()
+        };
+        let m = bad(Axis::Velocity, -1.0);
+        assert!(
+            m.contains("velocity = -1 m/s") && m.contains("[0.1, 3]"),
+            "{m}"
+        );
+        assert!(bad(Axis::Mass, -80.0).contains("mass = -80 kg"));
+        assert!(bad(Axis::Height, 1.0).contains("height = 1 m"));
+        assert!(bad(Axis::Steps, 0.0).contains("steps = 0"));
+        let m = bad(Axis::Attribute("bounciness".into()), 5.0);
+        assert!(
+            m.contains("bounciness = 5") && m.contains("[0.05, 0.88]"),
+            "{m}"
+        );
+        // the body table's limits are those of Body::standard
+        let body = BodyTable::builtin();
+        let [hmin, hmax] = body.limits.height;
+        assert!(Body::standard(hmin, 80.0).is_ok() && Body::standard(hmin - 1e-3, 80.0).is_err());
+        for h in [hmin, hmax] {
+            assert!(check_values(&sweep(Axis::Height, vec![h]), &table).is_ok());
+        }
+        // the step length's bound is the tallest leg's longest step
+        let (_, max, ..) = range(&Axis::StepLength, &table).unwrap();
+        let tall = Body::standard(hmax, 80.0).unwrap();
+        assert!((max - 1.6 * tall.l1).abs() < 1e-12, "{max}");
+        // a style is not range-checked here
+        assert!(range(&Axis::Style, &table).is_none());
+    }
+}
