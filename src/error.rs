@@ -32,17 +32,24 @@ pub enum Error {
     /// Reading or writing a file failed.
     #[error("{action} {path}: {source}")]
     Io {
+        /// What was being done: `reading` or `writing`.
         action: &'static str,
+        /// The file's path.
         path: PathBuf,
+        /// The I/O error.
         source: std::io::Error,
     },
     /// A figure (`what`) that cannot be drawn, so `path` is not written.
     #[error("writing {path}: drawing {what}: {source}")]
     Draw {
+        /// The file not written.
         path: PathBuf,
+        /// The figure, in words.
         what: &'static str,
+        /// Why it cannot be drawn.
         source: DrawError,
     },
 }
 
+/// A result of the crate, [`Error`] by default.
 pub type Result<T, E = Error> = std::result::Result<T, E>;

@@ -31,6 +31,8 @@
 //! # Ok::<(), klaw::Error>(())
 //! ```
 
+#![warn(missing_docs)]
+
 // The levels of the control hierarchy, lowest first; a module imports only from lower levels.
 // 1, numerics: ODE integration, root finding, trigonometry.
 pub mod numerics;

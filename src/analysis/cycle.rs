@@ -54,18 +54,29 @@ pub enum CycleError {
     Frame(#[from] FigureError),
     /// Not one time per frame.
     #[error("{times} frame times for {frames} frames")]
-    FrameCount { times: usize, frames: usize },
+    FrameCount {
+        /// The frame times given.
+        times: usize,
+        /// The frames given.
+        frames: usize,
+    },
     /// A frame with another number of values than the first.
     #[error("frame {frame} has {values} values, frame 0 has {width}")]
     FrameWidth {
+        /// The frame's index, from 0.
         frame: usize,
+        /// Its number of values.
         values: usize,
+        /// The first frame's number of values.
         width: usize,
     },
+    /// Frame times not finite and strictly increasing.
     #[error("frame times must be finite and strictly increasing")]
     Times,
+    /// Right heel strike times not finite and strictly increasing.
     #[error("right heel strike times must be finite and strictly increasing")]
     HeelStrikes,
+    /// No frame was given.
     #[error("no frames to average")]
     NoFrames,
     /// No cycle between two heel strikes, after the first `skip`, lies within the frames'
@@ -78,9 +89,13 @@ pub enum CycleError {
         strikes.saturating_sub(1), skip + 2, 2 * skip + 3, 2 * skip + 4
     )]
     NoSteadyCycle {
+        /// The right heel strikes given.
         strikes: usize,
+        /// The cycles skipped as the start-up.
         skip: usize,
+        /// The first frame's time (in s).
         t_first: f64,
+        /// The last frame's time (in s).
         t_last: f64,
     },
 }

@@ -17,23 +17,33 @@ pub enum SimulationError {
         "step {step}, {phase}: shooting did not converge: residual {residual:.3e} after {iterations} trial integrations"
     )]
     NotConverged {
+        /// The step's index, from 0.
         step: usize,
+        /// The phase that failed (see [`SimulationError`]).
         phase: &'static str,
+        /// The max-norm of the end-condition residual at the last point.
         residual: f64,
+        /// The trial integrations spent, finite-difference trials included.
         iterations: usize,
     },
     /// A shooting solve returned no point: bad options, or its first trial integration failed.
     #[error("step {step}, {phase}: integration failed: {source}")]
     Integration {
+        /// The step's index, from 0.
         step: usize,
+        /// The phase that failed (see [`SimulationError`]).
         phase: &'static str,
+        /// Why the solve returned no point.
         source: SolveError,
     },
     /// The step breaks an invariant.
     #[error("step {step}, {phase}: {source}")]
     Invariant {
+        /// The step's index, from 0.
         step: usize,
+        /// The phase that failed (see [`SimulationError`]).
         phase: &'static str,
+        /// The invariant broken.
         source: Invariant,
     },
 }
@@ -47,14 +57,25 @@ pub enum Invariant {
     Geometry(#[from] GeometryError),
     /// The hip goes below its heel-strike height, by `depth` (m).
     #[error("the hip drops {depth:.3e} m below its heel-strike height")]
-    HipDrops { depth: f64 },
+    HipDrops {
+        /// How far below (in m).
+        depth: f64,
+    },
     /// The toe's mid-swing clearance (m) is not positive.
     #[error("the toe touches the ground in mid swing (clearance {clearance:.3e} m)")]
-    ToeTouches { clearance: f64 },
+    ToeTouches {
+        /// The least clearance in mid swing (in m).
+        clearance: f64,
+    },
     /// A point of the swing foot goes `depth` (m) under the ground at `at` (fraction of the
     /// swing).
     #[error("the swing foot goes {depth:.3e} m under the ground at {:.0} % of the swing", 100.0 * at)]
-    FootUnderGround { depth: f64, at: f64 },
+    FootUnderGround {
+        /// How far under (in m).
+        depth: f64,
+        /// Where in the swing (fraction of the swing, 0 to 1).
+        at: f64,
+    },
 }
 
 impl SimulationError {

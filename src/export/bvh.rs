@@ -463,51 +463,106 @@ pub struct JointPose {
 /// Why BVH text cannot be parsed (tokens are counted from 1).
 #[derive(Debug, thiserror::Error)]
 pub enum ParseError {
+    /// The text ends inside the hierarchy.
     #[error("unexpected end of file")]
     UnexpectedEnd,
+    /// A token other than the one the hierarchy needs.
     #[error("expected `{want}`, found `{found}` (token {token})")]
     Expected {
+        /// The token needed.
         want: &'static str,
+        /// The token found.
         found: String,
+        /// Its place, from 1.
         token: usize,
     },
+    /// A token that is not a finite number where one is needed.
     #[error("expected a number, found `{found}` (token {token})")]
-    NotANumber { found: String, token: usize },
+    NotANumber {
+        /// The token found.
+        found: String,
+        /// Its place, from 1.
+        token: usize,
+    },
+    /// A channel count that is not a whole number from 0 to 6.
     #[error("joint {joint}: channel count {count} is not 0…6")]
-    ChannelCount { joint: String, count: f64 },
+    ChannelCount {
+        /// The joint's name.
+        joint: String,
+        /// The count given.
+        count: f64,
+    },
+    /// A channel name that is not a position or rotation axis.
     #[error("joint {joint}: unknown channel `{channel}`")]
-    UnknownChannel { joint: String, channel: String },
+    UnknownChannel {
+        /// The joint's name.
+        joint: String,
+        /// The channel's name.
+        channel: String,
+    },
+    /// A token in a joint that is neither `JOINT`, `End` nor `}`.
     #[error("joint {joint}: unexpected `{found}` (token {token})")]
     InJoint {
+        /// The joint's name.
         joint: String,
+        /// The token found.
         found: String,
+        /// Its place, from 1.
         token: usize,
     },
+    /// No `MOTION` in the text.
     #[error("no MOTION section")]
     NoMotion,
+    /// Tokens between the root joint's end and `MOTION`.
     #[error("unexpected `{found}` after the root joint")]
-    AfterRoot { found: String },
+    AfterRoot {
+        /// The first of them.
+        found: String,
+    },
+    /// Nothing after `MOTION`.
     #[error("no `Frames:` line")]
     NoFrameCount,
+    /// A `Frames:` line without a whole number.
     #[error("bad frame count line `{line}`")]
-    FrameCount { line: String },
+    FrameCount {
+        /// The line.
+        line: String,
+    },
+    /// No line after the `Frames:` line.
     #[error("no `Frame Time:` line")]
     NoFrameTime,
+    /// A `Frame Time:` line without a positive finite number.
     #[error("bad frame time line `{line}`")]
-    FrameTime { line: String },
+    FrameTime {
+        /// The line.
+        line: String,
+    },
+    /// A frame value that is not a number.
     #[error("frame {frame}: {source}")]
     Value {
+        /// The frame's index, from 0.
         frame: usize,
+        /// The number parser's error.
         source: ParseFloatError,
     },
+    /// A frame with another number of values than the hierarchy has channels.
     #[error("frame {frame}: {values} values where the hierarchy has {channels} channels")]
     FrameWidth {
+        /// The frame's index, from 0.
         frame: usize,
+        /// Its number of values.
         values: usize,
+        /// The hierarchy's channels.
         channels: usize,
     },
+    /// Another number of frame lines than `Frames:` declares.
     #[error("`Frames: {declared}` but {found} frame lines")]
-    FrameLines { declared: usize, found: usize },
+    FrameLines {
+        /// The frames declared.
+        declared: usize,
+        /// The frame lines found.
+        found: usize,
+    },
 }
 
 struct Tokens<'a> {

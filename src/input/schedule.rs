@@ -39,14 +39,19 @@ pub enum ScheduleError {
         source.message().trim_end()
     )]
     TomlAt {
+        /// The line of the error, from 1.
         line: usize,
+        /// Its column, from 1.
         column: usize,
+        /// The `[[step]]` table it is in, from 1; 0 before the first.
         step: usize,
+        /// The TOML parser's error.
         source: toml::de::Error,
     },
     /// The same where TOML gives no position.
     #[error("{}", .0.message().trim_end())]
     Toml(#[source] toml::de::Error),
+    /// A CSV header that cannot be read.
     #[error("header: {0}")]
     CsvHeader(#[source] CsvError),
     /// A blank line before the last row of a CSV schedule: a CSV reader would skip it, and
@@ -61,15 +66,30 @@ pub enum ScheduleError {
     },
     /// CSV row `row` (1-based, the header not counted).
     #[error("row {row}: {source}")]
-    CsvRow { row: usize, source: CsvError },
-    /// A header column (1-based) that is not one of [`SCHEDULE_FIELDS`].
+    CsvRow {
+        /// The row, from 1.
+        row: usize,
+        /// Why it cannot be read.
+        source: CsvError,
+    },
+    /// A header column (1-based) that is not `velocity`, `step_length` or `step_frequency`.
     #[error(
         "line 1: unknown column `{name}` (column {column}); the columns are {}",
         SCHEDULE_FIELDS.join(", ")
     )]
-    UnknownColumn { name: String, column: usize },
+    UnknownColumn {
+        /// The column's name.
+        name: String,
+        /// Its place in the header, from 1.
+        column: usize,
+    },
+    /// A header column named twice.
     #[error("line 1: column `{name}` appears twice")]
-    RepeatedColumn { name: String },
+    RepeatedColumn {
+        /// The column's name.
+        name: String,
+    },
+    /// A header with no column.
     #[error(
         "line 1: the header names no column; the columns are {}",
         SCHEDULE_FIELDS.join(", ")
@@ -78,21 +98,32 @@ pub enum ScheduleError {
     /// A cell of `field` in row `row` (at `line` of the file) that is not a number.
     #[error("row {row} (line {line}): {field} `{cell}` is not a number")]
     NotANumber {
+        /// The row, from 1.
         row: usize,
+        /// The line of the file, from 1.
         line: usize,
+        /// The cell's column.
         field: &'static str,
+        /// The cell's text, trimmed.
         cell: String,
     },
+    /// A path whose extension is neither `.toml` nor `.csv`.
     #[error(
         "unrecognised file extension: a schedule is a .toml file ([[step]] tables) or a .csv \
          file (columns velocity, step_length, step_frequency)"
     )]
     Extension,
+    /// A schedule without a row.
     #[error("the schedule has no steps")]
     NoSteps,
     /// Row `step` (1-based) cannot be completed to a gait.
     #[error("step {step}: {source}")]
-    Step { step: usize, source: InputError },
+    Step {
+        /// The row, from 1.
+        step: usize,
+        /// Why it cannot be completed.
+        source: InputError,
+    },
 }
 
 /// A CSV record of a schedule that cannot be read.
@@ -104,10 +135,14 @@ pub enum CsvError {
         line.map_or(String::new(), |l| format!(" (line {l})"))
     )]
     UnequalLengths {
+        /// The record's cells.
         len: u64,
+        /// The header's cells.
         expected: u64,
+        /// The record's line, from 1, where the CSV reader knows it.
         line: Option<u64>,
     },
+    /// Any other error of the CSV reader.
     #[error(transparent)]
     Csv(csv::Error),
 }

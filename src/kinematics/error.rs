@@ -10,5 +10,10 @@ pub enum GeometryError {
         "the rolling foot cannot reach the hip: hip–ankle distance {distance:.4} m for knee flexion {:.1}° is out of reach",
         knee_flexion.to_degrees()
     )]
-    RollingFootOutOfReach { distance: f64, knee_flexion: f64 },
+    RollingFootOutOfReach {
+        /// The hip–ankle distance the knee flexion gives (in m).
+        distance: f64,
+        /// The prescribed knee flexion (in rad).
+        knee_flexion: f64,
+    },
 }

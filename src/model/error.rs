@@ -17,10 +17,15 @@ pub enum InputError {
         Shown(*value), spaced(unit), Shown(*min), Shown(*max), spaced(unit)
     )]
     OutOfRange {
+        /// The quantity's name.
         name: String,
+        /// The value given (in `unit`).
         value: f64,
+        /// Valid range's lower end (in `unit`).
         min: f64,
+        /// Valid range's upper end (in `unit`).
         max: f64,
+        /// The unit of `value`, `min` and `max`.
         unit: String,
         /// Where the value came from when the user did not give it, as ` (…)`: derived by the
         /// normalizing formula, or a default; empty for a value given as it is.
@@ -28,10 +33,20 @@ pub enum InputError {
     },
     /// NaN or infinity where a number was expected.
     #[error("{name} is {value}: a finite number is required")]
-    NotFinite { name: String, value: f64 },
+    NotFinite {
+        /// The quantity's name.
+        name: String,
+        /// The value given: NaN or ±infinity.
+        value: f64,
+    },
     /// A count that is not a whole number.
     #[error("{name} = {value} is not a whole number")]
-    NotWhole { name: &'static str, value: f64 },
+    NotWhole {
+        /// The count's name.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+    },
     /// v, sl and sf all given but v ≠ sl·sf/60.
     #[error(
         "inconsistent gait: velocity {} m/s, step length {} m and step frequency {} steps/min \
@@ -39,10 +54,15 @@ pub enum InputError {
         Shown(*velocity), Shown(*step_length), Shown(*step_frequency)
     )]
     Inconsistent {
+        /// The velocity given (in m/s).
         velocity: f64,
+        /// The step length given (in m).
         step_length: f64,
+        /// The step frequency given (in steps/min).
         step_frequency: f64,
+        /// The velocity that step length and frequency imply, sl·sf/60 (in m/s).
         implied: f64,
+        /// The largest relative difference allowed between `velocity` and `implied` (in %).
         tolerance_pct: f64,
     },
     /// The gait leaves no double support (KLAW 1989 eq. 2): that is running, not walking.
@@ -51,29 +71,47 @@ pub enum InputError {
          walking needs sf < 181.75 steps/min",
         Shown(*step_frequency)
     )]
-    NoDoubleSupport { step_frequency: f64, t_ds: f64 },
+    NoDoubleSupport {
+        /// The step frequency (in steps/min).
+        step_frequency: f64,
+        /// The double-support time it gives, zero or negative (in s).
+        t_ds: f64,
+    },
     /// A step too long for the leg: the swing heel cannot reach the ground at heel strike (the
     /// step constraints, spec §3).
     #[error("step length {} m: the swing heel cannot reach the ground", Shown(*step_length))]
-    StepTooLong { step_length: f64 },
+    StepTooLong {
+        /// The step length (in m).
+        step_length: f64,
+    },
     /// Neither velocity, step length nor step frequency was given.
     #[error("no gait given: give at least one of velocity, step length, step frequency")]
     MissingGait,
     /// An attribute name that the model does not know.
     #[error("unknown attribute `{name}` in {source_name}; known attributes: {known}")]
     UnknownAttribute {
+        /// The name given.
         name: String,
+        /// Where the name came from: an attribute file, a style, `--attr`.
         source_name: String,
+        /// The known attributes, comma-separated.
         known: String,
     },
     /// A style preset that does not exist; `known` lists the presets.
     #[error("unknown style `{name}`; the styles are {known}")]
-    UnknownStyle { name: String, known: String },
+    UnknownStyle {
+        /// The name given.
+        name: String,
+        /// The presets, comma-separated.
+        known: String,
+    },
     /// A value given for a parameter (a flag of the command line without its dashes, a key of a
     /// sweep file) that cannot be used.
     #[error("{parameter}: {reason}")]
     BadValue {
+        /// The parameter's name.
         parameter: String,
+        /// Why the value cannot be used.
         #[source]
         reason: Reason,
     },
@@ -81,8 +119,11 @@ pub enum InputError {
     /// extension names no format.
     #[error("malformed {what} {path}: {reason}")]
     Malformed {
+        /// What the file is, in words (`schedule`, `sweep file`, `BVH file`, …).
         what: &'static str,
+        /// The file's path.
         path: PathBuf,
+        /// Why it cannot be parsed.
         #[source]
         reason: Reason,
     },

@@ -13,31 +13,60 @@ pub enum SweepFileError {
     /// Not a TOML table.
     #[error("{}", .0.to_string().trim_end())]
     Toml(#[source] toml::de::Error),
-    /// A key that is neither a quantity of [`QUANTITIES`] nor a locomotion attribute.
+    /// A key that is neither a quantity of the sweep (`velocity`, …, `style`) nor a locomotion
+    /// attribute.
     #[error(
         "unknown key `{key}`: a key is one of {} or a locomotion attribute of \
          models/attributes.toml",
         QUANTITIES.join(", ")
     )]
-    UnknownKey { key: String },
+    UnknownKey {
+        /// The key.
+        key: String,
+    },
     /// Two keys for one quantity (`step_length` and `step-length`).
     #[error("`{key}` is given twice (as `{name}`)")]
-    Twice { key: String, name: String },
+    Twice {
+        /// The second key.
+        key: String,
+        /// The quantity's name, as a column of the sweep's output.
+        name: String,
+    },
+    /// A value that is neither a number, a string spec nor an array of numbers.
     #[error(
         "`{key}` must be a number, a string \"START:STOP:STEP\" or \"A,B,C\", or an array of \
          numbers"
     )]
-    Shape { key: String },
+    Shape {
+        /// The key.
+        key: String,
+    },
+    /// A `style` array with an item that is not a string.
     #[error("`{key}` must be style names")]
-    StyleNames { key: String },
+    StyleNames {
+        /// The key.
+        key: String,
+    },
+    /// An empty array of values.
     #[error("`{key}` is an empty array")]
-    EmptyArray { key: String },
+    EmptyArray {
+        /// The key.
+        key: String,
+    },
+    /// A value that is NaN or infinite.
     #[error("`{key}`: {value} is not a finite number")]
-    NotFinite { key: String, value: f64 },
+    NotFinite {
+        /// The key.
+        key: String,
+        /// The value given.
+        value: f64,
+    },
     /// The value of `key` cannot be used: its spec or its style names.
     #[error("`{key}`: {reason}")]
     Value {
+        /// The key.
         key: String,
+        /// Why the value cannot be used.
         #[source]
         reason: crate::model::error::Reason,
     },

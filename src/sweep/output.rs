@@ -45,7 +45,9 @@ pub(super) fn malformed(path: &Path, reason: impl Into<Reason>) -> Error {
 #[derive(Debug, thiserror::Error)]
 #[error("line {line}: {reason}")]
 pub struct LineError {
+    /// The line's number, from 1.
     pub line: usize,
+    /// Why it is not a row.
     #[source]
     pub reason: Reason,
 }

@@ -14,17 +14,31 @@ pub struct Shard {
 /// Largest shard count.
 pub(crate) const MAX_SHARDS: usize = 1_000_000;
 
-/// A shard `text` that is not K/N with whole numbers 1 ≤ K ≤ N ≤ [`MAX_SHARDS`].
+/// A shard `text` that is not K/N with whole numbers 1 ≤ K ≤ N ≤ 1 000 000.
 #[derive(Debug, thiserror::Error)]
 pub enum ShardError {
+    /// A text without `/`.
     #[error("`{text}` must be K/N with whole numbers 1 ≤ K ≤ N ≤ {MAX_SHARDS}")]
-    Shape { text: String },
+    Shape {
+        /// The text given.
+        text: String,
+    },
+    /// K or N is not a whole number.
     #[error(
         "`{text}`: `{part}` is not a whole number; K/N with whole numbers 1 ≤ K ≤ N ≤ {MAX_SHARDS}"
     )]
-    Part { text: String, part: String },
+    Part {
+        /// The text given.
+        text: String,
+        /// The part that is not a whole number, trimmed.
+        part: String,
+    },
+    /// K or N is not in 1 ≤ K ≤ N ≤ 1 000 000.
     #[error("`{text}` is out of range: K/N with whole numbers 1 ≤ K ≤ N ≤ {MAX_SHARDS}")]
-    Range { text: String },
+    Range {
+        /// The text given.
+        text: String,
+    },
 }
 
 impl Shard {

@@ -12,38 +12,85 @@ const RANGE_TOLERANCE: f64 = 1e-9;
 /// [`InputError::BadValue`] naming the parameter).
 #[derive(Debug, thiserror::Error)]
 pub enum SpecError {
+    /// A value that is empty or blank.
     #[error("empty value")]
     Empty,
+    /// A number that does not parse.
     #[error("`{text}` is not a number")]
-    NotANumber { text: String },
+    NotANumber {
+        /// The text given, trimmed.
+        text: String,
+    },
+    /// A number that is NaN or infinite.
     #[error("`{text}` is not a finite number")]
-    NotFinite { text: String },
+    NotFinite {
+        /// The text given, trimmed.
+        text: String,
+    },
+    /// A range that is not three numbers separated by `:`.
     #[error("range `{spec}` must be START:STOP:STEP (three numbers)")]
-    RangeShape { spec: String },
+    RangeShape {
+        /// The range given.
+        spec: String,
+    },
+    /// A range whose STEP is 0.
     #[error("range `{spec}`: STEP must not be 0")]
-    ZeroStep { spec: String },
+    ZeroStep {
+        /// The range given.
+        spec: String,
+    },
     /// STOP lies `side` ("below" or "above") START, against STEP's sign.
     #[error("range `{spec}`: STOP is {side} START for this STEP's sign")]
-    Backwards { spec: String, side: &'static str },
+    Backwards {
+        /// The range given.
+        spec: String,
+        /// Where STOP lies: `below` or `above` START.
+        side: &'static str,
+    },
+    /// A range of more values than one flag may expand to (one million).
     #[error("range `{spec}` has more than {MAX_VALUES} values")]
-    LongRange { spec: String },
+    LongRange {
+        /// The range given.
+        spec: String,
+    },
+    /// A list with an empty item (`1,,2`, a trailing comma).
     #[error("empty item in list `{spec}`")]
-    EmptyItem { spec: String },
+    EmptyItem {
+        /// The list given.
+        spec: String,
+    },
+    /// A list of more values than one flag may expand to (one million).
     #[error("more than {MAX_VALUES} values")]
     LongList,
+    /// An `--attr` argument without `=`.
     #[error("`{arg}` must be NAME=SPEC")]
-    AttributeShape { arg: String },
+    AttributeShape {
+        /// The argument given.
+        arg: String,
+    },
     /// `--attr` naming no locomotion attribute; `known` lists them.
     #[error("unknown attribute `{name}`; known attributes: {known}")]
-    UnknownAttribute { name: String, known: String },
+    UnknownAttribute {
+        /// The name given.
+        name: String,
+        /// The locomotion attributes, comma-separated.
+        known: String,
+    },
+    /// A parameter given twice among the flags.
     #[error("given twice")]
     GivenTwice,
+    /// A parameter of the sweep with no values.
     #[error("no values")]
     NoValues,
+    /// Both mass and mass per height² given.
     #[error("mass and mass_per_height2 exclude each other (M = K · H²): give one")]
     MassTwice,
+    /// A step count that is not a whole number.
     #[error("{value} is not a whole number of steps")]
-    NotWholeSteps { value: f64 },
+    NotWholeSteps {
+        /// The value given (in steps).
+        value: f64,
+    },
 }
 
 /// The error of a bad value for the parameter `parameter`.

@@ -56,7 +56,7 @@ pub enum ShootingError {
     BadStart(&'static str),
 }
 
-/// Why [`solve1`] or [`solve2`] returned no point.
+/// Why a shooting solve (`solve1`, `solve2`) returned no point.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum SolveError {
     /// Invalid options or start point.

@@ -120,16 +120,30 @@ pub struct Segment<const N: usize> {
 pub enum IntegrationError {
     /// The initial state has a NaN or an infinity.
     #[error("non-finite state at t = {t}")]
-    NonFiniteStart { t: f64 },
+    NonFiniteStart {
+        /// The start time (in s).
+        t: f64,
+    },
     /// The integration took `limit` steps without reaching its end time.
     #[error("more than {limit} steps at t = {t}")]
-    TooManySteps { limit: usize, t: f64 },
+    TooManySteps {
+        /// The most steps allowed.
+        limit: usize,
+        /// The time reached (in s).
+        t: f64,
+    },
     /// The step size fell below the resolution of the time t.
     #[error("step size underflow at t = {t}")]
-    StepSizeUnderflow { t: f64 },
+    StepSizeUnderflow {
+        /// The time reached (in s).
+        t: f64,
+    },
     /// An attempted step's error estimate is not finite: the state blew up.
     #[error("the state became non-finite at t = {t}")]
-    NonFinite { t: f64 },
+    NonFinite {
+        /// The start of the step that blew up (in s).
+        t: f64,
+    },
 }
 
 /// How an integration ended.
