@@ -221,8 +221,8 @@ fn out_of_range_flags_name_the_value_and_the_range() {
     bad_input(d, &["bench", "--repeat", "0"], &["repeat", "0"]);
     bad_input(
         d,
-        &["walk", "--out", "x.csv", "--report", "x.csv"],
-        &["--out", "--report", "same"],
+        &["walk", "--out", "x.csv", "--state-out", "./x.csv"],
+        &["--out", "--state-out", "same"],
     );
     bad_input(
         d,

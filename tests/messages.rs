@@ -4,33 +4,9 @@
 //! low frame rate.
 use std::fs;
 use std::path::Path;
-use std::process::{Command, Output};
 
-fn klaw(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_klaw"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("the klaw binary runs")
-}
-
-/// Run and expect exit 2, nothing written, and one `error:` line holding every one of `parts`.
-fn refused(args: &[&str], parts: &[&str]) -> String {
-    let dir = tempfile::tempdir().unwrap();
-    let out = klaw(dir.path(), args);
-    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
-    assert_eq!(out.status.code(), Some(2), "klaw {args:?}:\n{stderr}");
-    assert_eq!(stderr.lines().count(), 1, "klaw {args:?}:\n{stderr}");
-    for part in parts {
-        assert!(
-            stderr.contains(part),
-            "klaw {args:?}: `{part}` not in\n{stderr}"
-        );
-    }
-    let left: Vec<_> = fs::read_dir(dir.path()).unwrap().collect();
-    assert!(left.is_empty(), "klaw {args:?} wrote {left:?}");
-    stderr
-}
+mod common;
+use common::{klaw, refused};
 
 /// The `preferred_velocity` of a bundled style, read from its file.
 fn style_speed(style: &str) -> f64 {

@@ -173,10 +173,10 @@ fn klaw_walk_draws_without_text_when_no_font_is_found() {
 fn klaw_walk_rejects_bad_plot_paths_before_simulating() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    // a missing directory is a writing failure (exit 1, like --out); the rest are bad input
+    // every output path is checked before any work: each of these is bad input
     let cases: &[(&[&str], &str, i32)] = &[
         (&["walk", "--plot", "walk.jpg"], ".png or .svg", 2),
-        (&["walk", "--plot", "no/such/dir/w.png"], "no/such/dir", 1),
+        (&["walk", "--plot", "no/such/dir/w.png"], "no/such/dir", 2),
         (
             &["walk", "--out", "w.csv", "--plot", "w.csv"],
             ".png or .svg",
@@ -184,12 +184,20 @@ fn klaw_walk_rejects_bad_plot_paths_before_simulating() {
         ),
         (
             &["walk", "--state-out", "w.png", "--plot", "w.png"],
-            "same file",
+            "--state-out: w.png: the extension must be .csv",
             2,
         ),
         (
-            &["walk", "--report", "r.svg", "--plot", "r.svg"],
-            "same file",
+            &[
+                "walk",
+                "--out",
+                "w.csv",
+                "--cycle-out",
+                "w.csv",
+                "--steps",
+                "6",
+            ],
+            "--out and --cycle-out name the same file",
             2,
         ),
         (&["walk", "--plot", "p.png", "--no-plot"], "--no-plot", 2),

@@ -100,7 +100,7 @@ fn out_of_range_point_is_recorded_and_the_sweep_carries_on() {
         &[
             "sweep",
             "--velocity",
-            "1.0,5.0",
+            "1.0,2.9",
             "--steps",
             "3",
             "--out",
@@ -136,7 +136,7 @@ fn thread_count_does_not_change_the_output() {
         [
             "sweep",
             "--velocity",
-            "0.8,1.2,5.0",
+            "0.8,1.2,2.9",
             "--attr",
             "bounciness=0.2,0.8",
             "--steps",
@@ -158,10 +158,10 @@ fn thread_count_does_not_change_the_output() {
     }
 }
 
-/// A small sweep with a failing point (v = 5 m/s): 3 × 2 × 2 = 12 one-step walks.
+/// A small sweep with a failing point (v = 2.9 m/s, above velocity_max): 3 × 2 × 2 = 12 one-step walks.
 const SMALL: [&str; 8] = [
     "--velocity",
-    "0.9,1.4,5.0",
+    "0.9,1.4,2.9",
     "--height",
     "1.6,1.8",
     "--attr",
@@ -192,7 +192,7 @@ fn rows_are_numbered_in_product_order() {
     for (k, r) in rows.iter().enumerate() {
         assert_eq!(r[0], k.to_string());
         // row-major: velocity slowest, bounciness fastest
-        assert_eq!(r[v], ["0.9", "1.4", "5"][k / 4], "{r:?}");
+        assert_eq!(r[v], ["0.9", "1.4", "2.9"][k / 4], "{r:?}");
         assert_eq!(r[h], ["1.6", "1.8"][(k / 2) % 2], "{r:?}");
         assert_eq!(r[b], ["0.4", "0.6"][k % 2], "{r:?}");
         let converged = r[col(&header, "converged")] == "true";
@@ -492,7 +492,7 @@ fn sweep_file_with_flags_overriding_it() {
     let d = dir.path();
     fs::write(
         d.join("grid.toml"),
-        "velocity = \"1.0:1.4:0.2\"\nheight = [1.6, 1.8]\nsteps = 1\nbounciness = 0.3\n",
+        "velocity = \"1.0:1.4:0.2\"\nheight = [1.6, 1.8]\nsteps = 1\nbounciness = 0.5\n",
     )
     .unwrap();
     // the flag replaces the file's velocity; the rest comes from the file
@@ -524,7 +524,7 @@ fn sweep_file_with_flags_overriding_it() {
         .collect();
     assert_eq!(
         got,
-        [("0.9", "1.6", "1", "0.3"), ("0.9", "1.8", "1", "0.3")]
+        [("0.9", "1.6", "1", "0.5"), ("0.9", "1.8", "1", "0.5")]
     );
     // the same sweep from flags alone is the same file
     klaw(
@@ -538,7 +538,7 @@ fn sweep_file_with_flags_overriding_it() {
             "--steps",
             "1",
             "--attr",
-            "bounciness=0.3",
+            "bounciness=0.5",
             "--out",
             "g.csv",
         ],

@@ -4,6 +4,7 @@ use std::ffi::OsString;
 use std::fs::{File, OpenOptions};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 
 use tempfile::TempPath;
 
@@ -34,6 +35,48 @@ pub(crate) struct AtomicFile {
     path: PathBuf,
     out: BufWriter<File>,
     temp: TempPath,
+    /// The temporary file's entry in [`LIVE`], removed when the file is committed or dropped.
+    _live: Live,
+}
+
+/// The temporary files of the atomic writes under way in this process, for
+/// [`remove_temporary_files`].
+static LIVE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// A temporary file's entry in [`LIVE`], while it lives.
+struct Live(PathBuf);
+
+impl Live {
+    fn new(path: &Path) -> Live {
+        LIVE.lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .push(path.to_path_buf());
+        Live(path.to_path_buf())
+    }
+}
+
+impl Drop for Live {
+    fn drop(&mut self) {
+        let mut live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(i) = live.iter().position(|p| *p == self.0) {
+            live.swap_remove(i);
+        }
+    }
+}
+
+/// Remove the temporary file of every atomic write under way (the process is about to end
+/// without finishing them: an interrupting signal); returns how many were removed. Targets
+/// are left as they were.
+pub fn remove_temporary_files() -> usize {
+    remove_temporary_files_where(|_| true)
+}
+
+/// [`remove_temporary_files`] for the temporary files whose path satisfies `which`.
+fn remove_temporary_files_where(which: impl Fn(&Path) -> bool) -> usize {
+    let live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
+    live.iter()
+        .filter(|p| which(p) && std::fs::remove_file(p).is_ok())
+        .count()
 }
 
 impl AtomicFile {
@@ -63,6 +106,7 @@ impl AtomicFile {
         Ok(AtomicFile {
             path: path.to_path_buf(),
             out: BufWriter::new(file),
+            _live: Live::new(&temp),
             temp,
         })
     }
@@ -123,6 +167,28 @@ mod tests {
         let p = dir.join(name);
         fs::write(&p, text).unwrap();
         p
+    }
+
+    /// The temporary files of the writes under way are removed on demand (what the binary does
+    /// on SIGINT and SIGTERM), and only theirs: a committed file is not listed any more.
+    #[test]
+    fn temporary_files_of_unfinished_writes_are_removed() {
+        let dir = tempfile::tempdir().unwrap();
+        let done = dir.path().join("done.txt");
+        write_atomic(&done, |w| w.write_all(b"whole\n")).unwrap();
+        let mut open = AtomicFile::create(&dir.path().join("open.txt")).unwrap();
+        open.writer().write_all(b"half").unwrap();
+        open.writer().flush().unwrap();
+        let temp = open.temp_path().to_path_buf();
+        assert!(temp.exists());
+        // (only this test's directory: the other tests write in parallel)
+        assert_eq!(
+            remove_temporary_files_where(|p| p.starts_with(dir.path())),
+            1
+        );
+        assert!(!temp.exists());
+        assert_eq!(files_in(dir.path()), ["done.txt"]);
+        assert!(open.commit().is_err(), "its temporary file is gone");
     }
 
     #[test]

@@ -274,6 +274,12 @@ impl HeatMap {
             .find(|(alias, _)| *alias == column)
             .map_or(column, |(_, name)| name);
         let (header, rows) = read_rows(path)?;
+        crate::sweep::rows::check_sweep_columns(&header)
+            .map_err(|reason| InputError::malformed("sweep output", path, reason))?;
+        if rows.is_empty() {
+            let reason = "no rows after the header: nothing to draw";
+            return Err(InputError::malformed("sweep output", path, reason).into());
+        }
         let find = |flag: &str, name: &str| {
             header.iter().position(|h| h == name).ok_or_else(|| {
                 bad(
@@ -299,6 +305,26 @@ impl HeatMap {
                 "y",
                 format!("`{y}` is also the x axis: give two parameters"),
             ));
+        }
+        // (the sweep's text columns, whatever their cells: `error` is empty where all converged)
+        let text = if matches!(column, "error" | "style") {
+            Some("")
+        } else {
+            rows.iter()
+                .filter_map(|r| r.get(ic).map(String::as_str))
+                .find(|v| number(v).is_err())
+        };
+        if let Some(text) = text {
+            let reason = format!(
+                "`{column}` is not numeric (it holds text{}): choose a numeric column, e.g. \
+                 converged, mean_iterations or achieved_velocity",
+                if text.is_empty() {
+                    String::new()
+                } else {
+                    format!(" (`{text}`)")
+                }
+            );
+            return Err(bad("column", reason));
         }
         let cells = cells(path, &header, &rows, [ix, iy, ic, iconv], column)?;
         let distinct = |f: &dyn Fn(&MapCell) -> f64| {
@@ -356,8 +382,9 @@ impl HeatMap {
         let failed = self.cells.iter().filter(|c| c.failed()).count();
         let rows: usize = self.cells.iter().map(|c| c.rows).sum();
         let per_cell = if rows > self.cells.len() {
+            let walks_failed: usize = self.cells.iter().map(|c| c.rows - c.converged).sum();
             format!(
-                ", mean of ≤ {} walks per cell",
+                ", mean of ≤ {} walks per cell, {walks_failed} of {rows} walks failed",
                 self.cells.iter().map(|c| c.rows).max().unwrap_or(1)
             )
         } else {

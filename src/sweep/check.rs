@@ -95,8 +95,15 @@ mod tests {
     #[test]
     fn values_outside_their_range_are_refused() {
         let table = AttributeTable::builtin();
+        // (a valid value first: the bad one is found in a list)
         let bad = |axis: Axis, x: f64| {
-            check_values(&sweep(axis, vec![1.0, x]), &table)
+            let good = match &axis {
+                Axis::Mass => 80.0,
+                Axis::Steps => 2.0,
+                Axis::Attribute(_) => 0.5,
+                _ => 1.5,
+            };
+            check_values(&sweep(axis, vec![good, x]), &table)
                 .unwrap_err()
                 .to_string()
         };

@@ -103,6 +103,15 @@ impl<'a> Heads<'a> {
         };
         for i in 0..heads.readers.len() {
             heads.pull(i)?;
+            // (an empty JSON Lines file is a shard without rows; a CSV one has its header)
+            if format == Format::Csv && heads.readers[i].columns().is_none() {
+                let reason = "no header line: not a sweep output";
+                return Err(malformed(&heads.paths[i], reason.to_string()));
+            }
+        }
+        if heads.heap.is_empty() {
+            let reason = "no rows in any input: nothing to merge";
+            return Err(malformed(&paths[0], reason.to_string()));
         }
         Ok(heads)
     }

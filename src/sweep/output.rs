@@ -18,6 +18,7 @@ use std::time::Instant;
 use crate::error::{Error, Result};
 use crate::model::InputError;
 use crate::model::error::Reason;
+use crate::sweep::rows::check_sweep_columns;
 use crate::sweep::{Format, Shard, Sweep};
 
 /// The partial output of a sweep writing `target`: `.NAME.partial` in the same directory.
@@ -105,7 +106,9 @@ impl RowReader {
         if format == Format::Csv
             && let Some(text) = r.read_line()?
         {
-            r.columns = Some(parse_csv(&text).map_err(|e| r.error(Box::new(e)))?);
+            let columns = parse_csv(&text).map_err(|e| r.error(Box::new(e)))?;
+            check_sweep_columns(&columns).map_err(|e| r.error(e.into()))?;
+            r.columns = Some(columns);
         }
         Ok(r)
     }
@@ -160,7 +163,10 @@ impl RowReader {
                 let mut keys: Vec<String> = map.keys().cloned().collect();
                 keys.sort();
                 match &self.columns {
-                    None => self.columns = Some(keys),
+                    None => {
+                        check_sweep_columns(&keys).map_err(|e| self.error(e.into()))?;
+                        self.columns = Some(keys);
+                    }
                     Some(c) if *c == keys => {}
                     Some(_) => {
                         return Err(self.error("its keys differ from the first row's".into()));
@@ -285,8 +291,28 @@ fn scan(
 /// Run a sweep (or one shard of it) into `target`, streaming rows in point order to the
 /// partial file (module docs) and renaming it over `target` at the end. Without `resume` an
 /// existing partial file is an error (it holds an interrupted run: resume it or delete it).
-/// `progress(done, total)` counts the walks of this run, from any thread.
+/// `progress(done, total)` counts the walks of this run, from any thread. A partial file this
+/// run created is removed when the run fails (a refused `resume`, a write error); one an
+/// earlier run left holds its rows and stays, and so does every partial file when the process
+/// is interrupted (that is what `resume` continues).
 pub fn run_to_file(
+    sweep: &Sweep,
+    target: &Path,
+    shard: Shard,
+    resume: bool,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<RunStats> {
+    let partial = partial_path(target);
+    let created = !partial.exists();
+    let result = run_into(sweep, target, shard, resume, progress);
+    if result.is_err() && created {
+        let _ = fs::remove_file(&partial);
+    }
+    result
+}
+
+/// [`run_to_file`] but for the removal of a partial file it created.
+fn run_into(
     sweep: &Sweep,
     target: &Path,
     shard: Shard,

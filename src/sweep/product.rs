@@ -275,7 +275,8 @@ mod tests {
             ],
         };
         let i = s.inputs(0);
-        assert_eq!(i.request.velocity, Some(1.4));
+        // no gait swept: the walk goes at the attributes' preferred velocity (run_walk)
+        assert_eq!(i.request, GaitRequest::default());
         assert!((i.mass - 45.0).abs() < 1e-12);
         assert_eq!(i.steps, 10.0);
         let h = s.header();

@@ -53,6 +53,24 @@ pub(crate) const OUTPUT_COLUMNS: [&str; 14] = [
     "work_per_kg_m",
 ];
 
+/// Whether `columns` (a CSV header, a JSON Lines row's keys) are those of a sweep output: a
+/// `point` and a `converged` column, which every sweep writes and merging and heat maps read
+/// (the other output columns may grow with versions); else which are missing, in words.
+pub(crate) fn check_sweep_columns(columns: &[String]) -> Result<(), String> {
+    let missing: Vec<&str> = ["point", "converged"]
+        .into_iter()
+        .filter(|c| !columns.iter().any(|h| h == c))
+        .collect();
+    if missing.is_empty() {
+        Ok(())
+    } else {
+        Err(format!(
+            "not a sweep output (written by klaw sweep): no column {}",
+            missing.join(", ")
+        ))
+    }
+}
+
 /// The row of one walk: its inputs and its outcome (a summary, or the reason it failed).
 #[derive(Debug)]
 pub(crate) struct Row {

@@ -56,3 +56,50 @@ pub fn grid() -> Vec<(f64, f64)> {
         })
         .collect()
 }
+
+/// Run the `klaw` binary in `dir`.
+pub fn klaw(dir: &std::path::Path, args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_klaw"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("the klaw binary runs")
+}
+
+/// Run `klaw` in an empty directory and expect exit 2, nothing written, and one `error:` line
+/// holding every one of `parts`; the message.
+pub fn refused(args: &[&str], parts: &[&str]) -> String {
+    let dir = tempfile::tempdir().unwrap();
+    refused_in(dir.path(), args, parts)
+}
+
+/// [`refused`] in `dir`, whose files must be left as they were.
+pub fn refused_in(dir: &std::path::Path, args: &[&str], parts: &[&str]) -> String {
+    let before = files(dir);
+    let out = klaw(dir, args);
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(out.status.code(), Some(2), "klaw {args:?}:\n{stderr}");
+    assert_eq!(stderr.lines().count(), 1, "klaw {args:?}:\n{stderr}");
+    for part in parts {
+        assert!(
+            stderr.contains(part),
+            "klaw {args:?}: `{part}` not in\n{stderr}"
+        );
+    }
+    assert_eq!(files(dir), before, "klaw {args:?} wrote files");
+    stderr
+}
+
+/// The names in `dir` with their sizes, sorted (hidden files too).
+pub fn files(dir: &std::path::Path) -> Vec<(String, u64)> {
+    let mut v: Vec<(String, u64)> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| {
+            let e = e.unwrap();
+            let name = e.file_name().to_string_lossy().into_owned();
+            (name, e.metadata().unwrap().len())
+        })
+        .collect();
+    v.sort();
+    v
+}

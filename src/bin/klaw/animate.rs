@@ -9,6 +9,11 @@ use klaw::plot::animation::{self, Options};
 use crate::args::GaitArgs;
 use crate::font_note;
 use crate::outputs::{self, Output};
+use crate::progress::Spinner;
+
+/// The most steps `klaw animate` walks: the whole walk is held while its frames are drawn, and
+/// an animation has at most 20 000 frames (about 2 000 steps at 20 frames/s).
+const MAX_STEPS: usize = 2000;
 
 #[derive(Args)]
 pub(crate) struct AnimateArgs {
@@ -38,8 +43,10 @@ pub(crate) struct AnimateArgs {
 pub(crate) fn run(args: &AnimateArgs) -> Result<()> {
     let options = Options::new(args.fps, animation::parse_size(&args.size)?)?;
     outputs::check(&[Output::new("out", &args.out, &["gif"])])?;
-    let (walk, title) = args.walk.simulate(1)?;
+    let spinner = Spinner::new("simulating the walk and drawing its animation".into());
+    let (walk, title) = args.walk.simulate(1, MAX_STEPS)?;
     let summary = animation::animate_walk(&walk, &title, &args.out, &options)?;
+    drop(spinner);
     let mut out = std::io::stdout().lock();
     let _ = writeln!(
         out,

@@ -154,9 +154,10 @@ impl GaitArgs {
         }
     }
 
-    /// Simulate the walk, refused before any work when it has fewer than `min_steps` steps;
+    /// Simulate the walk, refused before any work when it has fewer than `min_steps` steps
+    /// or more than `max_steps` (the commands that hold the whole walk in memory bound it);
     /// also the title line of its parameters.
-    pub(crate) fn simulate(&self, min_steps: usize) -> Result<(Walk, String)> {
+    pub(crate) fn simulate(&self, min_steps: usize, max_steps: usize) -> Result<(Walk, String)> {
         let body = self.body()?;
         let attrs = self.attributes()?;
         let gaits = self.gaits(&body, &attrs)?;
@@ -164,6 +165,14 @@ impl GaitArgs {
             let reason = format!(
                 "the gait cycle of both legs is averaged over their cycles after the first: at \
                  least {min_steps} steps are needed, not {}",
+                gaits.len()
+            );
+            return Err(klaw::model::InputError::bad_value("steps", reason).into());
+        }
+        if gaits.len() > max_steps {
+            let reason = format!(
+                "{} steps: this command holds the whole walk in memory, at most {max_steps} \
+                 steps (klaw walk streams any number)",
                 gaits.len()
             );
             return Err(klaw::model::InputError::bad_value("steps", reason).into());

@@ -10,6 +10,8 @@ mod merge;
 mod outputs;
 mod plot;
 mod plot_sweep;
+mod progress;
+mod signals;
 mod sweep;
 mod walk;
 
@@ -96,7 +98,7 @@ enum Command {
             min_toe_clearance (m), work_per_m (J/m: the actuators' positive mechanical work per\n\
             metre walked) and work_per_kg_m (J/(kg m)).\n\
             \n\
-            A progress bar is drawn when stderr is a terminal, plain progress lines otherwise.\n\
+            A progress bar is drawn when stderr is a terminal; otherwise a plain line at most every 10 s.\n\
             \n\
             Example: klaw sweep --velocity 0.6:2.0:0.1 --height 1.5,1.65,1.8,1.95 --mass-per-height2 23"
     )]
@@ -167,6 +169,7 @@ enum Command {
 fn main() -> ExitCode {
     klaw::memory::keep_freed_memory();
     let cli = Cli::parse();
+    signals::clean_up_on_interruption();
     let result = match cli.command {
         Command::Walk(args) => walk::run(&args),
         Command::Bench(args) => bench::run(&args),

@@ -67,7 +67,11 @@ fn check_one(out: &Output) -> Result<()> {
         .map(str::to_ascii_lowercase);
     if !ext.as_deref().is_some_and(|e| out.extensions.contains(&e)) {
         let list: Vec<String> = out.extensions.iter().map(|e| format!(".{e}")).collect();
-        return bad(format!("the extension must be {}", list.join(", ")));
+        let list = match list.split_last() {
+            Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+            _ => list.concat(),
+        };
+        return bad(format!("the extension must be {list}"));
     }
     if out.path.is_dir() {
         return bad("is a directory".to_string());

@@ -10,7 +10,12 @@ use klaw::plot::cycle::write_cycle_figure;
 
 use crate::args::GaitArgs;
 use crate::outputs::{self, Output};
+use crate::progress::Spinner;
 use crate::{count, font_note};
+
+/// The most steps `klaw plot` walks: the whole walk is held for the cycle average, which has
+/// long converged by then.
+const MAX_STEPS: usize = 1000;
 
 #[derive(Args)]
 pub(crate) struct PlotArgs {
@@ -27,10 +32,12 @@ pub(crate) struct PlotArgs {
 
 pub(crate) fn run(args: &PlotArgs) -> Result<()> {
     outputs::check(&[Output::new("out", &args.out, outputs::FIGURE)])?;
-    let (walk, title) = args.walk.simulate(min_steps(true))?;
+    let spinner = Spinner::new("simulating the walk and drawing its gait cycle".into());
+    let (walk, title) = args.walk.simulate(min_steps(true), MAX_STEPS)?;
     let cycle = GaitCycle::from_walk(&walk)?;
     let norms = NormTable::builtin();
     let figure = write_cycle_figure(&cycle, &norms, &title, &args.out)?;
+    drop(spinner);
     let mut out = std::io::stdout().lock();
     let _ = writeln!(
         out,

@@ -32,11 +32,14 @@ pub(crate) fn run(args: &PlotSweepArgs) -> Result<()> {
     outputs::check(&[Output::new("out", &args.out, outputs::FIGURE)])?;
     let map = heat_map(&args.input, &args.x, &args.y, &args.column, &args.out)?;
     let failed = map.cells.iter().filter(|c| c.failed()).count();
+    let walks: usize = map.cells.iter().map(|c| c.rows).sum();
+    let walks_failed: usize = map.cells.iter().map(|c| c.rows - c.converged).sum();
     let note = font_note();
     let mut out = std::io::stdout().lock();
     let _ = writeln!(
         out,
-        "heat map of {} over {} × {}: {} × {} values, {} cells, {failed} failed: {}{note}",
+        "heat map of {} over {} × {}: {} × {} values, {} cells, {failed} failed cells, \
+         {walks_failed} of {walks} walks failed: {}{note}",
         map.column,
         map.x,
         map.y,

@@ -1,16 +1,16 @@
 //! `klaw sweep`: one walk per point of a product of gaits, bodies and attributes, one summary
 //! row per walk.
-use std::io::{IsTerminal, Write};
+use std::io::Write;
 use std::path::PathBuf;
 use std::time::Instant;
 
 use clap::Args;
-use indicatif::{ProgressBar, ProgressStyle};
 use klaw::sweep::output::{self, RunStats};
 use klaw::sweep::{self as sw, Axis, Shard, Sweep};
 use klaw::{AttributeTable, Result};
 
 use crate::outputs::{self, Output};
+use crate::progress::Progress;
 
 #[derive(Args)]
 pub(crate) struct SweepArgs {
@@ -105,7 +105,7 @@ pub(crate) fn run(args: &SweepArgs) -> Result<bool> {
     };
     eprintln!("sweep: {total} walks{shard_note} on {threads} threads");
     let start = Instant::now();
-    let stats = run_with_progress(&sweep, args, shard, start)?;
+    let stats = run_with_progress(&sweep, args, shard)?;
     let mut out = std::io::stdout().lock();
     let kept = if stats.kept > 0 {
         format!(" ({} rows kept from the earlier run)", stats.kept)
@@ -168,36 +168,12 @@ fn build(args: &SweepArgs) -> Result<Sweep> {
     Ok(sweep)
 }
 
-/// Run the sweep into --out, with a progress bar when stderr is a terminal and a line every 5 %
-/// otherwise.
-fn run_with_progress(
-    sweep: &Sweep,
-    args: &SweepArgs,
-    shard: Shard,
-    start: Instant,
-) -> Result<RunStats> {
-    if std::io::stderr().is_terminal() {
-        let bar = ProgressBar::new(0).with_style(
-            ProgressStyle::with_template(
-                "{elapsed_precise} [{wide_bar}] {pos}/{len} walks, {per_sec}, ETA {eta}",
-            )
-            .expect("a valid template"),
-        );
-        let stats = output::run_to_file(sweep, &args.out, shard, args.resume, &|done, total| {
-            bar.set_length(total as u64);
-            bar.set_position(done as u64);
-        });
-        bar.finish_and_clear();
-        stats
-    } else {
-        output::run_to_file(sweep, &args.out, shard, args.resume, &|done, total| {
-            if done * 20 / total != (done - 1) * 20 / total {
-                eprintln!(
-                    "sweep: {done}/{total} walks ({}%), {:.1} s",
-                    done * 100 / total,
-                    start.elapsed().as_secs_f64()
-                );
-            }
-        })
-    }
+/// Run the sweep into --out, with its progress ([`Progress`]).
+fn run_with_progress(sweep: &Sweep, args: &SweepArgs, shard: Shard) -> Result<RunStats> {
+    let progress = Progress::new("sweep", 0, "walks");
+    let stats = output::run_to_file(sweep, &args.out, shard, args.resume, &|done, total| {
+        progress.set(done as u64, total as u64)
+    });
+    progress.finish();
+    stats
 }

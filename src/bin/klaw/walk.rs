@@ -11,6 +11,7 @@ use klaw::{Body, Result, export, plot};
 
 use crate::args::GaitArgs;
 use crate::outputs::{self, Output};
+use crate::progress::Progress;
 use crate::{DEFAULT_FPS, MAX_FPS, MIN_FPS, count, font_note};
 
 /// Frames held in memory until the walk ends (--state-out, --cycle-out; ≈ 200 bytes each): cap
@@ -136,7 +137,16 @@ pub(crate) fn run(args: &WalkArgs) -> Result<()> {
         )?;
     }
     let mut stream = WalkStream::new(body, attrs, &gaits, fps, gather);
-    export::try_write(&args.out, format, &body, fps, &mut stream, &options)?;
+    let frames = (stream.duration() * fps + 1e-9).floor() as u64 + 1;
+    let progress = Progress::new("walk", frames, "frames");
+    let mut done = 0;
+    let counted = stream.by_ref().inspect(|_| {
+        done += 1;
+        progress.set(done, frames);
+    });
+    let written = export::try_write(&args.out, format, &body, fps, counted, &options);
+    progress.finish();
+    written?;
     stream.finish();
     write_outputs(args, &body, &mut stream, plot.as_deref())?;
     print_summary(args, &stream, fps, plot.as_deref());
