@@ -6,10 +6,10 @@ use std::path::PathBuf;
 
 use crate::analysis::cycle::CycleError;
 use crate::engine::SimulationError;
-use crate::export::ExportError;
+use crate::export::error::ExportError;
 use crate::figure::FigureError;
 use crate::model::InputError;
-use crate::plot::DrawError;
+use crate::plot::error::DrawError;
 
 /// Everything that can go wrong, from a bad value to a shooting solve that does not converge.
 #[derive(Debug, thiserror::Error)]

@@ -141,18 +141,7 @@ fn sweep_values_are_checked_and_an_all_failed_sweep_fails() {
 fn merge_and_plot_sweep_refuse_what_is_not_a_sweep_output() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    let ok = klaw(
-        d,
-        &[
-            "sweep",
-            "--velocity",
-            "1.0,1.2",
-            "--height",
-            "1.7,1.8",
-            "--steps",
-            "2",
-        ],
-    );
+    let ok = run(d, "sweep --velocity 1.0,1.2 --height 1.7,1.8 --steps 2");
     assert_eq!(ok.status.code(), Some(0));
     let header = fs::read_to_string(d.join("sweep.csv")).unwrap();
     let header = header.lines().next().unwrap().to_string();
@@ -203,21 +192,10 @@ fn merge_and_plot_sweep_refuse_what_is_not_a_sweep_output() {
         refused_in(d, &a, &[needle]);
     }
     // a map averaging over a third parameter counts the failed walks its cells hide
-    let out = klaw(
+    let out = run(
         d,
-        &[
-            "sweep",
-            "--velocity",
-            "1.0,1.2",
-            "--height",
-            "1.7,1.8",
-            "--steps",
-            "2",
-            "--attr",
-            "velocity_max=1.1,2.5",
-            "--out",
-            "three.csv",
-        ],
+        "sweep --velocity 1.0,1.2 --height 1.7,1.8 --steps 2 --attr velocity_max=1.1,2.5 \
+         --out three.csv",
     );
     assert_eq!(
         out.status.code(),
@@ -326,6 +304,13 @@ fn short_jobs_print_no_progress_lines_to_a_pipe() {
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
 }
 
+/// `klaw` in `dir` with the words of `line` as its arguments.
+fn run(dir: &std::path::Path, line: &str) -> std::process::Output {
+    let a = args(line);
+    klaw(dir, &a.iter().map(String::as_str).collect::<Vec<_>>())
+}
+
+/// The words of `line`.
 fn args(line: &str) -> Vec<String> {
     line.split_whitespace().map(String::from).collect()
 }

@@ -9,8 +9,11 @@
 //! figures are drawn without any text (no titles, tick labels or legends) rather than failing.
 pub mod animation;
 pub mod cycle;
+pub mod error;
 pub mod heat_map;
 pub mod walk;
+
+pub use error::DrawError;
 
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -116,12 +119,6 @@ pub fn parameters_title(gaits: &[Gait], body: &Body, style: &str) -> String {
         body.mass
     )
 }
-
-/// A figure that cannot be drawn: plotters' error, as its text (plotters' error types are
-/// generic over the drawing backend, which the figures are too).
-#[derive(Debug, thiserror::Error)]
-#[error("{0}")]
-pub struct DrawError(String);
 
 pub(crate) type Drawn = std::result::Result<(), DrawError>;
 /// A chart with both axes in f64.

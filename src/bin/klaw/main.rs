@@ -83,15 +83,18 @@ enum Command {
             Every value flag takes a single number X, an inclusive range START:STOP:STEP (STOP is\n\
             included within 1e-9 relative) or a list A,B,C; a sweep file (--file) can give any of\n\
             them, and flags override it. Unswept quantities take the defaults of `klaw walk`\n\
-            (H 1.8 m, M 80 kg, 10 steps, v 1.4 m/s when no gait flag is given).\n\
+            (H 1.8 m, M 80 kg, 10 steps; with no gait flag, the style's preferred velocity, 1.4 m/s by\n\
+            default).\n\
             \n\
             Rows come in product order (velocity, step_length, step_frequency, height, mass,\n\
             mass_per_height2, steps, then the attributes: the first varies slowest), numbered by\n\
             the point column, and are identical whatever the thread count. They are written as the\n\
             walks complete (memory does not grow with the sweep) to .NAME.partial next to --out,\n\
-            renamed to --out at the end (see --resume). A point that fails (out of range, no\n\
-            convergence) gets converged = false and the reason in the error column; the sweep\n\
-            carries on. Columns after the inputs: converged, error, mean_iterations and\n\
+            renamed to --out at the end (see --resume). Every value is checked against its range\n\
+            before any walk (out of it: exit 2). A point whose values do not go together (a\n\
+            derived value outside the point's limits) or whose walk does not converge gets\n\
+            converged = false and the reason in the error column, and the sweep carries on; when\n\
+            every walk failed, the rows are written and the exit status is 1. Columns after the inputs: converged, error, mean_iterations and\n\
             max_iterations (shooting trials per solve), achieved_velocity (m/s),\n\
             achieved_step_length (m), achieved_step_frequency (steps/min), mean_hip_excursion (m),\n\
             max_peak_swing_knee_flexion_deg, stance_pct and double_support_pct (% of the cycle),\n\
