@@ -182,11 +182,10 @@ pub struct Summary {
     pub views: Vec<FrameViews>,
 }
 
-/// Animate `walk`: its figure at `options.fps` ([`crate::figure::frames`]), then [`write_gif`].
-/// `title` names the walk (e.g. [`crate::plot::parameters_title`]).
-pub fn animate_walk(walk: &Walk, title: &str, path: &Path, options: &Options) -> Result<Summary> {
-    check_path(path)?;
-    let expected = walk.duration() * options.fps + 1.0;
+/// Refuse an animation of a walk lasting `duration` s at `fps` frames/s with more frames than a
+/// GIF of klaw holds (20 000): known before the walk is simulated (its duration is Σ 60 / sf).
+pub fn check_frame_count(duration: f64, fps: f64) -> Result<(), InputError> {
+    let expected = duration * fps + 1.0;
     InputError::check_range(
         "frame count (duration · fps + 1)",
         expected.floor(),
@@ -194,6 +193,14 @@ pub fn animate_walk(walk: &Walk, title: &str, path: &Path, options: &Options) ->
         MAX_FRAMES as f64,
         "frames",
     )?;
+    Ok(())
+}
+
+/// Animate `walk`: its figure at `options.fps` ([`crate::figure::frames`]), then [`write_gif`].
+/// `title` names the walk (e.g. [`crate::plot::parameters_title`]).
+pub fn animate_walk(walk: &Walk, title: &str, path: &Path, options: &Options) -> Result<Summary> {
+    check_path(path)?;
+    check_frame_count(walk.duration(), options.fps)?;
     let frames = crate::figure::frames(walk, options.fps);
     let frames = frames.collect::<Result<Vec<Landmarks>, _>>()?;
     write_gif(&frames, &walk.body, title, path, options)

@@ -43,6 +43,11 @@ pub(crate) struct AnimateArgs {
 pub(crate) fn run(args: &AnimateArgs) -> Result<()> {
     let options = Options::new(args.fps, animation::parse_size(&args.size)?)?;
     outputs::check(&[Output::new("out", &args.out, &["gif"])])?;
+    // the frame count is known from the gait before anything is simulated
+    let body = args.walk.body()?;
+    let gaits = args.walk.gaits(&body, &args.walk.attributes()?)?;
+    let duration: f64 = gaits.iter().map(|g| 60.0 / g.step_frequency).sum();
+    animation::check_frame_count(duration, options.fps)?;
     let spinner = Spinner::new("simulating the walk and drawing its animation".into());
     let (walk, title) = args.walk.simulate(1, MAX_STEPS)?;
     let summary = animation::animate_walk(&walk, &title, &args.out, &options)?;
