@@ -5,7 +5,8 @@ use glam::{DMat3, DVec3};
 
 use super::Channel::{self, *};
 use super::to_bvh;
-use crate::export::{ExportError, FrameData, RowError, RowWriter};
+use crate::export::number::{Number, push_f64};
+use crate::export::{ExportError, FrameData, RowWriter};
 use crate::figure::euler::{yxz_angles, zxy_angles};
 use crate::figure::skeleton::{LENGTH_TOLERANCE, Side, Skeleton};
 use crate::model::body::Body;
@@ -246,11 +247,10 @@ impl BvhWriter {
         let j = &self.joints[i];
         let pad = "\t".repeat(depth);
         let kind = if j.parent.is_none() { "ROOT" } else { "JOINT" };
-        // + 0.0 turns −0.0 (from negating a zero) into 0.0
-        let o = to_bvh(j.offset) + DVec3::ZERO;
+        let o = to_bvh(j.offset).to_array().map(Number);
         writeln!(out, "{pad}{kind} {}", j.name)?;
         writeln!(out, "{pad}{{")?;
-        writeln!(out, "{pad}\tOFFSET {:.6} {:.6} {:.6}", o.x, o.y, o.z)?;
+        writeln!(out, "{pad}\tOFFSET {} {} {}", o[0], o[1], o[2])?;
         let names: Vec<&str> = j.channels.iter().map(|c| c.name()).collect();
         writeln!(
             out,
@@ -264,10 +264,10 @@ impl BvhWriter {
             }
         }
         if let Some(end) = j.end_site {
-            let e = to_bvh(end) + DVec3::ZERO;
+            let e = to_bvh(end).to_array().map(Number);
             writeln!(out, "{pad}\tEnd Site")?;
             writeln!(out, "{pad}\t{{")?;
-            writeln!(out, "{pad}\t\tOFFSET {:.6} {:.6} {:.6}", e.x, e.y, e.z)?;
+            writeln!(out, "{pad}\t\tOFFSET {} {} {}", e[0], e[1], e[2])?;
             writeln!(out, "{pad}\t}}")?;
         }
         writeln!(out, "{pad}}}")
@@ -275,7 +275,7 @@ impl BvhWriter {
 }
 
 impl RowWriter for BvhWriter {
-    fn row(&mut self, out: &mut dyn Write, frame: &FrameData) -> Result<(), RowError> {
+    fn row(&mut self, out: &mut Vec<u8>, frame: &FrameData) -> Result<(), ExportError> {
         let lm = frame.landmarks;
         let sk = &frame.skeleton;
         if frame.index == 0 {
@@ -283,28 +283,29 @@ impl RowWriter for BvhWriter {
         }
         let expected = self.first_time + frame.index as f64 / self.fps;
         if (lm.time - expected).abs() > 1e-3 / self.fps + 1e-9 {
-            return Err(RowError::Frame(ExportError::FrameTime {
+            return Err(ExportError::FrameTime {
                 frame: frame.index,
                 time: lm.time,
                 fps: self.fps,
                 first: self.first_time,
                 expected,
-            }));
+            });
         }
         let (err, name) = sk.length_error(lm, &self.body);
         if err.is_nan() || err > LENGTH_TOLERANCE {
-            return Err(RowError::Frame(ExportError::SegmentLength {
+            return Err(ExportError::SegmentLength {
                 time: lm.time,
                 landmark: name,
                 distance: err,
                 tolerance: LENGTH_TOLERANCE,
-            }));
+            });
         }
-        let mut first = true;
-        let mut put = |out: &mut dyn Write, v: f64| -> io::Result<()> {
-            let sep = if first { "" } else { " " };
-            first = false;
-            write!(out, "{sep}{:.6}", v + 0.0)
+        let start = out.len();
+        let put = |out: &mut Vec<u8>, v: f64| {
+            if out.len() > start {
+                out.push(b' ');
+            }
+            push_f64(out, v);
         };
         for j in &self.joints {
             match j.motion {
@@ -314,26 +315,26 @@ impl RowWriter for BvhWriter {
                         p.z = 0.0;
                     }
                     for v in p.to_array() {
-                        put(out, v)?;
+                        put(out, v);
                     }
                     for v in rotation_channels(&j.channels[3..], &sk.pelvis.axes) {
-                        put(out, v)?;
+                        put(out, v);
                     }
                 }
                 Motion::Relative(parent, child) => {
                     let rel = axes(sk, parent).transpose() * axes(sk, child);
                     for v in rotation_channels(j.channels, &rel) {
-                        put(out, v)?;
+                        put(out, v);
                     }
                 }
                 Motion::Fixed => {
                     for _ in j.channels {
-                        put(out, 0.0)?;
+                        put(out, 0.0);
                     }
                 }
             }
         }
-        writeln!(out)?;
+        out.push(b'\n');
         Ok(())
     }
 
@@ -342,6 +343,6 @@ impl RowWriter for BvhWriter {
         self.write_joint(out, 0, 0)?;
         writeln!(out, "MOTION")?;
         writeln!(out, "Frames: {rows}")?;
-        writeln!(out, "Frame Time: {:.9}", 1.0 / self.fps)
+        writeln!(out, "Frame Time: {}", Number(1.0 / self.fps))
     }
 }
