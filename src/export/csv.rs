@@ -1,9 +1,10 @@
 //! The clinical-angle CSV (issue item 7): one row per frame, `time_s`, `step`, the pelvis centre
 //! `pelvis_tx_m`, `pelvis_ty_m`, `pelvis_tz_m` (world frame, m), then [`angle_columns`]
-//! in degrees as `*_deg`. Numbers in their shortest round-trip form.
+//! in degrees as `*_deg`. Numbers as [`super::number`] writes them (shortest round-trip form).
 use std::io::{self, Write};
 
-use super::{FrameData, RowError, RowWriter};
+use super::number::{push_f64, push_usize};
+use super::{ExportError, FrameData, RowWriter};
 use crate::figure::clinical::{AngleColumn, angle_columns};
 
 /// The frame CSV writer.
@@ -20,17 +21,20 @@ impl FrameCsv {
 }
 
 impl RowWriter for FrameCsv {
-    fn row(&mut self, out: &mut dyn Write, frame: &FrameData) -> Result<(), RowError> {
+    fn row(&mut self, out: &mut Vec<u8>, frame: &FrameData) -> Result<(), ExportError> {
         let c = &frame.clinical;
-        write!(
-            out,
-            "{},{},{},{},{}",
-            c.time, c.step, c.pelvis[0], c.pelvis[1], c.pelvis[2]
-        )?;
-        for col in &self.columns {
-            write!(out, ",{}", (col.get)(c).to_degrees())?;
+        push_f64(out, c.time);
+        out.push(b',');
+        push_usize(out, c.step);
+        for v in c.pelvis {
+            out.push(b',');
+            push_f64(out, v);
         }
-        writeln!(out)?;
+        for col in &self.columns {
+            out.push(b',');
+            push_f64(out, (col.get)(c).to_degrees());
+        }
+        out.push(b'\n');
         Ok(())
     }
 

@@ -2,10 +2,12 @@
 //! [`crate::analysis::cycle::cycle_average`], one row per 1 % of the cycle.
 use std::path::Path;
 
+use super::number::Number;
 use crate::analysis::cycle::CycleCurves;
 use crate::error::Result;
 
-/// Write the curves as CSV: `cycle_pct` (0…100), then each column as `*_deg`; 101 rows.
+/// Write the curves as CSV: `cycle_pct` (0…100), then each column as `*_deg`; 101 rows, numbers
+/// as `export::number` writes them.
 pub fn write_cycle_csv(path: &Path, curves: &CycleCurves) -> Result<()> {
     super::file::write_atomic(path, |out| {
         write!(out, "cycle_pct")?;
@@ -16,7 +18,7 @@ pub fn write_cycle_csv(path: &Path, curves: &CycleCurves) -> Result<()> {
         for (p, row) in curves.rows.iter().enumerate() {
             write!(out, "{p}")?;
             for v in row {
-                write!(out, ",{}", v.to_degrees())?;
+                write!(out, ",{}", Number(v.to_degrees()))?;
             }
             writeln!(out)?;
         }

@@ -14,6 +14,7 @@ pub mod cycle;
 pub mod error;
 pub mod events;
 pub mod file;
+pub(crate) mod number;
 pub mod opensim;
 pub mod report;
 pub mod state;
@@ -87,22 +88,11 @@ pub(crate) struct FrameData<'a> {
 
 /// A format's row and header writers.
 pub(crate) trait RowWriter {
-    /// Write one frame's row. Errors other than I/O are a frame the format cannot represent.
-    fn row(&mut self, out: &mut dyn Write, frame: &FrameData) -> Result<(), RowError>;
+    /// Append one frame's row, with its line end, to `out` (numbers by [`number`]). An error is a
+    /// frame the format cannot represent.
+    fn row(&mut self, out: &mut Vec<u8>, frame: &FrameData) -> Result<(), ExportError>;
     /// Write everything before the rows, knowing how many rows there are.
     fn header(&self, out: &mut dyn Write, rows: usize) -> io::Result<()>;
-}
-
-/// A row that could not be written.
-pub(crate) enum RowError {
-    Io(io::Error),
-    Frame(ExportError),
-}
-
-impl From<io::Error> for RowError {
-    fn from(e: io::Error) -> Self {
-        RowError::Io(e)
-    }
 }
 
 /// Write `frames` to `path` in `format`: `.csv` (clinical angles, one row per frame), `.mot` /
@@ -165,6 +155,8 @@ where
     // the rows wait in an unnamed file in the target's directory, gone when closed
     let spool = tempfile::tempfile_in(file::parent_dir(path)).map_err(|e| write_error(path, e))?;
     let mut spool = BufWriter::new(spool);
+    // one row at a time, in a buffer kept across the rows
+    let mut row = Vec::new();
     let mut rows = 0;
     let mut last_time = f64::NEG_INFINITY;
     for (index, lm) in frames.into_iter().enumerate() {
@@ -185,10 +177,9 @@ where
             clinical: skeleton.clinical(lm.time, lm.step),
             skeleton,
         };
-        writer.row(&mut spool, &frame).map_err(|e| match e {
-            RowError::Io(e) => write_error(path, e),
-            RowError::Frame(e) => e.into(),
-        })?;
+        row.clear();
+        writer.row(&mut row, &frame)?;
+        spool.write_all(&row).map_err(|e| write_error(path, e))?;
         rows += 1;
     }
     if rows == 0 {

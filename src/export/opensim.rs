@@ -31,7 +31,8 @@ use std::io::{self, Write};
 
 use glam::DVec3;
 
-use super::{FrameData, RowError, RowWriter};
+use super::number::push_f64;
+use super::{ExportError, FrameData, RowWriter};
 use crate::figure::clinical::Clinical;
 use crate::figure::euler::zxy_angles;
 use crate::figure::skeleton::{Side, Skeleton};
@@ -177,21 +178,22 @@ impl Storage {
 }
 
 impl RowWriter for Storage {
-    fn row(&mut self, out: &mut dyn Write, frame: &FrameData) -> Result<(), RowError> {
+    fn row(&mut self, out: &mut Vec<u8>, frame: &FrameData) -> Result<(), ExportError> {
         let coords = coordinates(self.model, &frame.skeleton, &frame.clinical, self.height);
         if self.names.is_empty() {
             self.names = coords.iter().map(|c| c.name.clone()).collect();
         }
-        write!(out, "{}", frame.landmarks.time)?;
+        push_f64(out, frame.landmarks.time);
         for c in &coords {
             let v = if c.is_rotation {
                 c.value.to_degrees()
             } else {
                 c.value
             };
-            write!(out, "\t{v}")?;
+            out.push(b'\t');
+            push_f64(out, v);
         }
-        writeln!(out)?;
+        out.push(b'\n');
         Ok(())
     }
 
