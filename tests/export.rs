@@ -1018,6 +1018,93 @@ fn files(dir: &Path) -> Vec<String> {
         .collect()
 }
 
+/// The three ways a motion file is finished give the same bytes: the header first and the spool
+/// renamed over the target (the frames' size hint gives the count, as a `Vec`'s), no size hint
+/// (the header then the spooled rows copied into the target), a size hint larger than the frames
+/// that come (the header written first is replaced). Nothing else is left in the directory, and
+/// the file has the usual mode of a new file.
+#[test]
+fn every_way_to_the_file_writes_the_same_bytes() {
+    let b = body();
+    let frames: Vec<Landmarks> = walk(100.0, 0.3).into_iter().map(|f| f.1).collect();
+    let n = frames.len();
+    let dir = tempfile::tempdir().unwrap();
+    let opts = Options::default();
+    for name in ["a.csv", "a.mot", "a.bvh"] {
+        let path = dir.path().join(name);
+        let fmt = Format::from_path(&path).unwrap();
+        let read = |p: &Path| fs::read(p).unwrap();
+        export::write(&path, fmt, &b, 100.0, frames.clone(), &opts).unwrap();
+        let counted = read(&path);
+        let mut k = 0;
+        let unhinted = std::iter::from_fn(|| {
+            k += 1;
+            frames.get(k - 1).copied()
+        });
+        export::write(&path, fmt, &b, 100.0, unhinted, &opts).unwrap();
+        assert!(read(&path) == counted, "{name}: no size hint");
+        export::write(&path, fmt, &b, 100.0, frames[..n - 1].to_vec(), &opts).unwrap();
+        let shorter = read(&path);
+        let mut k = 0;
+        let fewer = frames.iter().copied().filter(|_| {
+            k += 1;
+            k < n
+        });
+        export::write(&path, fmt, &b, 100.0, fewer, &opts).unwrap();
+        assert!(
+            read(&path) == shorter,
+            "{name}: fewer frames than the size hint"
+        );
+        assert!(shorter.len() < counted.len());
+        assert_eq!(files(dir.path()), [name], "{name}");
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            let plain = dir.path().join("plain");
+            fs::write(&plain, b"x").unwrap();
+            let mode = |p: &Path| fs::metadata(p).unwrap().permissions().mode();
+            assert_eq!(mode(&path), mode(&plain), "{name}");
+            fs::remove_file(&plain).unwrap();
+        }
+        fs::remove_file(&path).unwrap();
+    }
+}
+
+/// The frames are made on the caller's thread and written on another: the error reported is
+/// still the first frame's that fails, whether the writer or the frames' iterator finds it.
+#[test]
+fn the_first_failing_frame_gives_the_error() {
+    let b = body();
+    let frames: Vec<Landmarks> = walk(100.0, 2.0).into_iter().map(|f| f.1).collect();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("a.bvh");
+    let opts = Options::default();
+    let marker = || -> Error {
+        ExportError::UnknownFormat {
+            path: "marker".into(),
+        }
+        .into()
+    };
+    for (bad, fail) in [(3, 150), (150, 3), (100, 101), (199, 200)] {
+        let mut lms = frames.clone();
+        lms[bad].time += 0.5e-2;
+        let stream = lms
+            .into_iter()
+            .enumerate()
+            .map(|(i, lm)| if i == fail { Err(marker()) } else { Ok(lm) });
+        let e = export::try_write(&path, Format::Bvh, &b, 100.0, stream, &opts).unwrap_err();
+        if bad < fail {
+            assert!(
+                matches!(e, Error::Export(ExportError::FrameTime { frame, .. }) if frame == bad),
+                "{bad} {fail}: {e}"
+            );
+        } else {
+            assert!(e.to_string().contains("marker"), "{bad} {fail}: {e}");
+        }
+        assert!(files(dir.path()).is_empty(), "{:?}", files(dir.path()));
+    }
+}
+
 #[test]
 fn bad_input_is_a_typed_error_and_leaves_no_file() {
     let b = body();

@@ -21,8 +21,12 @@ impl FrameCsv {
 }
 
 impl RowWriter for FrameCsv {
+    fn counts_rows(&self) -> bool {
+        false
+    }
+
     fn row(&mut self, out: &mut Vec<u8>, frame: &FrameData) -> Result<(), ExportError> {
-        let c = &frame.clinical;
+        let c = frame.clinical();
         push_f64(out, c.time);
         out.push(b',');
         push_usize(out, c.step);

@@ -7,7 +7,7 @@ use crate::analysis::cycle::CycleCurves;
 use crate::error::Result;
 
 /// Write the curves as CSV: `cycle_pct` (0…100), then each column as `*_deg`; 101 rows, numbers
-/// as `export::number` writes them.
+/// as the motion files write them (`docs/export.md`, "Numbers in the files").
 pub fn write_cycle_csv(path: &Path, curves: &CycleCurves) -> Result<()> {
     super::file::write_atomic(path, |out| {
         write!(out, "cycle_pct")?;

@@ -3,11 +3,12 @@
 //! the import recipes are in `docs/export.md`. The walk's other files have a writer each: the
 //! engine-state CSV ([`state`]), the gait events ([`events`]) and the JSON report ([`report`]).
 //!
-//! Every motion writer streams: rows go to a scratch file next to the target while the frames
-//! are converted, then the header (which needs the row count) and the rows are written to the
-//! target by `file::write_atomic`. Any error, in a frame or in the file system, leaves no file
-//! (and an existing target untouched); every file of the crate is written through
-//! [`file`](mod@file).
+//! Every motion writer streams: rows go to an unnamed file in the target's directory while the
+//! frames are converted (`spool`). When the header could go first (no row count in it, or the
+//! count known beforehand), that file becomes the target; otherwise the header (which needs the
+//! row count) and the rows are written to the target by `file::write_atomic`. Any error, in a
+//! frame or in the file system, leaves no file (and an existing target untouched); every file of
+//! the crate is written through [`file`](mod@file) or a spool renamed over the target.
 pub mod bvh;
 pub(crate) mod csv;
 pub mod cycle;
@@ -17,9 +18,12 @@ pub mod file;
 pub(crate) mod number;
 pub mod opensim;
 pub mod report;
+mod rows;
+mod spool;
 pub mod state;
 
-use std::io::{self, BufWriter, Seek, Write};
+use std::cell::OnceCell;
+use std::io::{self, Write};
 use std::path::Path;
 
 pub use cycle::write_cycle_csv;
@@ -35,7 +39,6 @@ use crate::figure::clinical::Clinical;
 use crate::figure::skeleton::Skeleton;
 use crate::model::InputError;
 use crate::model::body::Body;
-use file::write_error;
 
 /// The export file formats, chosen by the file extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -78,16 +81,31 @@ pub struct Options {
     pub opensim_model: OpenSimModel,
 }
 
-/// One frame as the writers see it: the landmarks, their segment frames and clinical angles.
+/// One frame as the writers see it: the landmarks, their segment frames and (made when first
+/// asked for: BVH does not use them) clinical angles.
 pub(crate) struct FrameData<'a> {
     pub index: usize,
     pub landmarks: &'a Landmarks,
     pub skeleton: Skeleton,
-    pub clinical: Clinical,
+    clinical: OnceCell<Clinical>,
+}
+
+impl FrameData<'_> {
+    /// The frame's clinical angles.
+    pub fn clinical(&self) -> &Clinical {
+        self.clinical.get_or_init(|| {
+            self.skeleton
+                .clinical(self.landmarks.time, self.landmarks.step)
+        })
+    }
 }
 
 /// A format's row and header writers.
 pub(crate) trait RowWriter {
+    /// Whether the header holds the row count (`.mot`'s `nRows`, BVH's `Frames:`).
+    fn counts_rows(&self) -> bool {
+        true
+    }
     /// Append one frame's row, with its line end, to `out` (numbers by [`number`]). An error is a
     /// frame the format cannot represent.
     fn row(&mut self, out: &mut Vec<u8>, frame: &FrameData) -> Result<(), ExportError>;
@@ -130,71 +148,18 @@ where
 {
     InputError::check_range("fps", fps, 1e-3, 1e6, "frames/s")?;
     match format {
-        Format::Csv => run(path, body, frames, csv::FrameCsv::new()),
-        Format::Mot | Format::Sto => run(
+        Format::Csv => rows::run(path, body, frames, csv::FrameCsv::new()),
+        Format::Mot | Format::Sto => rows::run(
             path,
             body,
             frames,
             opensim::Storage::new(options.opensim_model, body),
         ),
-        Format::Bvh => run(
+        Format::Bvh => rows::run(
             path,
             body,
             frames,
             bvh::BvhWriter::new(body, fps, options.in_place),
         ),
     }
-}
-
-fn run<I, E, W>(path: &Path, body: &Body, frames: I, mut writer: W) -> Result<()>
-where
-    I: IntoIterator<Item = Result<Landmarks, E>>,
-    Error: From<E>,
-    W: RowWriter,
-{
-    // the rows wait in an unnamed file in the target's directory, gone when closed
-    let spool = tempfile::tempfile_in(file::parent_dir(path)).map_err(|e| write_error(path, e))?;
-    let mut spool = BufWriter::new(spool);
-    // one row at a time, in a buffer kept across the rows
-    let mut row = Vec::new();
-    let mut rows = 0;
-    let mut last_time = f64::NEG_INFINITY;
-    for (index, lm) in frames.into_iter().enumerate() {
-        let lm = lm?;
-        let skeleton = Skeleton::new(&lm, body)?;
-        if lm.time <= last_time {
-            return Err(ExportError::OutOfOrder {
-                frame: index,
-                time: lm.time,
-                previous: last_time,
-            }
-            .into());
-        }
-        last_time = lm.time;
-        let frame = FrameData {
-            index,
-            landmarks: &lm,
-            clinical: skeleton.clinical(lm.time, lm.step),
-            skeleton,
-        };
-        row.clear();
-        writer.row(&mut row, &frame)?;
-        spool.write_all(&row).map_err(|e| write_error(path, e))?;
-        rows += 1;
-    }
-    if rows == 0 {
-        return Err(ExportError::NoFrames {
-            path: path.to_path_buf(),
-        }
-        .into());
-    }
-    let mut file = spool
-        .into_inner()
-        .map_err(|e| write_error(path, e.into_error()))?;
-    file.rewind().map_err(|e| write_error(path, e))?;
-    file::write_atomic(path, |out| {
-        writer.header(out, rows)?;
-        io::copy(&mut file, out)?;
-        Ok(())
-    })
 }

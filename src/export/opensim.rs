@@ -84,23 +84,52 @@ impl OpenSimModel {
 /// One model coordinate of a frame.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Coordinate {
-    pub name: String,
+    pub name: &'static str,
     /// rad for rotations, m for translations.
     pub value: f64,
     pub is_rotation: bool,
 }
 
-/// The model coordinates of one frame, in file column order (without `time`).
+/// The leg coordinates of the right and the left side, in file column order.
+const LEG_COORDINATES: [[&str; 7]; 2] = [
+    [
+        "hip_flexion_r",
+        "hip_adduction_r",
+        "hip_rotation_r",
+        "knee_angle_r",
+        "ankle_angle_r",
+        "subtalar_angle_r",
+        "mtp_angle_r",
+    ],
+    [
+        "hip_flexion_l",
+        "hip_adduction_l",
+        "hip_rotation_l",
+        "knee_angle_l",
+        "ankle_angle_l",
+        "subtalar_angle_l",
+        "mtp_angle_l",
+    ],
+];
+
+/// Rajagopal 2015's arm coordinates of the right and the left side, in file column order.
+const ARM_COORDINATES: [[&str; 4]; 2] = [
+    ["arm_flex_r", "arm_add_r", "arm_rot_r", "elbow_flex_r"],
+    ["arm_flex_l", "arm_add_l", "arm_rot_l", "elbow_flex_l"],
+];
+
+/// The model coordinates of one frame, in file column order (without `time`), appended to
+/// `out`.
 pub(crate) fn coordinates(
     model: OpenSimModel,
     skeleton: &Skeleton,
     clinical: &Clinical,
     height: f64,
-) -> Vec<Coordinate> {
-    let mut out = Vec::with_capacity(40);
-    let mut rot = |name: &str, value: f64| {
+    out: &mut Vec<Coordinate>,
+) {
+    let mut rot = |name: &'static str, value: f64| {
         out.push(Coordinate {
-            name: name.to_string(),
+            name,
             value,
             is_rotation: true,
         })
@@ -113,58 +142,65 @@ pub(crate) fn coordinates(
         .pelvis
         .point(model.pelvis_origin_from_hips() * (height / model.reference_height()));
     for (name, v) in ["pelvis_tx", "pelvis_ty", "pelvis_tz"]
-        .iter()
+        .into_iter()
         .zip(origin.to_array())
     {
         out.push(Coordinate {
-            name: name.to_string(),
+            name,
             value: v,
             is_rotation: false,
         });
     }
-    let mut rot = |name: String, value: f64| {
+    let mut rot = |name: &'static str, value: f64| {
         out.push(Coordinate {
             name,
             value,
             is_rotation: true,
         })
     };
-    for side in [Side::Right, Side::Left] {
-        let s = side.suffix();
+    for (side, names) in [Side::Right, Side::Left].into_iter().zip(LEG_COORDINATES) {
         let leg = clinical.leg(side);
-        rot(format!("hip_flexion_{s}"), leg.hip.flexion);
-        rot(format!("hip_adduction_{s}"), leg.hip.adduction);
-        rot(format!("hip_rotation_{s}"), leg.hip.rotation);
-        rot(
-            format!("knee_angle_{s}"),
+        let values = [
+            leg.hip.flexion,
+            leg.hip.adduction,
+            leg.hip.rotation,
             model.knee_sign() * leg.knee.flexion,
-        );
-        rot(format!("ankle_angle_{s}"), leg.ankle.flexion);
-        rot(format!("subtalar_angle_{s}"), leg.ankle.adduction);
-        rot(format!("mtp_angle_{s}"), leg.mtp.flexion);
-    }
-    let [ext, bend, lrot] = zxy_angles(&(skeleton.pelvis.axes.transpose() * skeleton.thorax.axes));
-    rot("lumbar_extension".into(), ext);
-    rot("lumbar_bending".into(), bend);
-    rot("lumbar_rotation".into(), lrot);
-    if model.has_arms() {
-        for side in [Side::Right, Side::Left] {
-            let s = side.suffix();
-            let arm = clinical.arm(side);
-            rot(format!("arm_flex_{s}"), arm.shoulder.flexion);
-            rot(format!("arm_add_{s}"), arm.shoulder.adduction);
-            rot(format!("arm_rot_{s}"), arm.shoulder.rotation);
-            rot(format!("elbow_flex_{s}"), arm.elbow.flexion);
+            leg.ankle.flexion,
+            leg.ankle.adduction,
+            leg.mtp.flexion,
+        ];
+        for (name, v) in names.into_iter().zip(values) {
+            rot(name, v);
         }
     }
-    out
+    let [ext, bend, lrot] = zxy_angles(&(skeleton.pelvis.axes.transpose() * skeleton.thorax.axes));
+    rot("lumbar_extension", ext);
+    rot("lumbar_bending", bend);
+    rot("lumbar_rotation", lrot);
+    if model.has_arms() {
+        for (side, names) in [Side::Right, Side::Left].into_iter().zip(ARM_COORDINATES) {
+            let arm = clinical.arm(side);
+            let values = [
+                arm.shoulder.flexion,
+                arm.shoulder.adduction,
+                arm.shoulder.rotation,
+                arm.elbow.flexion,
+            ];
+            for (name, v) in names.into_iter().zip(values) {
+                rot(name, v);
+            }
+        }
+    }
 }
 
 /// The `.mot` / `.sto` writer.
 pub(crate) struct Storage {
     model: OpenSimModel,
     height: f64,
-    names: Vec<String>,
+    /// The coordinates' names, from the first row.
+    names: Vec<&'static str>,
+    /// A frame's coordinates, kept across the rows.
+    coords: Vec<Coordinate>,
 }
 
 impl Storage {
@@ -173,18 +209,27 @@ impl Storage {
             model,
             height: body.height,
             names: Vec::new(),
+            coords: Vec::with_capacity(40),
         }
     }
 }
 
 impl RowWriter for Storage {
     fn row(&mut self, out: &mut Vec<u8>, frame: &FrameData) -> Result<(), ExportError> {
-        let coords = coordinates(self.model, &frame.skeleton, &frame.clinical, self.height);
+        self.coords.clear();
+        let clinical = frame.clinical();
+        coordinates(
+            self.model,
+            &frame.skeleton,
+            clinical,
+            self.height,
+            &mut self.coords,
+        );
         if self.names.is_empty() {
-            self.names = coords.iter().map(|c| c.name.clone()).collect();
+            self.names = self.coords.iter().map(|c| c.name).collect();
         }
         push_f64(out, frame.landmarks.time);
-        for c in &coords {
+        for c in &self.coords {
             let v = if c.is_rotation {
                 c.value.to_degrees()
             } else {

@@ -174,26 +174,37 @@ impl Iterator for WalkStream<'_> {
     type Item = Result<Landmarks>;
 
     fn next(&mut self) -> Option<Self::Item> {
-        if self.failed {
-            return None;
-        }
-        if self.next_frame > self.last_frame {
-            // the steps after the last frame (a low frame rate) are walked too: their reports,
-            // events and failures belong to the walk
-            while self.gaits.len() > 0 {
-                if let Some(Err(e)) = self.advance() {
-                    self.failed = true;
-                    return Some(Err(e));
-                }
-            }
+        if self.failed || self.next_frame > self.last_frame {
             return None;
         }
         let t = self.next_frame as f64 / self.fps;
         self.next_frame += 1;
-        let item = self.frame(t);
+        let mut item = self.frame(t);
+        if self.next_frame > self.last_frame && matches!(item, Some(Ok(_))) {
+            // the steps after the last frame (a low frame rate) are walked too, before it is
+            // handed out: their reports, events and failures belong to the walk, and a failure
+            // takes the last frame's place (so there are never more items than frames)
+            while self.gaits.len() > 0 {
+                if let Some(Err(e)) = self.advance() {
+                    item = Some(Err(e));
+                    break;
+                }
+            }
+        }
         if matches!(item, Some(Err(_))) {
             self.failed = true;
         }
         item
+    }
+
+    /// At most the frames left (a failure ends the stream early): what a motion file's header
+    /// counts (`export::try_write` writes it first then).
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let left = if self.failed {
+            0
+        } else {
+            (self.last_frame + 1).saturating_sub(self.next_frame)
+        };
+        (0, Some(left))
     }
 }
