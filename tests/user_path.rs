@@ -289,7 +289,10 @@ fn the_default_figure_follows_the_motion_file_and_is_bounded() {
     assert!(d.join("gait-cycle.png").exists());
     refused(&["plot", "--steps", "5000"], &["at most 1000 steps"]);
     // an animation's frame cap is checked from the gait, before the walk is simulated
-    refused(&["animate", "--steps", "1500", "--fps", "30"], &["frame count", "[1, 20000]"]);
+    refused(
+        &["animate", "--steps", "1500", "--fps", "30"],
+        &["frame count", "[1, 20000]"],
+    );
 }
 
 /// Class 7: a job's progress goes to stderr as at most a line every 10 s when it is not a
