@@ -35,6 +35,11 @@ pub struct Gait {
     pub step_frequency: f64,
 }
 
+/// The duration (s) of a walk of one step per gait, known before it is simulated: Σ 60 / sf.
+pub fn walk_duration(gaits: &[Gait]) -> f64 {
+    gaits.iter().map(|g| 60.0 / g.step_frequency).sum()
+}
+
 impl GaitRequest {
     /// The gait walked when none is given: the attributes' `preferred_velocity` (a style's own
     /// speed, 1.4 m/s by default), sl and sf by the normalizing formula; out of range, the error

@@ -306,23 +306,12 @@ impl HeatMap {
                 format!("`{y}` is also the x axis: give two parameters"),
             ));
         }
-        // (the sweep's text columns, whatever their cells: `error` is empty where all converged)
-        let text = if matches!(column, "error" | "style") {
-            Some("")
-        } else {
-            rows.iter()
-                .filter_map(|r| r.get(ic).map(String::as_str))
-                .find(|v| number(v).is_err())
-        };
-        if let Some(text) = text {
+        // the sweep's text columns, whatever their cells (`error` is empty where all converged);
+        // a text cell of any other column is refused by `cells`
+        if matches!(column, "error" | "style") {
             let reason = format!(
-                "`{column}` is not numeric (it holds text{}): choose a numeric column, e.g. \
-                 converged, mean_iterations or achieved_velocity",
-                if text.is_empty() {
-                    String::new()
-                } else {
-                    format!(" (`{text}`)")
-                }
+                "`{column}` is not numeric (it holds text): choose a numeric column, e.g. \
+                 converged, mean_iterations or achieved_velocity"
             );
             return Err(bad("column", reason));
         }

@@ -243,7 +243,7 @@ impl Prepared {
 
     /// The walk's duration (s), known before it is simulated: Σ 60 / sf over the steps.
     pub fn duration(&self) -> f64 {
-        self.gaits.iter().map(|g| 60.0 / g.step_frequency).sum()
+        crate::plan::gait::walk_duration(&self.gaits)
     }
 
     /// Simulate the walk, every step kept.

@@ -65,7 +65,7 @@ impl<'a> WalkStream<'a> {
     /// One step per gait, frames at `fps` from t = 0 to the last heel strike (inclusive).
     pub fn new(body: Body, attrs: Attributes, gaits: &'a [Gait], fps: f64, gather: Gather) -> Self {
         // the walk lasts Σ 60 / sf, known before anything is simulated
-        let duration: f64 = gaits.iter().map(|g| 60.0 / g.step_frequency).sum();
+        let duration = crate::plan::gait::walk_duration(gaits);
         WalkStream {
             walker: Walker::new(body, attrs),
             gaits: gaits.iter(),
@@ -91,6 +91,11 @@ impl<'a> WalkStream<'a> {
     /// Simulated duration (s).
     pub fn duration(&self) -> f64 {
         self.duration
+    }
+
+    /// The frames the stream yields: at k / fps from t = 0 to the last heel strike.
+    pub fn frames(&self) -> usize {
+        self.last_frame + 1
     }
 
     /// The walker's locomotion attributes.

@@ -4,6 +4,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use klaw::Result;
+use klaw::plan::gait::walk_duration;
 use klaw::plot::animation::{self, Options};
 
 use crate::args::GaitArgs;
@@ -43,13 +44,11 @@ pub(crate) struct AnimateArgs {
 pub(crate) fn run(args: &AnimateArgs) -> Result<()> {
     let options = Options::new(args.fps, animation::parse_size(&args.size)?)?;
     outputs::check(&[Output::new("out", &args.out, &["gif"])])?;
+    let planned = args.walk.plan(1, MAX_STEPS)?;
     // the frame count is known from the gait before anything is simulated
-    let body = args.walk.body()?;
-    let gaits = args.walk.gaits(&body, &args.walk.attributes()?)?;
-    let duration: f64 = gaits.iter().map(|g| 60.0 / g.step_frequency).sum();
-    animation::check_frame_count(duration, options.fps)?;
+    animation::check_frame_count(walk_duration(&planned.gaits), options.fps)?;
     let spinner = Spinner::new("simulating the walk and drawing its animation".into());
-    let (walk, title) = args.walk.simulate(1, MAX_STEPS)?;
+    let (walk, title) = planned.simulate()?;
     let summary = animation::animate_walk(&walk, &title, &args.out, &options)?;
     drop(spinner);
     let mut out = std::io::stdout().lock();

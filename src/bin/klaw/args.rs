@@ -154,10 +154,10 @@ impl GaitArgs {
         }
     }
 
-    /// Simulate the walk, refused before any work when it has fewer than `min_steps` steps
-    /// or more than `max_steps` (the commands that hold the whole walk in memory bound it);
-    /// also the title line of its parameters.
-    pub(crate) fn simulate(&self, min_steps: usize, max_steps: usize) -> Result<(Walk, String)> {
+    /// The walk of the flags, refused before any work when it has fewer than `min_steps`
+    /// steps or more than `max_steps` (the commands that hold the whole walk in memory bound
+    /// it), with the title line of its parameters.
+    pub(crate) fn plan(&self, min_steps: usize, max_steps: usize) -> Result<Planned> {
         let body = self.body()?;
         let attrs = self.attributes()?;
         let gaits = self.gaits(&body, &attrs)?;
@@ -184,6 +184,27 @@ impl GaitArgs {
             (None, None) => "default".to_string(),
         };
         let title = klaw::plot::parameters_title(&gaits, &body, &style);
-        Ok((simulate(body, attrs, &gaits)?, title))
+        Ok(Planned {
+            body,
+            attrs,
+            gaits,
+            title,
+        })
+    }
+}
+
+/// A walk checked and ready to simulate ([`GaitArgs::plan`]).
+pub(crate) struct Planned {
+    body: Body,
+    attrs: Attributes,
+    /// The completed gait of every step.
+    pub gaits: Vec<Gait>,
+    title: String,
+}
+
+impl Planned {
+    /// Simulate the walk; also the title line of its parameters.
+    pub(crate) fn simulate(self) -> Result<(Walk, String)> {
+        Ok((simulate(self.body, self.attrs, &self.gaits)?, self.title))
     }
 }

@@ -33,7 +33,7 @@ pub(crate) struct PlotArgs {
 pub(crate) fn run(args: &PlotArgs) -> Result<()> {
     outputs::check(&[Output::new("out", &args.out, outputs::FIGURE)])?;
     let spinner = Spinner::new("simulating the walk and drawing its gait cycle".into());
-    let (walk, title) = args.walk.simulate(min_steps(true), MAX_STEPS)?;
+    let (walk, title) = args.walk.plan(min_steps(true), MAX_STEPS)?.simulate()?;
     let cycle = GaitCycle::from_walk(&walk)?;
     let norms = NormTable::builtin();
     let figure = write_cycle_figure(&cycle, &norms, &title, &args.out)?;

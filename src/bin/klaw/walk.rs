@@ -127,7 +127,7 @@ pub(crate) fn run(args: &WalkArgs) -> Result<()> {
     if args.state_out.is_some() || args.cycle_out.is_some() {
         // every frame's state or clinical angles are held until the walk ends: refuse a count
         // that would not fit in memory (the walk lasts Σ 60 / sf)
-        let duration: f64 = gaits.iter().map(|g| 60.0 / g.step_frequency).sum();
+        let duration = klaw::plan::gait::walk_duration(&gaits);
         InputError::check_range(
             "frame count with --state-out or --cycle-out (duration · fps + 1)",
             (duration * fps).round() + 1.0,
@@ -137,7 +137,7 @@ pub(crate) fn run(args: &WalkArgs) -> Result<()> {
         )?;
     }
     let mut stream = WalkStream::new(body, attrs, &gaits, fps, gather);
-    let frames = (stream.duration() * fps + 1e-9).floor() as u64 + 1;
+    let frames = stream.frames() as u64;
     let progress = Progress::new("walk", frames, "frames");
     let mut done = 0;
     let counted = stream.by_ref().inspect(|_| {
@@ -246,7 +246,7 @@ fn write_outputs(
 
 /// The summary on stdout: the walk, the shooting and every file written.
 fn print_summary(args: &WalkArgs, stream: &WalkStream, fps: f64, plot: Option<&Path>) {
-    let frames = (stream.duration() * fps + 1e-9).floor() as usize + 1;
+    let frames = stream.frames();
     let mut out = std::io::stdout().lock();
     let _ = writeln!(
         out,
