@@ -10,6 +10,7 @@ use crate::export::error::ExportError;
 use crate::figure::FigureError;
 use crate::model::InputError;
 use crate::plot::error::DrawError;
+use crate::scenario::ScenarioError;
 
 /// Everything that can go wrong, from a bad value to a shooting solve that does not converge.
 #[derive(Debug, thiserror::Error)]
@@ -29,6 +30,9 @@ pub enum Error {
     /// Motion that cannot be exported as asked.
     #[error(transparent)]
     Export(#[from] ExportError),
+    /// A scenario whose action cannot be run.
+    #[error(transparent)]
+    Scenario(#[from] ScenarioError),
     /// Reading or writing a file failed.
     #[error("{action} {path}: {source}")]
     Io {

@@ -52,6 +52,8 @@ pub mod engine;
 pub mod analysis;
 // 7, the figure around the dynamic model: landmarks, skeleton, clinical angles.
 pub mod figure;
+// 7, non-rhythmic stepping: single steps and turnarounds (Ko & Badler 1993).
+pub mod nrs;
 // 8, motion files: clinical-angle CSV, OpenSim .mot / .sto, BVH, gait-cycle curves.
 pub mod export;
 // 8, figures: the walk, the gait cycle, the animated GIF, sweep heat maps.
@@ -60,6 +62,8 @@ pub mod plot;
 pub mod sweep;
 // 8, files in and out: atomic writes, frames, events, report, attribute and schedule files.
 pub mod input;
+// 9, scenarios: stand, walk, step, turn and pause in one motion.
+pub mod scenario;
 // 9, beside the binary: the library API, the `Simulation` builder and the `Walk` it returns.
 pub mod simulation;
 

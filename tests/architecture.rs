@@ -20,8 +20,9 @@ const LEVELS: &[&[&str]] = &[
     &["engine"],
     &["figure"],
     &["analysis"],
+    &["nrs"],
     &["export", "input"],
-    &["simulation", "sweep"],
+    &["simulation", "sweep", "scenario"],
     &["plot"],
 ];
 

@@ -5,6 +5,7 @@ use klaw::analysis::cycle::CycleError;
 use klaw::engine::SimulationError;
 use klaw::figure::FigureError;
 use klaw::model::InputError;
+use klaw::nrs::NrsError;
 
 /// The message of `e`: a bad value names the flag it was given for (`--velocity: …`).
 pub(crate) fn message(e: &Error) -> String {
@@ -39,5 +40,12 @@ pub(crate) fn exit_code(e: &Error) -> u8 {
         Error::Io { action, .. } if *action == "writing" => FAILED,
         Error::Io { .. } => BAD_INPUT,
         Error::Draw { .. } => FAILED,
+        Error::Scenario(s) => match &s.source {
+            NrsError::Goal { .. } | NrsError::Input(_) => BAD_INPUT,
+            NrsError::Walk(SimulationError::Plan(_)) => BAD_INPUT,
+            NrsError::Walking { source: SimulationError::Plan(_), .. } => BAD_INPUT,
+            NrsError::Walk(_) | NrsError::Walking { .. } => FAILED,
+            NrsError::Figure(f) => figure(f),
+        },
     }
 }
