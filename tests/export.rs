@@ -59,10 +59,39 @@ struct Pose {
     list: f64,
     rotation: f64,
     lumbar: [f64; 3], // extension, bending, rotation
+    neck: f64,
     right: LegQ,
     left: LegQ,
     right_arm: ArmAngles,
     left_arm: ArmAngles,
+}
+
+/// Points of the head, this file's own forward kinematics: the neck base (0, spine, 0) in the
+/// thorax, and a point `FACE` ahead of the head at the level of its base (the head's frame
+/// R_thorax · R_y(neck), as `Landmarks` defines it).
+struct HeadPoints {
+    base: DVec3,
+    face: DVec3,
+}
+
+/// The face point in the head's frame: 0.1 m ahead of the neck's top.
+fn face_offset(b: &Body) -> DVec3 {
+    DVec3::new(0.1, b.figure.neck, 0.0)
+}
+
+/// The head of the landmarks `lm` (from their pelvis, lumbar and neck angles).
+fn head_points(lm: &Landmarks, b: &Body) -> HeadPoints {
+    let rt = ry(lm.pelvis_rotation)
+        * rx(-lm.pelvis_list)
+        * rz(-lm.pelvis_tilt)
+        * ry(lm.lumbar_rotation)
+        * rx(lm.lumbar_bending)
+        * rz(lm.lumbar_extension);
+    let base = v(lm.pelvis) + rt * DVec3::new(0.0, b.figure.spine, 0.0);
+    HeadPoints {
+        base,
+        face: base + rt * ry(lm.neck_rotation) * face_offset(b),
+    }
 }
 
 /// Points of the arms, this file's own forward kinematics.
@@ -122,6 +151,7 @@ fn figure(pose: &Pose, b: &Body) -> (Landmarks, [ArmPoints; 2]) {
         lumbar_extension: le,
         lumbar_bending: lb,
         lumbar_rotation: lr,
+        neck_rotation: pose.neck,
         right: leg(&pose.right, 1.0),
         left: leg(&pose.left, -1.0),
         right_arm: pose.right_arm,
@@ -164,6 +194,7 @@ fn walk_pose(t: f64) -> Pose {
             deg(-5.0 * w.sin()),
             deg(-10.0 * w.cos()),
         ],
+        neck: deg(15.0 * (w + 0.7).sin()),
         right: leg(0.0),
         left: leg(PI),
         right_arm: arm(PI),
@@ -298,6 +329,12 @@ fn positive_angles_are_anatomical() {
         arms[0].shoulder.x > arms[1].shoulder.x + 0.05,
         "lumbar rotation: right shoulder forward"
     );
+    let (lm, _) = one(&|p| p.neck = a);
+    let head = head_points(&lm, &b);
+    assert!(
+        head.face.z < head.base.z - 0.03,
+        "neck rotation +: the face turns to the left (−z)"
+    );
     let (_, arms) = one(&|p| {
         p.right_arm.shoulder_flexion = a;
         p.right_arm.elbow_flexion = a;
@@ -327,6 +364,7 @@ fn check_clinical(c: &Clinical, p: &Pose, tol: f64) {
     near("lumbar_extension", c.lumbar_extension, p.lumbar[0]);
     near("lumbar_bending", c.lumbar_bending, p.lumbar[1]);
     near("lumbar_rotation", c.lumbar_rotation, p.lumbar[2]);
+    near("neck_rotation", c.neck_rotation, p.neck);
     for (l, q) in [(&c.right, &p.right), (&c.left, &p.left)] {
         near("hip flexion", l.hip.flexion, q.hip_flexion);
         near("hip adduction", l.hip.adduction, q.hip_adduction);
@@ -347,6 +385,38 @@ fn check_clinical(c: &Clinical, p: &Pose, tol: f64) {
             q.shoulder_abduction,
         );
         near("elbow", a.elbow.flexion, q.elbow_flexion);
+    }
+}
+
+/// A neck rotation of 0.3 rad is read back as 0.3 by both ways to the clinical angles (the
+/// frames' and the landmarks' own), and changes no other angle: the head is a leaf of the
+/// skeleton.
+#[test]
+fn neck_rotation_is_its_own_joint() {
+    let b = body();
+    let mut p = walk_pose(0.37);
+    p.neck = 0.0;
+    let (still, _) = figure(&p, &b);
+    p.neck = 0.3;
+    let (turned, _) = figure(&p, &b);
+    let from_frames = |lm: &Landmarks| Skeleton::new(lm, &b).unwrap().clinical(lm.time, lm.step);
+    let direct = |lm: &Landmarks| clinical::clinical(lm, &b).unwrap();
+    for way in [&from_frames as &dyn Fn(&Landmarks) -> Clinical, &direct] {
+        let (c0, c1) = (way(&still), way(&turned));
+        assert_eq!(c0.neck_rotation, 0.0);
+        assert!(
+            (c1.neck_rotation - 0.3).abs() < 1e-15,
+            "{}",
+            c1.neck_rotation
+        );
+        assert_eq!(
+            Clinical {
+                neck_rotation: 0.0,
+                ..c1
+            },
+            c0,
+            "the other joints"
+        );
     }
 }
 
@@ -381,15 +451,17 @@ fn pose_q() -> impl Strategy<Value = Pose> {
         (-0.4..0.4f64, -0.3..0.3f64, -0.5..0.5f64),
         (-0.4..0.4f64, -0.3..0.3f64, -0.5..0.5f64),
         (leg_q(), leg_q(), arm_q(), arm_q()),
+        -1.2..1.2f64,
     )
         .prop_map(
-            |((x, y, z), (t, l, r), (le, lb, lr), (rl, ll, ra, la))| Pose {
+            |((x, y, z), (t, l, r), (le, lb, lr), (rl, ll, ra, la), neck)| Pose {
                 time: 0.0,
                 pelvis: [x, y, z],
                 tilt: t,
                 list: l,
                 rotation: r,
                 lumbar: [le, lb, lr],
+                neck,
                 right: rl,
                 left: ll,
                 right_arm: ra,
@@ -430,7 +502,8 @@ proptest! {
 
 /// The largest distance (m) between a BVH frame's forward kinematics and the figure: hips,
 /// knees, ankles, heels (from the foot joint's frame and the body's l8, l9), mtps, toe tips (End
-/// Site), shoulders, elbows, wrists, the pelvis centre.
+/// Site), shoulders, elbows, wrists, the pelvis centre, the neck base and the face point of
+/// [`head_points`] (from the `Neck` joint's frame: it shows the neck rotation).
 fn bvh_error(
     bvh: &bvh::Bvh,
     frame: usize,
@@ -451,6 +524,12 @@ fn bvh_error(
     };
     let world = |p: DVec3| bvh::from_bvh(p) + shift;
     let mut worst: f64 = world(at("Hips").position).distance(v(lm.pelvis));
+    let head = head_points(lm, b);
+    let neck = at("Neck");
+    let face = neck.position + neck.rotation * bvh::to_bvh(face_offset(b));
+    worst = worst
+        .max(world(neck.position).distance(head.base))
+        .max(world(face).distance(head.face));
     for (side, pts, arm) in [("Right", &lm.right, &arms[0]), ("Left", &lm.left, &arms[1])] {
         let foot = at(&format!("{side}Foot"));
         let heel = foot.position + foot.rotation * bvh::to_bvh(DVec3::new(-b.l8, -b.l9, 0.0));
@@ -643,6 +722,7 @@ fn bvh_channels_carry_the_clinical_angles() {
     next(&|p| p.right.dorsiflexion = a);
     next(&|p| p.tilt = a);
     next(&|p| p.right_arm.elbow_flexion = a);
+    next(&|p| p.neck = a);
     let lms: Vec<Landmarks> = poses.iter().map(|p| figure(p, &b).0).collect();
     export::write(&path, Format::Bvh, &b, 100.0, lms, &Options::default()).unwrap();
     let parsed = bvh::parse(&fs::read_to_string(&path).unwrap(), &path).unwrap();
@@ -663,6 +743,13 @@ fn bvh_channels_carry_the_clinical_angles() {
     // the root's last channel is Xrotation = anterior tilt
     assert!((ch(5, "Hips", 5) - 20.0).abs() < 1e-6);
     assert!((ch(6, "RightForeArm", 0) + 20.0).abs() < 1e-6);
+    // the neck's Yrotation (about +Y = up) is the neck rotation, its other channels 0
+    assert!((ch(7, "Neck", 2) - 20.0).abs() < 1e-6);
+    assert!(ch(7, "Neck", 0) == 0.0 && ch(7, "Neck", 1) == 0.0);
+    assert!(
+        (0..7).all(|f| (0..3).all(|k| ch(f, "Neck", k) == 0.0)),
+        "no neck rotation: the Neck channels are 0 exactly"
+    );
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -844,6 +931,7 @@ fn csv_has_the_issue_columns_in_degrees() {
         "pelvis_list_deg",
         "pelvis_rotation_deg",
         "lumbar_extension_deg",
+        "neck_rotation_deg",
     ];
     let per_side = [
         "hip_flexion",
@@ -873,6 +961,7 @@ fn csv_has_the_issue_columns_in_degrees() {
         assert_eq!(row[col("pelvis_tx_m")], p.pelvis[0]);
         let d = |n: &str, want: f64| assert!((row[col(n)] - want.to_degrees()).abs() < 1e-7, "{n}");
         d("pelvis_tilt_deg", p.tilt);
+        d("neck_rotation_deg", p.neck);
         d("hip_flexion_r_deg", p.right.hip_flexion);
         d("hip_adduction_l_deg", p.left.hip_adduction);
         d("knee_flexion_l_deg", p.left.knee_flexion);
@@ -1241,5 +1330,8 @@ fn bvh_of_a_real_walk_reproduces_the_engine() {
             }
         }
         assert!(worst < 1e-3, "in place {in_place}: worst {worst} m");
+        // the walk does not turn the head: the Neck channels are 0 exactly
+        let neck = parsed.joints[parsed.joint("Neck").unwrap()].first_channel;
+        assert!(parsed.frames.iter().all(|f| f[neck..neck + 3] == [0.0; 3]));
     }
 }

@@ -74,8 +74,10 @@ impl Format {
 /// Choices that only some formats use.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Options {
-    /// BVH: keep the root over the origin in the walking direction (its forward translation is
-    /// dropped; height and sideways sway remain).
+    /// BVH: keep the root over the origin in the walking direction of an unplaced walk: its
+    /// translation along the world x axis is dropped (height and sideways sway remain). A walk
+    /// placed with a heading (`figure::Placement`) keeps its other horizontal motion; export it
+    /// unplaced for an in-place clip (`docs/export.md`).
     pub in_place: bool,
     /// `.mot` / `.sto`: the OpenSim model whose coordinates are written.
     pub opensim_model: OpenSimModel,

@@ -27,6 +27,8 @@
 //! - Rajagopal 2015 arms (`acromial`: `arm_flex` z, `arm_add` x, `arm_rot` y; `elbow_flex` about
 //!   an axis close to +z): shoulder flexion, adduction (= −abduction), internal rotation and
 //!   elbow flexion.
+//! - Neither model has a neck: the head is part of the torso body above `back`, so
+//!   [`crate::figure::Landmarks::neck_rotation`] is not written.
 use std::io::{self, Write};
 
 use glam::DVec3;

@@ -15,7 +15,9 @@
 //! - rotation = `c` on the right and `−c` on the left (internal rotation).
 //!
 //! The pelvis angles are the YXZ decomposition of the pelvis frame, the lumbar angles that of the
-//! thorax in the pelvis (the order of [`Landmarks`]).
+//! thorax in the pelvis (the order of [`Landmarks`]), the neck rotation the first (vertical-axis)
+//! angle of the YXZ decomposition of the head in the thorax (the head is turned about that axis
+//! alone, so it is the whole rotation).
 use glam::DMat3;
 
 use crate::figure::Landmarks;
@@ -83,6 +85,9 @@ pub struct Clinical {
     pub lumbar_bending: f64,
     /// Lumbar rotation, + with the right shoulder forward.
     pub lumbar_rotation: f64,
+    /// The head relative to the thorax about the thorax's long axis, + with the face turned to
+    /// the figure's left (the sense of the lumbar rotation).
+    pub neck_rotation: f64,
     /// The right leg's joints.
     pub right: LegAngles,
     /// The left leg's joints.
@@ -131,15 +136,19 @@ impl Skeleton {
                 elbow: joint(&a.upper_arm.axes, &a.forearm.axes, s, 1.0),
             }
         };
-        assemble(
-            time,
-            step,
-            &self.pelvis,
-            yxz_angles(&self.pelvis.axes),
-            yxz_angles(&(self.pelvis.axes.transpose() * self.thorax.axes)),
-            [&self.right, &self.left],
-            [arm(Side::Right), arm(Side::Left)],
-        )
+        let [neck_rotation, _, _] = yxz_angles(&self.neck);
+        Clinical {
+            neck_rotation,
+            ..assemble(
+                time,
+                step,
+                &self.pelvis,
+                yxz_angles(&self.pelvis.axes),
+                yxz_angles(&(self.pelvis.axes.transpose() * self.thorax.axes)),
+                [&self.right, &self.left],
+                [arm(Side::Right), arm(Side::Left)],
+            )
+        }
     }
 }
 
@@ -166,8 +175,9 @@ fn joint3([a, b, c]: [f64; 3], side: f64, flexion_sign: f64) -> Joint3 {
 
 /// The clinical angles of one frame: those of [`Skeleton::new`] then [`Skeleton::clinical`]
 /// (the same errors, the same angles to round-off), without the frames the angles are read back
-/// from: the pelvis, lumbar and arm angles are the landmarks' own (the frames are built from
-/// them, and `figure::euler`'s round trips return them), and no arm is placed (the angles do not depend on `_body`).
+/// from: the pelvis, lumbar, neck and arm angles are the landmarks' own (the frames are built
+/// from them, and `figure::euler`'s round trips return them), and no arm or head is placed (the
+/// angles do not depend on `_body`).
 pub fn clinical(lm: &Landmarks, _body: &Body) -> Result<Clinical> {
     let trunk = Trunk::new(lm)?;
     let right = leg_frames(&lm.right, Side::Right, trunk.time)?;
@@ -175,15 +185,19 @@ pub fn clinical(lm: &Landmarks, _body: &Body) -> Result<Clinical> {
     let right_arm = arm_joints(arm_angles(&lm.right_arm, Side::Right)?, Side::Right);
     let left_arm = arm_joints(arm_angles(&lm.left_arm, Side::Left)?, Side::Left);
     let [lr, lb, le] = trunk.lumbar;
-    Ok(assemble(
-        lm.time,
-        lm.step,
-        &trunk.pelvis,
-        yxz_round_trip(trunk.rotation, -trunk.list, -trunk.tilt),
-        yxz_round_trip(lr, lb, le),
-        [&right, &left],
-        [right_arm, left_arm],
-    ))
+    let [neck_rotation, _, _] = yxz_round_trip(trunk.neck, 0.0, 0.0);
+    Ok(Clinical {
+        neck_rotation,
+        ..assemble(
+            lm.time,
+            lm.step,
+            &trunk.pelvis,
+            yxz_round_trip(trunk.rotation, -trunk.list, -trunk.tilt),
+            yxz_round_trip(lr, lb, le),
+            [&right, &left],
+            [right_arm, left_arm],
+        )
+    })
 }
 
 /// The clinical angles from the pelvis frame and its YXZ angles `[r, p, q]`, the lumbar YXZ
@@ -218,6 +232,7 @@ fn assemble(
         lumbar_extension: le,
         lumbar_bending: lb,
         lumbar_rotation: lr,
+        neck_rotation: 0.0,
         right: leg(legs[0], Side::Right),
         left: leg(legs[1], Side::Left),
         right_arm,
@@ -234,7 +249,7 @@ pub struct AngleColumn {
 }
 
 /// The clinical angle columns of the CSV exports, in order: pelvis tilt / list / rotation, lumbar
-/// extension / bending / rotation, then per side (`_r`, then `_l`) hip flexion / adduction /
+/// extension / bending / rotation, neck rotation, then per side (`_r`, then `_l`) hip flexion / adduction /
 /// rotation, knee flexion, ankle dorsiflexion, mtp dorsiflexion, shoulder flexion / abduction,
 /// elbow flexion. Signs as in [`Clinical`]; shoulder abduction is + away from the body.
 pub fn angle_columns() -> Vec<AngleColumn> {
@@ -251,6 +266,7 @@ pub fn angle_columns() -> Vec<AngleColumn> {
         col("lumbar_extension", |c| c.lumbar_extension),
         col("lumbar_bending", |c| c.lumbar_bending),
         col("lumbar_rotation", |c| c.lumbar_rotation),
+        col("neck_rotation", |c| c.neck_rotation),
     ];
     for side in [Side::Right, Side::Left] {
         let s = side.suffix();

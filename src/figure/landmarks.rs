@@ -55,7 +55,8 @@ pub struct ArmAngles {
 /// sign: tilt + anterior (the front of the pelvis down), list + with the right side up, rotation
 /// \+ with the right side forward. The hip joints are `pelvis ± R · (0, 0, l0/2)` (right +).
 /// The thorax relative to the pelvis is `R_y(lumbar_rotation) · R_x(lumbar_bending) ·
-/// R_z(lumbar_extension)`.
+/// R_z(lumbar_extension)`, and the head relative to the thorax `R_y(neck_rotation)` (about the
+/// thorax's long axis, at the neck base on top of the spine).
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct Landmarks {
     /// Time since the first heel strike (s).
@@ -77,6 +78,11 @@ pub struct Landmarks {
     pub lumbar_bending: f64,
     /// Lumbar rotation (rad), + with the right shoulder forward.
     pub lumbar_rotation: f64,
+    /// Neck rotation (rad): the head relative to the thorax about the thorax's long (vertical)
+    /// axis, + with the face turned to the figure's left (positive about +y, the sense of
+    /// `lumbar_rotation` and `pelvis_rotation`). The walk does not twist the neck: 0 in its
+    /// frames.
+    pub neck_rotation: f64,
     /// The right leg's points.
     pub right: LegPoints,
     /// The left leg's points.
@@ -200,6 +206,7 @@ pub fn landmarks(step: &Step, t: f64, attrs: &Attributes) -> Result<Landmarks, F
         lumbar_extension: tilt - theta2,
         lumbar_bending: -p.list,
         lumbar_rotation: -1.8 * p.rotation,
+        neck_rotation: 0.0,
         right_arm: arm(&left),
         left_arm: arm(&right),
         right,

@@ -14,7 +14,9 @@
 //! [`Landmarks`] as its doc defines them; the arms are placed by forward kinematics from the
 //! thorax: shoulders at (0, spine, ±shoulder_width/2) in the thorax frame (its origin is the
 //! pelvis centre), upper arm `R_thorax · R_z(flexion) · R_x(∓abduction)` (right −, left +),
-//! forearm and hand `R_upper · R_z(elbow flexion)`.
+//! forearm and hand `R_upper · R_z(elbow flexion)`. The head's frame has its origin at the neck
+//! base, (0, spine, 0) in the thorax frame (the top of the spine, the level of the shoulders),
+//! and axes `R_thorax · R_y(neck_rotation)`.
 //!
 //! The small helpers (the checked points, unit vectors, the leg frames, the trunk and arm checks)
 //! are `#[inline(always)]`: they run for every exported frame, and inlined the happy path is the
@@ -72,6 +74,13 @@ pub struct Skeleton {
     pub(crate) pelvis: Frame,
     /// Origin at the pelvis centre too: the lumbar rotation is about that point.
     pub(crate) thorax: Frame,
+    /// Head and neck: origin at the neck base on top of the spine, turned about the thorax's
+    /// long axis by the neck rotation.
+    pub(crate) head: Frame,
+    /// The head's axes in the thorax's, `R_y(neck_rotation)`: kept as made, so that the neck's
+    /// angles are read off it without the round-off of `R_thoraxᵀ · R_head` (a walk's zero neck
+    /// rotation is written as 0).
+    pub(crate) neck: DMat3,
     pub(crate) right: LegFrames,
     pub(crate) left: LegFrames,
     pub(crate) right_arm: ArmFrames,
@@ -260,9 +269,16 @@ impl Skeleton {
             origin: pelvis.origin,
             axes: pelvis.axes * yxz_matrix(lr, lb, le),
         };
+        let neck = DMat3::from_rotation_y(trunk.neck);
+        let head = Frame {
+            origin: thorax.point(DVec3::new(0.0, body.figure.spine, 0.0)),
+            axes: thorax.axes * neck,
+        };
         Ok(Skeleton {
             pelvis,
             thorax,
+            head,
+            neck,
             right: leg_frames(&lm.right, Side::Right, t)?,
             left: leg_frames(&lm.left, Side::Left, t)?,
             right_arm: arm_frames(&thorax, &lm.right_arm, Side::Right, body)?,
@@ -340,10 +356,12 @@ pub(super) struct Trunk {
     pub(super) pelvis: Frame,
     /// Lumbar rotation, bending, extension.
     pub(super) lumbar: [f64; 3],
+    /// Neck rotation.
+    pub(super) neck: f64,
 }
 
 impl Trunk {
-    /// Errors: the first non-finite of time, pelvis, pelvis angles, lumbar angles.
+    /// Errors: the first non-finite of time, pelvis, pelvis angles, lumbar angles, neck rotation.
     #[inline(always)]
     pub(super) fn new(lm: &Landmarks) -> Result<Self> {
         let time = finite("time", lm.time)?;
@@ -356,6 +374,7 @@ impl Trunk {
             finite("lumbar_bending", lm.lumbar_bending)?,
             finite("lumbar_extension", lm.lumbar_extension)?,
         ];
+        let neck = finite("neck_rotation", lm.neck_rotation)?;
         Ok(Trunk {
             time,
             tilt,
@@ -366,6 +385,7 @@ impl Trunk {
                 axes: yxz_matrix(rotation, -list, -tilt),
             },
             lumbar,
+            neck,
         })
     }
 }

@@ -8,9 +8,11 @@
 //!
 //! Both views have one scale (px per m) on both axes. The figure: each leg hip–knee–ankle–heel–
 //! metatarsal joint–toe tip (and ankle–metatarsal joint, closing the foot), the pelvis line
-//! between the hip joints, the spine from the pelvis centre to the shoulder line, neck and head,
-//! the arms shoulder–elbow–wrist–hand tip (segment frames from [`crate::figure::skeleton::Skeleton`],
-//! dimensions from [`Body::figure`]). The right side is blue, the left red, the trunk grey; in
+//! between the hip joints, the spine from the pelvis centre to the shoulder line, neck and head
+//! (in the head's frame: a neck rotation turns them about their own axis, which neither view
+//! shows), the arms shoulder–elbow–wrist–hand tip (segment frames from
+//! [`crate::figure::skeleton::Skeleton`], dimensions from [`Body::figure`]). The right side is
+//! blue, the left red, the trunk grey; in
 //! the side view the far (left) limbs are drawn first and paler. Every foot point (heel,
 //! metatarsal joint, toe tip) within 1 mm of the ground (`CONTACT_TOLERANCE_M`) gets a black
 //! dot in both views.
@@ -317,6 +319,7 @@ fn segments(lm: &Landmarks, sk: &Skeleton, body: &Body) -> Vec<(Limb, Vec<[f64; 
     };
     let f = &body.figure;
     let t = |u: [f64; 3]| sk.thorax.point(glam::DVec3::from_array(u)).to_array();
+    let head = |u: [f64; 3]| sk.head.point(glam::DVec3::from_array(u)).to_array();
     let arm = |a: &crate::figure::skeleton::ArmFrames| {
         vec![
             a.upper_arm.origin.to_array(),
@@ -341,7 +344,7 @@ fn segments(lm: &Landmarks, sk: &Skeleton, body: &Body) -> Vec<(Limb, Vec<[f64; 
     ));
     out.push((
         Limb::Trunk,
-        vec![t([0.0, f.spine, 0.0]), t([0.0, f.spine + f.neck, 0.0])],
+        vec![head([0.0, 0.0, 0.0]), head([0.0, f.neck, 0.0])],
     ));
     for p in leg(&lm.right) {
         out.push((Limb::Right, p));
@@ -435,8 +438,8 @@ fn draw_frame<DB: DrawingBackend>(
         segments: segments(lm, sk, body),
         contacts: contacts(lm),
         head_centre: sk
-            .thorax
-            .point(glam::DVec3::new(0.0, f.spine + f.neck + f.head / 2.0, 0.0))
+            .head
+            .point(glam::DVec3::new(0.0, f.neck + f.head / 2.0, 0.0))
             .to_array(),
         head: f.head,
         pelvis_x: lm.pelvis[0],

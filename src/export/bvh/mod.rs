@@ -16,7 +16,8 @@
 //! Channels: the root has `Xposition Yposition Zposition Yrotation Zrotation Xrotation` and
 //! `Spine` `Yrotation Zrotation Xrotation` (the order of the pelvis and lumbar angles of
 //! [`crate::figure::Landmarks`], so these channels are exactly the landmarks' angles); every other
-//! joint has `Xrotation Zrotation Yrotation` (flexion, ab/adduction, axial rotation). A joint's
+//! joint has `Xrotation Zrotation Yrotation` (flexion, ab/adduction, axial rotation); `Neck`'s
+//! `Yrotation` is the neck rotation (the head's turn about the thorax's long axis). A joint's
 //! rotation is the product of its channels in file order, each about the parent's (rest) axes;
 //! the joint sits at its offset in the parent's frame.
 mod parse;

@@ -52,6 +52,9 @@ enum Motion {
     Root,
     /// The child segment in the parent segment.
     Relative(Seg, Seg),
+    /// The head in the thorax, as the skeleton made it (`R_y(neck_rotation)`: the channels are
+    /// 0, 0 and the neck rotation, without the round-off of `R_thoraxᵀ · R_head`).
+    Neck,
     /// Rigid: all channels zero.
     Fixed,
 }
@@ -116,7 +119,7 @@ fn hierarchy(body: &Body) -> Vec<JointDef> {
         Some(chest),
         up(f.spine / 2.0),
         &XZY,
-        Motion::Fixed,
+        Motion::Neck,
         None,
     );
     add(
@@ -324,6 +327,11 @@ impl RowWriter for BvhWriter {
                 Motion::Relative(parent, child) => {
                     let rel = axes(sk, parent).transpose() * axes(sk, child);
                     for v in rotation_channels(j.channels, &rel) {
+                        put(out, v);
+                    }
+                }
+                Motion::Neck => {
+                    for v in rotation_channels(j.channels, &sk.neck) {
                         put(out, v);
                     }
                 }
