@@ -81,7 +81,11 @@ pub fn resample(times: &[f64], values: &[f64], n: usize) -> Vec<f64> {
                 j += 1;
             }
             let (a, b) = (times[j], times[j + 1]);
-            let s = if b > a { ((t - a) / (b - a)).clamp(0.0, 1.0) } else { 0.0 };
+            let s = if b > a {
+                ((t - a) / (b - a)).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
             values[j] + s * (values[j + 1] - values[j])
         })
         .collect()

@@ -10,6 +10,7 @@ pub mod parameters;
 pub mod pose;
 pub mod specs;
 pub mod state;
+pub mod step;
 pub mod walking;
 
 pub use error::{GoalReason, NrsError};

@@ -129,7 +129,13 @@ pub fn hip_joint(upper: &Upper, side: Side, half_width: f64) -> DVec3 {
 /// floor direction `forward`: the knee lies in the plane of the hip–ankle line and `forward`,
 /// in front of the line. Returns the knee and the knee axis (to the figure's right), or the
 /// hip–ankle distance when it exceeds l3 + l4.
-pub fn knee(hip: DVec3, ankle: DVec3, forward: [f64; 2], l3: f64, l4: f64) -> Result<(DVec3, DVec3), f64> {
+pub fn knee(
+    hip: DVec3,
+    ankle: DVec3,
+    forward: [f64; 2],
+    l3: f64,
+    l4: f64,
+) -> Result<(DVec3, DVec3), f64> {
     let along = ankle - hip;
     let d = along.length();
     if d > l3 + l4 + 1e-9 {
@@ -145,7 +151,12 @@ pub fn knee(hip: DVec3, ankle: DVec3, forward: [f64; 2], l3: f64, l4: f64) -> Re
 
 /// One leg's points for its hip and foot: the foot's heel, metatarsal joint and toe tip in its
 /// sagittal plane, the knee by [`knee`]. Err: the hip–ankle distance beyond the leg's length.
-pub fn leg_points(hip: DVec3, foot_pose: &FootPose, foot: &Foot, body: &Body) -> Result<LegPoints, f64> {
+pub fn leg_points(
+    hip: DVec3,
+    foot_pose: &FootPose,
+    foot: &Foot,
+    body: &Body,
+) -> Result<LegPoints, f64> {
     let ankle = DVec3::from_array(foot_pose.ankle);
     let d = direction(foot_pose.heading);
     let (k, axis) = knee(hip, ankle, d, body.l3, body.l4)?;
@@ -186,6 +197,7 @@ pub fn figure(
         lumbar_extension: upper.lumbar_extension,
         lumbar_bending: upper.lumbar_bending,
         lumbar_rotation: upper.lumbar_rotation,
+        neck_rotation: upper.neck_rotation,
         right: leg(Side::Right, feet[0])?,
         left: leg(Side::Left, feet[1])?,
         right_arm: upper.arms[0],
@@ -240,13 +252,19 @@ mod tests {
     fn the_leg_keeps_its_lengths_and_bends_forward() {
         let b = body();
         let hip = DVec3::new(0.1, 0.9, 0.05);
-        for (ankle, psi) in [(DVec3::new(0.3, 0.1, 0.1), 0.0), (DVec3::new(0.0, 0.12, 0.2), 1.2)] {
+        for (ankle, psi) in [
+            (DVec3::new(0.3, 0.1, 0.1), 0.0),
+            (DVec3::new(0.0, 0.12, 0.2), 1.2),
+        ] {
             let f = direction(psi);
             let (k, axis) = knee(hip, ankle, f, b.l3, b.l4).unwrap();
             assert!(((k - hip).length() - b.l3).abs() < 1e-12);
             assert!(((ankle - k).length() - b.l4).abs() < 1e-12);
             let mid = (hip + ankle) / 2.0;
-            assert!((k - mid).dot(DVec3::new(f[0], 0.0, f[1])) > 0.0, "the knee points forward");
+            assert!(
+                (k - mid).dot(DVec3::new(f[0], 0.0, f[1])) > 0.0,
+                "the knee points forward"
+            );
             assert!((axis.length() - 1.0).abs() < 1e-12);
             assert!(axis.dot(k - hip).abs() < 1e-12 && axis.dot(ankle - k).abs() < 1e-12);
         }

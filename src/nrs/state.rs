@@ -99,18 +99,24 @@ impl WalkerState {
         let foot = Foot::new(&self.body);
         let lim = self.attrs.metatarsal_limit;
         let [r, l] = self.feet.map(|f| f.pose(&foot, lim));
-        figure(&self.upper, [&r, &l], &self.body, &foot, self.time, self.step).map_err(
-            |(side, distance)| NrsError::Goal {
-                position: self.foot(side).flat,
-                side: side.name(),
-                reason: crate::nrs::GoalReason::Unreachable {
-                    leg: side.name(),
-                    distance,
-                    length: self.body.l1,
-                    t: 0.0,
-                },
-            },
+        figure(
+            &self.upper,
+            [&r, &l],
+            &self.body,
+            &foot,
+            self.time,
+            self.step,
         )
+        .map_err(|(side, distance)| NrsError::Goal {
+            position: self.foot(side).flat,
+            side: side.name(),
+            reason: crate::nrs::GoalReason::Unreachable {
+                leg: side.name(),
+                distance,
+                length: self.body.l1,
+                t: 0.0,
+            },
+        })
     }
 
     /// The feet's midpoint (flat ankles) and the direction ahead of the pelvis.
@@ -145,7 +151,10 @@ mod tests {
         assert!((lm.pelvis[0] - 1.0).abs() < 1e-12 && (lm.pelvis[2] + 2.0).abs() < 1e-12);
         // the right foot is to the right of the heading
         let r = right_of(0.7);
-        let v = [lm.right.ankle[0] - lm.left.ankle[0], lm.right.ankle[2] - lm.left.ankle[2]];
+        let v = [
+            lm.right.ankle[0] - lm.left.ankle[0],
+            lm.right.ankle[2] - lm.left.ankle[2],
+        ];
         assert!(v[0] * r[0] + v[1] * r[1] > 0.0);
     }
 }

@@ -36,7 +36,8 @@ pub struct WalkingStep {
     pub swing_pitch: Vec<f64>,
     /// FGM, the stance foot flat (normalized time).
     pub flat: f64,
-    /// Heel-off of the stance foot (normalized time).
+    /// Where the stance foot leaves flat again (normalized time): heel-off, or a toe lift (the
+    /// engine's stance foot tips toes-up by up to 0.9° just before heel-off: issue 16).
     pub heel_off: f64,
     /// TOM, the swing foot's toe-off (normalized time).
     pub toe_off: f64,
@@ -66,14 +67,11 @@ impl WalkingStep {
         let span = rows[n].pelvis[0] - x0;
         let stance_pitch: Vec<f64> = rows.iter().map(|r| sagittal_pitch(&stance(r))).collect();
         let at = |i: usize| i as f64 / n as f64;
-        let flat = stance_pitch
-            .iter()
-            .position(|p| *p > -1e-6)
-            .map_or(0.0, at);
+        let flat = stance_pitch.iter().position(|p| *p > -1e-6).map_or(0.0, at);
         let i_flat = (flat * n as f64).round() as usize;
         let heel_off = stance_pitch[i_flat..]
             .iter()
-            .position(|p| *p > 1e-6)
+            .position(|p| p.abs() > 1e-6)
             .map_or(1.0, |i| at(i + i_flat));
         let last = &rows[n];
         Ok(WalkingStep {
@@ -95,7 +93,12 @@ impl WalkingStep {
 
     /// The second step of a two-step walk of `gait` simulated by the engine (the first is the
     /// start-up step), sampled at `n + 1` points.
-    pub fn simulate(body: Body, attrs: &Attributes, gait: Gait, n: usize) -> Result<Self, NrsError> {
+    pub fn simulate(
+        body: Body,
+        attrs: &Attributes,
+        gait: Gait,
+        n: usize,
+    ) -> Result<Self, NrsError> {
         let failed = |source| NrsError::Walking {
             step_length: gait.step_length,
             duration: 60.0 / gait.step_frequency,
@@ -146,11 +149,27 @@ mod tests {
             assert!((w.height[i] - s.hip(tau)[1]).abs() < 1e-12);
         }
         assert!(w.travel[0] == 0.0 && (w.travel[100] - 1.0).abs() < 1e-15);
-        assert!(w.travel.windows(2).all(|p| p[1] >= p[0]), "the hip only moves forward");
+        assert!(
+            w.travel.windows(2).all(|p| p[1] >= p[0]),
+            "the hip only moves forward"
+        );
         assert!(w.flat <= w.heel_off && w.toe_off > 0.0 && w.toe_off < 0.5);
-        let (a, b) = ((w.flat * 100.0).ceil() as usize, (w.heel_off * 100.0) as usize);
-        assert!(w.stance_pitch[a..b].iter().all(|p| p.abs() < 1e-6));
-        assert!(w.reach_at_strike.iter().all(|r| *r <= body.l1 + 1e-9 && *r > 0.8 * body.l1));
+        let (a, b) = (
+            (w.flat * 100.0).ceil() as usize,
+            (w.heel_off * 100.0) as usize,
+        );
+        assert!(
+            w.stance_pitch[a..b].iter().all(|p| p.abs() < 1e-6),
+            "{} {}",
+            w.flat,
+            w.heel_off
+        );
+        assert!(w.stance_pitch[..a].iter().all(|p| *p < 0.0), "the heel rocker: toes up");
+        assert!(
+            w.reach_at_strike
+                .iter()
+                .all(|r| *r <= body.l1 + 1e-9 && *r > 0.8 * body.l1)
+        );
         assert!((w.duration - 60.0 / gait.step_frequency).abs() < 1e-12);
     }
 }

@@ -43,7 +43,10 @@ pub(crate) fn exit_code(e: &Error) -> u8 {
         Error::Scenario(s) => match &s.source {
             NrsError::Goal { .. } | NrsError::Input(_) => BAD_INPUT,
             NrsError::Walk(SimulationError::Plan(_)) => BAD_INPUT,
-            NrsError::Walking { source: SimulationError::Plan(_), .. } => BAD_INPUT,
+            NrsError::Walking {
+                source: SimulationError::Plan(_),
+                ..
+            } => BAD_INPUT,
             NrsError::Walk(_) | NrsError::Walking { .. } => FAILED,
             NrsError::Figure(f) => figure(f),
         },

@@ -1,0 +1,219 @@
+//! Non-rhythmic steps (Ko & Badler 1993) against independent facts: the goal reached, the
+//! step types of Figure 2, no foot below the floor, no stance foot sliding, no leg stretched.
+use klaw::Landmarks;
+use klaw::model::attributes::AttributeTable;
+use klaw::model::body::Body;
+use klaw::nrs::pose::direction;
+use klaw::nrs::state::WalkerState;
+use klaw::nrs::step::NrsStep;
+use klaw::nrs::{GoalReason, NrsError, Side, StepSpecs, StepType};
+
+fn standing() -> WalkerState {
+    let body = Body::standard(1.8, 80.0).unwrap();
+    WalkerState::standing(body, AttributeTable::builtin().defaults(), [0.0, 0.0], 0.0)
+}
+
+fn specs(side: Side, position: [f64; 2], direction: f64) -> StepSpecs {
+    StepSpecs {
+        foot_position: position,
+        foot_direction: direction,
+        side,
+        swing_height_factor: 1.0,
+        gaze_direction: None,
+        foot_angles: None,
+    }
+}
+
+fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+/// The step's frames at 201 instants, and checks that hold at every one of them.
+fn check_frames(step: &NrsStep, stance: Side, body: &Body) -> Vec<Landmarks> {
+    let frames: Vec<Landmarks> = (0..=200).map(|i| step.advance(i as f64 / 200.0)).collect();
+    let leg = |lm: &Landmarks, s: Side| match s {
+        Side::Right => lm.right,
+        Side::Left => lm.left,
+    };
+    let first = leg(&frames[0], stance);
+    for lm in &frames {
+        for l in [lm.right, lm.left] {
+            for p in [l.heel, l.mtp, l.toe] {
+                // 1 µm: the linear interpolation between table rows of a toe that clears the floor
+                assert!(
+                    p[1] > -1e-6,
+                    "a foot point below the floor: {p:?} at {}",
+                    lm.time
+                );
+            }
+            assert!(dist(l.hip, l.knee) - body.l3 < 1e-9 && dist(l.knee, l.ankle) - body.l4 < 1e-9);
+        }
+        // the stance foot's contact points do not slide: the heel while it is down, the mtp
+        let s = leg(lm, stance);
+        if s.heel[1] < 1e-9 && first.heel[1] < 1e-9 {
+            assert!(dist(s.heel, first.heel) < 1e-3, "the stance heel slides");
+        }
+        if s.mtp[1] < 1e-9 {
+            assert!(dist(s.mtp, first.mtp) < 1e-3, "the stance mtp slides");
+        }
+    }
+    frames
+}
+
+#[test]
+fn a_forward_step_lands_on_its_goal() {
+    let s = standing();
+    let goal = [0.6, 0.04];
+    let step = NrsStep::initialize(&s, &specs(Side::Right, goal, 0.1), None).unwrap();
+    assert_eq!(step.kind(), StepType::Forward);
+    let frames = check_frames(&step, Side::Left, &s.body);
+    let end = step.end_state();
+    assert!(
+        (end.feet[0].flat[0] - goal[0]).abs() < 1e-12
+            && (end.feet[0].flat[1] - goal[1]).abs() < 1e-12
+    );
+    // the foot lands flat (the default θ_HSM+^SW = 0): its ankle is l9 above the goal
+    let last = frames.last().unwrap();
+    assert!(
+        dist(last.right.ankle, [goal[0], s.body.l9, goal[1]]) < 1e-9,
+        "{:?}",
+        last.right.ankle
+    );
+    let d = direction(0.1);
+    let along = (last.right.mtp[0] - last.right.heel[0]) * d[0]
+        + (last.right.mtp[2] - last.right.heel[2]) * d[1];
+    assert!(along > 0.0);
+    // the swing foot rose by about 5 cm · swhf above its take-off-to-landing line
+    let peak = frames
+        .iter()
+        .map(|f| f.right.ankle[1])
+        .fold(f64::MIN, f64::max);
+    assert!(peak > s.body.l9 + 0.03, "peak {peak}");
+    // the pelvis ends above the ankles' midpoint, at rest
+    let mid = [
+        (goal[0] + s.feet[1].flat[0]) / 2.0,
+        (goal[1] + s.feet[1].flat[1]) / 2.0,
+    ];
+    assert!((last.pelvis[0] - mid[0]).abs() < 1e-9 && (last.pelvis[2] - mid[1]).abs() < 1e-9);
+}
+
+#[test]
+fn a_backward_and_a_lateral_step_too() {
+    let s = standing();
+    let back = NrsStep::initialize(&s, &specs(Side::Left, [-0.5, -0.04], 0.0), None).unwrap();
+    assert_eq!(back.kind(), StepType::Backward);
+    check_frames(&back, Side::Right, &s.body);
+    let side = NrsStep::initialize(&s, &specs(Side::Left, [0.0, -0.35], 0.0), None).unwrap();
+    assert_eq!(side.kind(), StepType::Lateral);
+    check_frames(&side, Side::Right, &s.body);
+}
+
+/// (Away from the 1°-wide boundary bands, whose edges lie at 59° and 61°: 58.5° and 61.5°.)
+/// Figure 2 with ν = 60°: around the stance heel, forward up to 60° towards the stepping side
+/// and down to −30°, lateral 60°–120°, backward 120° to 210° (= −150°), illegal between −150°
+/// and −30° (crossing the stance leg).
+#[test]
+fn step_types_by_the_angle_around_the_stance_heel() {
+    let s = standing();
+    let stance = s.feet[1]; // the left foot stands, the right steps (to +z)
+    let p = &s.params;
+    let l8 = klaw::kinematics::foot::Foot::new(&s.body).l8;
+    let heel = [stance.flat[0] - l8, stance.flat[1]];
+    let at = |deg: f64, foot_dir: f64| {
+        let a = deg.to_radians();
+        let goal = [heel[0] + 0.5 * a.cos(), heel[1] + 0.5 * a.sin()];
+        klaw::nrs::step::classify(
+            &stance,
+            Side::Right,
+            goal,
+            foot_dir,
+            (p.region_angle, p.boundary_tolerance, p.parallel_tolerance),
+            l8,
+        )
+    };
+    let oblique = 30f64.to_radians();
+    use StepType::*;
+    for (deg, want) in [
+        (29.0, Ok(Forward)),
+        (31.0, Ok(Forward)),
+        (58.5, Ok(Forward)),
+        (61.5, Ok(Lateral)),
+        (118.5, Ok(Lateral)),
+        (121.5, Ok(Backward)),
+        (-29.0, Ok(Forward)),
+        (-149.0, Err(())),
+        (-151.0, Ok(Backward)),
+        (-31.0, Err(())),
+        (-90.0, Err(())),
+    ] {
+        assert_eq!(at(deg, oblique).map_err(|_| ()), want, "{deg}°");
+    }
+    // on a boundary (within 1°) a foot parallel to the stance foot makes the step lateral
+    assert_eq!(at(60.5, 0.05), Ok(Lateral));
+    assert_eq!(at(60.5, oblique), Ok(Forward));
+    assert_eq!(at(119.5, 0.0), Ok(Lateral));
+    assert_eq!(at(119.5, oblique), Ok(Backward));
+}
+
+#[test]
+fn illegal_goals_are_typed_errors() {
+    let s = standing();
+    let err = |spec: StepSpecs| NrsStep::initialize(&s, &spec, None).unwrap_err();
+    assert!(matches!(
+        err(specs(Side::Right, [0.0, -0.3], 0.0)),
+        NrsError::Goal {
+            reason: GoalReason::Illegal { .. },
+            ..
+        }
+    ));
+    assert!(matches!(
+        err(specs(
+            Side::Right,
+            [s.feet[1].flat[0] + 0.01, s.feet[1].flat[1] + 0.03],
+            0.0
+        )),
+        NrsError::Goal {
+            reason: GoalReason::Overlap { .. },
+            ..
+        }
+    ));
+    assert!(matches!(
+        err(specs(Side::Right, [0.12, 0.04], 0.0)),
+        NrsError::Goal {
+            reason: GoalReason::TooShort { .. },
+            ..
+        }
+    ));
+    assert!(matches!(
+        err(specs(Side::Right, [1.6, 0.04], 0.0)),
+        NrsError::Goal {
+            reason: GoalReason::Unreachable { .. },
+            ..
+        } | NrsError::Input(_)
+    ));
+    let msg = err(specs(Side::Right, [0.0, -0.3], 0.0)).to_string();
+    assert!(
+        msg.contains("illegal region") && msg.contains("right foot"),
+        "{msg}"
+    );
+}
+
+/// `advance` is constant time and allocates nothing; two walkers do not share anything.
+#[test]
+fn several_walkers_are_independent() {
+    let a = standing();
+    let b = WalkerState::standing(
+        Body::standard(1.6, 60.0).unwrap(),
+        AttributeTable::builtin().defaults(),
+        [3.0, 1.0],
+        1.0,
+    );
+    let sa = NrsStep::initialize(&a, &specs(Side::Right, [0.5, 0.04], 0.0), None).unwrap();
+    let before = sa.advance(0.4);
+    let g = [
+        3.0 + 0.45 * 1f64.cos() + 0.04 * 1f64.sin(),
+        1.0 - 0.45 * 1f64.sin() + 0.04 * 1f64.cos(),
+    ];
+    let _sb = NrsStep::initialize(&b, &specs(Side::Right, g, 1.0), None).unwrap();
+    assert_eq!(sa.advance(0.4), before);
+}
