@@ -252,10 +252,10 @@ pub(crate) fn build(state: &WalkerState, plan: &Plan) -> Result<Segment, NrsErro
     };
     let turn = turn_between(swing_start.heading, plan.goal.heading);
     let mut swing_rows = Vec::with_capacity(n + 1);
-    for i in 0..=n {
+    for (i, &rule) in swing_pitch.iter().enumerate() {
         if i <= toe_off {
             let f = Planted {
-                pitch: swing_pitch[i],
+                pitch: rule,
                 ..swing_start
             }
             .pose(&foot, lim);
@@ -274,7 +274,7 @@ pub(crate) fn build(state: &WalkerState, plan: &Plan) -> Result<Segment, NrsErro
             + s * (landing.ankle[1] - take_off.ankle[1])
             + swing_rise(s, plan.swing_height);
         let theta6 = take_off.theta6 * (1.0 - smoothstep(2.0 * s));
-        let (pitch, _) = foot.clear_pitch(swing_pitch[i], [0.0, y], theta6, 0.0);
+        let (pitch, _) = foot.clear_pitch(rule, [0.0, y], theta6, 0.0);
         let heading = swing_start.heading + smoothstep(s) * turn;
         swing_rows.push([
             xz[0],

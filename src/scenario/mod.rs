@@ -166,6 +166,6 @@ pub struct ScenarioError {
     pub index: usize,
     /// The action's name (`walk`, `step`, …).
     pub name: &'static str,
-    /// Why it fails.
-    pub source: crate::nrs::NrsError,
+    /// Why it fails (boxed: the union [`crate::Error`] stays small).
+    pub source: Box<crate::nrs::NrsError>,
 }

@@ -40,7 +40,7 @@ pub(crate) fn exit_code(e: &Error) -> u8 {
         Error::Io { action, .. } if *action == "writing" => FAILED,
         Error::Io { .. } => BAD_INPUT,
         Error::Draw { .. } => FAILED,
-        Error::Scenario(s) => match &s.source {
+        Error::Scenario(s) => match s.source.as_ref() {
             NrsError::Goal { .. } | NrsError::Input(_) => BAD_INPUT,
             NrsError::Walk(SimulationError::Plan(_)) => BAD_INPUT,
             NrsError::Walking {
