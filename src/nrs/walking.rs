@@ -164,7 +164,10 @@ mod tests {
             w.flat,
             w.heel_off
         );
-        assert!(w.stance_pitch[..a].iter().all(|p| *p < 0.0), "the heel rocker: toes up");
+        assert!(
+            w.stance_pitch[..a].iter().all(|p| *p < 0.0),
+            "the heel rocker: toes up"
+        );
         assert!(
             w.reach_at_strike
                 .iter()
