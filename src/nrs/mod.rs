@@ -8,6 +8,8 @@ pub mod curves;
 pub mod error;
 pub mod parameters;
 pub mod pose;
+pub mod region;
+pub(crate) mod segment;
 pub mod specs;
 pub mod state;
 pub mod step;

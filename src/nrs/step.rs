@@ -2,7 +2,7 @@
 //! classifies the goal (§4), checks it, borrows the walking step of the same length from the
 //! engine and tabulates every trajectory over normalized time; [`NrsStep::advance`] poses the
 //! figure at t ∈ [0, 1] from the tables in constant time without allocating.
-use crate::figure::{ArmAngles, Landmarks};
+use crate::figure::Landmarks;
 use crate::kinematics::foot::Foot;
 use crate::kinematics::leg::reach;
 use crate::model::InputError;
@@ -10,9 +10,7 @@ use crate::nrs::curves::{
     Table, de_casteljau, interpolate_ends, interpolate_reversed, segment_distance, set_end_slopes,
     swing_rise,
 };
-use crate::nrs::pose::{
-    FootPose, Planted, Upper, direction, figure, heading_of, right_of, turn_between,
-};
+use crate::nrs::pose::{Planted, Upper, direction, heading_of, right_of, turn_between};
 use crate::nrs::specs::{FootAngles, Side, StepSpecs, StepType};
 use crate::nrs::state::{WalkerState, hanging_arm};
 use crate::nrs::walking::WalkingStep;
@@ -20,128 +18,8 @@ use crate::nrs::{GoalReason, NrsError};
 use crate::numerics::smooth::smoothstep;
 use crate::plan::GaitRequest;
 
-/// Channels of a step's table: centre (3), pelvis heading, tilt, list, lumbar extension,
-/// bending, rotation, neck rotation, the arms (6), stance pitch, swing ankle (3), swing
-/// heading, pitch, θ6.
-const K: usize = 23;
-
-/// The type of the step to `goal` from the stance foot `stance` for the `side` leg, with the
-/// goal's foot heading `goal_heading` (§4, Figure 2): φ, the angle of the goal around the
-/// stance heel from the stance foot's direction, + towards the stepping leg's side; lateral for
-/// φ ∈ [90° − ν/2, 90° + ν/2], forward from there down to −(90° − (90° − ν/2)) and backward up to
-/// the same angle beyond 180°, illegal in between (the stance side). Within `boundary` of the
-/// forward/lateral or lateral/backward boundary a foot heading within `parallel` of the stance
-/// foot's makes the step lateral. Returns the type or φ (rad) for an illegal goal.
-pub fn classify(
-    stance: &Planted,
-    side: Side,
-    goal: [f64; 2],
-    goal_heading: f64,
-    (nu, boundary, parallel): (f64, f64, f64),
-    heel_behind: f64,
-) -> Result<StepType, f64> {
-    let d = direction(stance.heading);
-    let r = right_of(stance.heading);
-    let heel = [
-        stance.flat[0] - heel_behind * d[0],
-        stance.flat[1] - heel_behind * d[1],
-    ];
-    let g = [goal[0] - heel[0], goal[1] - heel[1]];
-    let lat = side.sign() * (g[0] * r[0] + g[1] * r[1]);
-    let phi = lat.atan2(g[0] * d[0] + g[1] * d[1]);
-    let right = std::f64::consts::FRAC_PI_2;
-    let (lo, hi) = (right - nu / 2.0, right + nu / 2.0);
-    let parallel_foot = turn_between(stance.heading, goal_heading).abs() <= parallel;
-    if (phi - lo).abs() < boundary || (phi - hi).abs() < boundary {
-        return Ok(if parallel_foot {
-            StepType::Lateral
-        } else if phi < right {
-            StepType::Forward
-        } else {
-            StepType::Backward
-        });
-    }
-    if (lo..=hi).contains(&phi) {
-        Ok(StepType::Lateral)
-    } else if phi < lo && phi >= lo - right {
-        Ok(StepType::Forward)
-    } else if phi > hi || phi <= hi + right - 2.0 * std::f64::consts::PI {
-        Ok(StepType::Backward)
-    } else {
-        Err(phi)
-    }
-}
-
-/// One tabulated step: the channels over normalized time and the foot that stands.
-#[derive(Clone, Debug)]
-pub(crate) struct Segment {
-    pub table: Table<K>,
-    pub stance: Side,
-    pub stance_foot: Planted,
-    /// The swing foot until TOM (normalized time `toe_off`): it rolls on the floor, posed from
-    /// its pitch exactly rather than from the table's interpolated ankle.
-    pub swing_foot: Planted,
-    pub toe_off: f64,
-    pub duration: f64,
-    pub t0: f64,
-    pub step: usize,
-    pub foot: Foot,
-    pub body: crate::model::body::Body,
-    pub theta6_max: f64,
-}
-
-impl Segment {
-    /// The feet and the upper body at t from one row of the table.
-    fn parts(&self, row: &[f64; K], t: f64) -> (Upper, FootPose, FootPose) {
-        let arm = |i: usize| ArmAngles {
-            shoulder_flexion: row[i],
-            shoulder_abduction: row[i + 1],
-            elbow_flexion: row[i + 2],
-        };
-        let upper = Upper {
-            centre: [row[0], row[1], row[2]],
-            heading: row[3],
-            tilt: row[4],
-            list: row[5],
-            lumbar_extension: row[6],
-            lumbar_bending: row[7],
-            lumbar_rotation: row[8],
-            neck_rotation: row[9],
-            arms: [arm(10), arm(13)],
-        };
-        let stance = Planted {
-            pitch: row[16],
-            ..self.stance_foot
-        }
-        .pose(&self.foot, self.theta6_max);
-        let swing = if t <= self.toe_off {
-            Planted {
-                pitch: row[21],
-                ..self.swing_foot
-            }
-            .pose(&self.foot, self.theta6_max)
-        } else {
-            FootPose {
-                ankle: [row[17], row[18], row[19]],
-                heading: row[20],
-                pitch: row[21],
-                theta6: row[22],
-            }
-        };
-        (upper, stance, swing)
-    }
-
-    /// The figure at normalized time t, or the leg that cannot reach and its hip–ankle distance.
-    pub fn pose(&self, t: f64) -> Result<Landmarks, (Side, f64)> {
-        let (upper, stance, swing) = self.parts(&self.table.at(t), t);
-        let feet = match self.stance {
-            Side::Right => [&stance, &swing],
-            Side::Left => [&swing, &stance],
-        };
-        let time = self.t0 + t.clamp(0.0, 1.0) * self.duration;
-        figure(&upper, feet, &self.body, &self.foot, time, self.step)
-    }
-}
+pub use crate::nrs::region::classify;
+use crate::nrs::segment::{K, Segment};
 
 /// What a step is asked to do, its defaults resolved.
 pub(crate) struct Plan {
