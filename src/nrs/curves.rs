@@ -70,7 +70,7 @@ pub fn set_end_slopes(q: &mut [f64], m0: Option<f64>, m1: Option<f64>) {
 }
 
 /// Resample `values` given at the increasing times `times` onto `n + 1` uniform points of
-/// [times[0], times[last]] (linear interpolation).
+/// `[times[0], times[last]]` (linear interpolation).
 pub fn resample(times: &[f64], values: &[f64], n: usize) -> Vec<f64> {
     let (t0, t1) = (times[0], times[times.len() - 1]);
     let mut j = 0;
