@@ -4,6 +4,7 @@
 //! posed at any normalized time t ∈ [0, 1] by `advance` in constant time. The centre site's
 //! height reuses the hip height trajectory the walking engine computes for the walking step of
 //! the same length (eq. 4, eq. 5).
+pub(crate) mod build;
 pub mod curves;
 pub mod error;
 pub mod parameters;
