@@ -62,6 +62,9 @@ pub(crate) struct Plan {
     pub upper_end: Option<Upper>,
     pub velocity_end: [f64; 3],
     pub height: Height,
+    /// TOM (normalized time) where there is no walking step; `None`: that of a walk of the
+    /// step's frequency.
+    pub toe_off: Option<f64>,
     /// The pelvis heading's blend and the gaze's.
     pub heading_clock: Clock,
     pub gaze_clock: Clock,
@@ -102,7 +105,9 @@ fn foot_pitches(state: &WalkerState, plan: &Plan) -> Pitches {
         ),
         None => {
             let sf = 60.0 / plan.duration;
-            let tom = ((-0.16 * sf + 29.08) / 50.0).clamp(0.05, 0.5);
+            let tom = plan
+                .toe_off
+                .unwrap_or(((-0.16 * sf + 29.08) / 50.0).clamp(0.05, 0.5));
             let ramp: Vec<f64> = (0..=n).map(|i| i as f64 / n as f64).collect();
             (idx(0.1), idx(0.7), idx(tom), ramp.clone(), ramp)
         }
@@ -142,8 +147,15 @@ fn foot_pitches(state: &WalkerState, plan: &Plan) -> Pitches {
 /// §5.2: the swing foot's rows (ankle, heading, pitch, θ6): rolling on the floor until TOM,
 /// then eq. 3 over the take-off–landing line, on a straight path or, where that passes within
 /// the clearance of the stance ankle, on the de Casteljau curve with D2 a pelvis width from the
-/// stance ankle on the swing side.
-fn swing_ankle(state: &WalkerState, plan: &Plan, pitches: &Pitches) -> Vec<[f64; 6]> {
+/// stance ankle on the swing side. In the air the foot's heading relative to the pelvis
+/// (`pelvis(t)`) goes by a smoothstep from its value at take-off to its value at landing, so
+/// the swing hip's axial rotation stays between the two.
+fn swing_ankle(
+    state: &WalkerState,
+    plan: &Plan,
+    pitches: &Pitches,
+    pelvis: impl Fn(f64) -> f64,
+) -> Vec<[f64; 6]> {
     let n = state.params.table_intervals;
     let foot = Foot::new(&state.body);
     let lim = state.attrs.metatarsal_limit;
@@ -171,7 +183,10 @@ fn swing_ankle(state: &WalkerState, plan: &Plan, pitches: &Pitches) -> Vec<[f64;
         let l0 = state.body.l0;
         [s_ankle[0] + l0 * perp[0], s_ankle[1] + l0 * perp[1]]
     };
-    let turn = turn_between(swing_start.heading, plan.goal.heading);
+    // the foot's heading relative to the pelvis, blended from take-off to landing
+    let t_off = toe_off as f64 / n as f64;
+    let r_off = turn_between(pelvis(t_off), swing_start.heading);
+    let r_land = turn_between(pelvis(1.0), plan.goal.heading);
     let row = |f: FootPose| {
         [
             f.ankle[0], f.ankle[1], f.ankle[2], f.heading, f.pitch, f.theta6,
@@ -198,7 +213,8 @@ fn swing_ankle(state: &WalkerState, plan: &Plan, pitches: &Pitches) -> Vec<[f64;
                 + swing_rise(s, plan.swing_height);
             let theta6 = take_off.theta6 * (1.0 - smoothstep(2.0 * s));
             let (pitch, _) = foot.clear_pitch(rule, [0.0, y], theta6, 0.0);
-            let heading = swing_start.heading + smoothstep(s) * turn;
+            let t = i as f64 / n as f64;
+            let heading = pelvis(t) + r_off + smoothstep(s) * (r_land - r_off);
             let pitch = if i == n { landing.pitch } else { pitch };
             [xz[0], y, xz[1], heading, pitch, theta6]
         })
@@ -407,10 +423,10 @@ pub(crate) fn build(state: &WalkerState, plan: &Plan) -> Result<Segment, NrsErro
     let n = state.params.table_intervals;
     let body = state.body;
     let pitches = foot_pitches(state, plan);
-    let swing = swing_ankle(state, plan, &pitches);
     let heading0 = state.upper.heading;
     let heading1 = heading_end(state, plan);
     let heading = |t: f64| heading0 + plan.heading_clock.at(t) * turn_between(heading0, heading1);
+    let swing = swing_ankle(state, plan, &pitches, heading);
     let end = centre_end(state, plan, heading1);
     let [x, y, z] = centre_path(state, plan, end, heading, &pitches.stance, &swing);
     // the upper body: the rules of §5.4, moved to start at the state's and end at `upper_end`

@@ -14,8 +14,12 @@ pub(crate) mod segment;
 pub mod specs;
 pub mod state;
 pub mod step;
+pub mod turn;
 pub mod walking;
 
 pub use error::{GoalReason, NrsError};
 pub use parameters::NrsParameters;
 pub use specs::{FootAngles, Side, StepSpecs, StepType, TurnKind, TurnSpecs};
+pub use state::WalkerState;
+pub use step::NrsStep;
+pub use turn::Turnaround;

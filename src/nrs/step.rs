@@ -145,6 +145,7 @@ impl NrsStep {
             upper_end: None,
             velocity_end: [0.0; 3],
             height: Height::Rules,
+            toe_off: None,
             heading_clock: Clock::WHOLE,
             gaze_clock: Clock::WHOLE,
         };
