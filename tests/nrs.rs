@@ -109,7 +109,7 @@ fn a_backward_and_a_lateral_step_too() {
 }
 
 /// (Away from the 1°-wide boundary bands, whose edges lie at 59° and 61°: 58.5° and 61.5°.)
-/// Figure 2 with ν = 60°: around the stance heel, forward up to 60° towards the stepping side
+/// Figure 2 with ν = 60°: the goal foot's heel around the stance heel, forward up to 60° towards the stepping side
 /// and down to −30°, lateral 60°–120°, backward 120° to 210° (= −150°), illegal between −150°
 /// and −30° (crossing the stance leg).
 #[test]
@@ -121,7 +121,12 @@ fn step_types_by_the_angle_around_the_stance_heel() {
     let heel = [stance.flat[0] - l8, stance.flat[1]];
     let at = |deg: f64, foot_dir: f64| {
         let a = deg.to_radians();
-        let goal = [heel[0] + 0.5 * a.cos(), heel[1] + 0.5 * a.sin()];
+        // the goal foot's heel at the angle: its ankle l8 ahead of it along the foot
+        let d = direction(foot_dir);
+        let goal = [
+            heel[0] + 0.5 * a.cos() + l8 * d[0],
+            heel[1] + 0.5 * a.sin() + l8 * d[1],
+        ];
         klaw::nrs::step::classify(
             &stance,
             Side::Right,

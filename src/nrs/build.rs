@@ -62,8 +62,8 @@ pub(crate) struct Plan {
     pub upper_end: Option<Upper>,
     pub velocity_end: [f64; 3],
     pub height: Height,
-    /// TOM (normalized time) where there is no walking step; `None`: that of a walk of the
-    /// step's frequency.
+    /// TOM (normalized time); `None`: the walking step's, or without one that of a walk of
+    /// the step's frequency.
     pub toe_off: Option<f64>,
     /// The pelvis heading's blend and the gaze's.
     pub heading_clock: Clock,
@@ -95,11 +95,11 @@ fn affine(q: &[f64], i: usize, (ia, ib): (usize, usize), (a, b): (f64, f64)) -> 
 fn foot_pitches(state: &WalkerState, plan: &Plan) -> Pitches {
     let n = state.params.table_intervals;
     let idx = |f: f64| ((f * n as f64).round() as usize).min(n);
-    let (flat, heel_off, toe_off, st_w, sw_w) = match &plan.walking {
+    let (flat, heel_off, toe_off, st_w, mut sw_w) = match &plan.walking {
         Some(w) => (
             idx(w.flat),
             idx(w.heel_off),
-            idx(w.toe_off),
+            idx(plan.toe_off.unwrap_or(w.toe_off)),
             w.stance_pitch.clone(),
             w.swing_pitch.clone(),
         ),
@@ -112,6 +112,12 @@ fn foot_pitches(state: &WalkerState, plan: &Plan) -> Pitches {
             (idx(0.1), idx(0.7), idx(tom), ramp.clone(), ramp)
         }
     };
+    // a TOM of the plan's own: the swing foot rolls up to it by a smoothstep
+    if plan.toe_off.is_some() {
+        for (i, q) in sw_w.iter_mut().enumerate().take(toe_off + 1) {
+            *q = smoothstep(i as f64 / toe_off.max(1) as f64);
+        }
+    }
     let heel_off = heel_off.max(flat).min(n);
     let a = &plan.angles;
     let stance_start = state.foot(plan.stance).pitch;
@@ -145,7 +151,8 @@ fn foot_pitches(state: &WalkerState, plan: &Plan) -> Pitches {
 }
 
 /// §5.2: the swing foot's rows (ankle, heading, pitch, θ6): rolling on the floor until TOM,
-/// then eq. 3 over the take-off–landing line, on a straight path or, where that passes within
+/// then eq. 3 over the take-off–landing line, on a straight path, both in the parameter a =
+/// smoothstep(s) of the airborne time s (the foot leaves and lands at rest; docs/nrs.md) or, where that passes within
 /// the clearance of the stance ankle, on the de Casteljau curve with D2 a pelvis width from the
 /// stance ankle on the swing side. In the air the foot's heading relative to the pelvis
 /// (`pelvis(t)`) goes by a smoothstep from its value at take-off to its value at landing, so
@@ -203,14 +210,16 @@ fn swing_ankle(
                 .pose(&foot, lim));
             }
             let s = (i - toe_off) as f64 / (n - toe_off) as f64;
+            // eq. 3 and the path in a = S(s): the foot leaves and lands at rest
+            let a = smoothstep(s);
             let xz = if curved {
-                de_casteljau([d1, d2, d3], s)
+                de_casteljau([d1, d2, d3], a)
             } else {
-                [d1[0] + s * (d3[0] - d1[0]), d1[1] + s * (d3[1] - d1[1])]
+                [d1[0] + a * (d3[0] - d1[0]), d1[1] + a * (d3[1] - d1[1])]
             };
             let y = take_off.ankle[1]
-                + s * (landing.ankle[1] - take_off.ankle[1])
-                + swing_rise(s, plan.swing_height);
+                + a * (landing.ankle[1] - take_off.ankle[1])
+                + swing_rise(a, plan.swing_height);
             let theta6 = take_off.theta6 * (1.0 - smoothstep(2.0 * s));
             let (pitch, _) = foot.clear_pitch(rule, [0.0, y], theta6, 0.0);
             let t = i as f64 / n as f64;

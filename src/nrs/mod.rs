@@ -7,6 +7,7 @@
 pub(crate) mod build;
 pub mod curves;
 pub mod error;
+pub mod handover;
 pub mod parameters;
 pub mod pose;
 pub mod region;
