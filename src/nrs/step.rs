@@ -195,6 +195,11 @@ impl NrsStep {
             .expect("every instant's reach is checked by initialize")
     }
 
+    /// The stepping leg.
+    pub fn side(&self) -> Side {
+        self.segment.stance.other()
+    }
+
     /// The step's type.
     pub fn kind(&self) -> StepType {
         self.kind

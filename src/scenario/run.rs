@@ -3,17 +3,17 @@
 //! are one walk) is preceded by a start from standing and followed by a stop into standing
 //! ([`crate::nrs::handover`]).
 use crate::engine::walker::{self, Walk};
+use crate::export::{MAX_FPS, MIN_FPS};
 use crate::figure::placement::Placement;
 use crate::figure::{Landmarks, landmarks};
 use crate::kinematics::foot::Foot;
 use crate::kinematics::pelvis::Side as EngineSide;
 use crate::model::InputError;
 use crate::nrs::handover::{planted, start, stop, walk_end};
-use crate::nrs::pose::{direction, right_of};
+use crate::nrs::pose::{Planted, direction, right_of};
 use crate::nrs::{NrsError, NrsStep, Side, StepSpecs, TurnSpecs, Turnaround, WalkerState};
 use crate::plan::Gait;
 use crate::scenario::{Action, Footprint, Goal, Motion, Scenario, ScenarioError, Span};
-use crate::simulation::{MAX_FPS, MIN_FPS};
 
 /// One piece of the scenario's motion.
 enum Piece {
@@ -87,7 +87,11 @@ impl Runner<'_> {
     }
 
     fn footprint(&mut self, side: Side, action: usize, time: f64) {
-        let f = self.state.foot(side);
+        let f = *self.state.foot(side);
+        self.place(f, side, action, time);
+    }
+
+    fn place(&mut self, f: Planted, side: Side, action: usize, time: f64) {
         self.footprints.push(Footprint {
             index: self.footprints.len(),
             side,
@@ -130,22 +134,19 @@ impl Runner<'_> {
         // every later heel strike of the walk places the striking foot
         let foot = Foot::new(&s.body);
         for st in walk.steps.iter().skip(1) {
-            let lm = at.apply(&landmarks(st, st.t_start, &walk.attrs)?);
-            let own = at.inverse().apply(&lm);
+            let own = landmarks(st, st.t_start, &walk.attrs)?;
             let leg = match st.side {
                 EngineSide::Right => own.right,
                 EngineSide::Left => own.left,
             };
             let p = planted(&leg, &foot, s.attrs.metatarsal_limit);
             let [x, _, z] = at.to_world([p.flat[0], 0.0, p.flat[1]]);
-            self.footprints.push(Footprint {
-                index: self.footprints.len(),
-                side: side_of(st.side),
-                ankle: [x, z],
-                direction: at.heading,
-                time: t0 + st.t_start,
-                action,
-            });
+            let placed = Planted {
+                flat: [x, z],
+                heading: at.heading,
+                pitch: 0.0,
+            };
+            self.place(placed, side_of(st.side), action, t0 + st.t_start);
         }
         let last = walk.steps.last().expect("a walk has a step").side;
         let step = self.state.step;
@@ -326,13 +327,14 @@ pub fn run(scenario: &Scenario, fps: f64) -> Result<Motion, ScenarioError> {
                 };
                 let turn =
                     Turnaround::initialize(&r.state, &specs, *step_duration).map_err(fail)?;
+                for step in turn.steps() {
+                    let end = step.end_state();
+                    r.place(*end.foot(step.side()), step.side(), i, end.time);
+                }
                 let end = turn.end_state().clone();
                 let d = turn.duration();
                 r.push(Piece::Turn(turn), i, "turn", d);
                 r.state = end;
-                let t = r.state.time;
-                r.footprint(*side, i, t - 0.4 * d);
-                r.footprint(side.other(), i, t);
             }
         }
         i += 1;
