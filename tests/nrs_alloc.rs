@@ -9,7 +9,7 @@ use klaw::model::attributes::AttributeTable;
 use klaw::model::body::Body;
 use klaw::nrs::state::WalkerState;
 use klaw::nrs::step::NrsStep;
-use klaw::nrs::{Side, StepSpecs};
+use klaw::nrs::{Side, StepSpecs, TurnKind, TurnSpecs, Turnaround};
 
 /// The system allocator, counting allocations and reallocations.
 struct Counting;
@@ -52,7 +52,8 @@ fn step(side: Side, goal: [f64; 2], heading: f64) -> NrsStep {
 }
 
 /// The counter counts (a Vec allocates), and 10 000 `advance` calls of a forward and of a
-/// lateral step, over all of t ∈ [0, 1] and beyond its ends, allocate 0 times.
+/// lateral step, and 10 000 of a turnaround, over all of t ∈ [0, 1] and beyond its ends,
+/// allocate 0 times.
 #[test]
 fn advance_allocates_nothing() {
     let steps = [
@@ -73,6 +74,25 @@ fn advance_allocates_nothing() {
         sum += lm.pelvis[1];
     }
     let after = ALLOCATIONS.load(Ordering::SeqCst);
+    // a turnaround of three parts (its anticipations included)
+    let body = Body::standard(1.8, 80.0).unwrap();
+    let s = WalkerState::standing(body, AttributeTable::builtin().defaults(), [0.0, 0.0], 0.0);
+    let specs = TurnSpecs {
+        angle: 250f64.to_radians(),
+        side: Side::Left,
+        kind: TurnKind::Stationary,
+    };
+    let turn = Turnaround::initialize(&s, &specs, None).unwrap();
+    let before_turn = ALLOCATIONS.load(Ordering::SeqCst);
+    for i in 0..10_000 {
+        let t = -0.01 + 1.02 * i as f64 / 9_999.0;
+        sum += black_box(&turn).advance(black_box(t)).pelvis[1];
+    }
+    assert_eq!(
+        ALLOCATIONS.load(Ordering::SeqCst),
+        before_turn,
+        "Turnaround::advance allocated"
+    );
     assert!(sum.is_finite());
     assert_eq!(
         after - before,
