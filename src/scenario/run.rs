@@ -18,7 +18,7 @@ use crate::scenario::{Action, Footprint, Goal, Motion, Scenario, ScenarioError, 
 /// One piece of the scenario's motion.
 enum Piece {
     /// The figure holds `state`'s pose.
-    Hold(WalkerState),
+    Hold(Box<WalkerState>),
     Step(NrsStep),
     Turn(Turnaround),
     /// The engine's walk, placed, starting at `t0` with step index `step`.
@@ -105,7 +105,7 @@ impl Runner<'_> {
     fn hold(&mut self, seconds: f64, action: usize, kind: &'static str) {
         let mut end = self.state.clone();
         end.time += seconds;
-        self.push(Piece::Hold(self.state.clone()), action, kind, seconds);
+        self.push(Piece::Hold(Box::new(self.state.clone())), action, kind, seconds);
         self.state = end;
     }
 
