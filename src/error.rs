@@ -33,9 +33,9 @@ pub enum Error {
     /// A scenario whose action cannot be run.
     #[error(transparent)]
     Scenario(#[from] ScenarioError),
-    /// A scenario file that cannot be read into a scenario.
+    /// A scenario file that cannot be read into a scenario (boxed: the union stays small).
     #[error(transparent)]
-    ScenarioFile(#[from] ScenarioFileError),
+    ScenarioFile(Box<ScenarioFileError>),
     /// Reading or writing a file failed.
     #[error("{action} {path}: {source}")]
     Io {
@@ -56,6 +56,12 @@ pub enum Error {
         /// Why it cannot be drawn.
         source: DrawError,
     },
+}
+
+impl From<ScenarioFileError> for Error {
+    fn from(e: ScenarioFileError) -> Self {
+        Error::ScenarioFile(Box::new(e))
+    }
 }
 
 /// A result of the crate, [`Error`] by default.

@@ -184,8 +184,8 @@ fn unknown_keys_are_refused_where_they_are() {
     let e = error("[attributes]\nbounce = 1\n[[action]]\ntype = \"pause\"\nseconds = 1\n");
     assert!(
         matches!(
-            e.problem,
-            Problem::Value(InputError::UnknownAttribute { .. })
+            &e.problem,
+            Problem::Value(v) if matches!(v.as_ref(), InputError::UnknownAttribute { .. })
         ),
         "{e}"
     );

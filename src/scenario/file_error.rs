@@ -71,7 +71,13 @@ pub enum Problem {
     },
     /// A value out of its range, not finite, or refused by the body, attribute or gait checks.
     #[error(transparent)]
-    Value(#[from] InputError),
+    Value(Box<InputError>),
+}
+
+impl From<InputError> for Problem {
+    fn from(e: InputError) -> Self {
+        Problem::Value(Box::new(e))
+    }
 }
 
 /// A scenario file that cannot be read into a [`super::Scenario`]: nothing is run or written.

@@ -3,6 +3,7 @@
 //! non-rhythmic steps and turnarounds of [`crate::nrs`] handing over to each other at matching
 //! poses and pelvis velocities (starts from standing and stops into standing are inserted where
 //! a walk begins or ends).
+mod fields;
 pub mod file;
 pub mod file_error;
 
