@@ -109,7 +109,7 @@ fn a_backward_and_a_lateral_step_too() {
 }
 
 /// (Away from the 1°-wide boundary bands, whose edges lie at 59° and 61°: 58.5° and 61.5°.)
-/// Figure 2 with ν = 60°: around the stance heel, forward up to 60° towards the stepping side
+/// Figure 2 with ν = 60°: the goal foot's heel around the stance heel, forward up to 60° towards the stepping side
 /// and down to −30°, lateral 60°–120°, backward 120° to 210° (= −150°), illegal between −150°
 /// and −30° (crossing the stance leg).
 #[test]
@@ -121,7 +121,12 @@ fn step_types_by_the_angle_around_the_stance_heel() {
     let heel = [stance.flat[0] - l8, stance.flat[1]];
     let at = |deg: f64, foot_dir: f64| {
         let a = deg.to_radians();
-        let goal = [heel[0] + 0.5 * a.cos(), heel[1] + 0.5 * a.sin()];
+        // the goal foot's heel at the angle: its ankle l8 ahead of it along the foot
+        let d = direction(foot_dir);
+        let goal = [
+            heel[0] + 0.5 * a.cos() + l8 * d[0],
+            heel[1] + 0.5 * a.sin() + l8 * d[1],
+        ];
         klaw::nrs::step::classify(
             &stance,
             Side::Right,
@@ -216,4 +221,37 @@ fn several_walkers_are_independent() {
     ];
     let _sb = NrsStep::initialize(&b, &specs(Side::Right, g, 1.0), None).unwrap();
     assert_eq!(sa.advance(0.4), before);
+}
+
+/// Eq. 4 in a forward NRS⁻ from standing (§5.3): its centre-site height is the engine's hip
+/// height h of the walking step of the same length, plus eq. 4's end correction (linear in t)
+/// plus the Hermite end-slope terms t(1 − t)² and t²(t − 1) that bring it to rest: so
+/// y(t) − h(t) is a cubic in t, whose fourth differences over the uniform table vanish (to
+/// round-off), and it meets the standing height at t = 0.
+#[test]
+fn a_forward_step_borrows_the_walking_steps_hip_height() {
+    let s = standing();
+    let length = 0.6;
+    let goal = [s.feet[1].flat[0] + length, s.feet[0].flat[1]];
+    let step = NrsStep::initialize(&s, &specs(Side::Right, goal, 0.0), None).unwrap();
+    let n = s.params.table_intervals;
+    let gait = klaw::GaitRequest {
+        step_length: Some(length),
+        ..Default::default()
+    }
+    .complete(&s.body, &s.attrs)
+    .unwrap();
+    let w = klaw::nrs::walking::WalkingStep::simulate(s.body, &s.attrs, gait, n).unwrap();
+    let d: Vec<f64> = (0..=n)
+        .map(|i| step.advance(i as f64 / n as f64).pelvis[1] - w.height[i])
+        .collect();
+    assert!((d[0] + w.height[0] - s.upper.centre[1]).abs() < 1e-12);
+    let worst = d
+        .windows(5)
+        .map(|q| (q[0] - 4.0 * q[1] + 6.0 * q[2] - 4.0 * q[3] + q[4]).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        worst < 1e-11,
+        "y − h is not a cubic: fourth difference {worst}"
+    );
 }

@@ -40,6 +40,11 @@ use crate::figure::skeleton::Skeleton;
 use crate::model::InputError;
 use crate::model::body::Body;
 
+/// Lowest frame rate of the frame samplers and exports (frames/s), as the command line allows.
+pub const MIN_FPS: f64 = 0.001;
+/// Highest frame rate of the frame samplers and exports (frames/s), as the command line allows.
+pub const MAX_FPS: f64 = 10_000.0;
+
 /// The export file formats, chosen by the file extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {

@@ -3,6 +3,7 @@
 pub mod attributes;
 pub mod body;
 pub mod error;
+pub mod rom;
 
 pub use error::{InputError, Shown};
 

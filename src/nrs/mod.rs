@@ -4,8 +4,10 @@
 //! posed at any normalized time t ∈ [0, 1] by `advance` in constant time. The centre site's
 //! height reuses the hip height trajectory the walking engine computes for the walking step of
 //! the same length (eq. 4, eq. 5).
+pub(crate) mod build;
 pub mod curves;
 pub mod error;
+pub mod handover;
 pub mod parameters;
 pub mod pose;
 pub mod region;
@@ -13,8 +15,12 @@ pub(crate) mod segment;
 pub mod specs;
 pub mod state;
 pub mod step;
+pub mod turn;
 pub mod walking;
 
 pub use error::{GoalReason, NrsError};
 pub use parameters::NrsParameters;
 pub use specs::{FootAngles, Side, StepSpecs, StepType, TurnKind, TurnSpecs};
+pub use state::WalkerState;
+pub use step::NrsStep;
+pub use turn::Turnaround;

@@ -34,6 +34,10 @@ pub struct NrsParameters {
     pub turn_max: f64,
     /// δ's default (s).
     pub turn_step_duration: f64,
+    /// When a turnaround's flat foot leaves the floor (normalized time of its step).
+    pub turn_lift_off: f64,
+    /// When the swing foot of a start from standing leaves the floor (normalized time).
+    pub start_toe_off: f64,
     /// The neck's share of the gaze twist (§5.4).
     pub neck_share: f64,
     /// The knees' flexion in quiet standing.

@@ -3,9 +3,11 @@
 use crate::nrs::pose::{Planted, direction, right_of, turn_between};
 use crate::nrs::specs::{Side, StepType};
 
-/// The type of the step to `goal` from the stance foot `stance` for the `side` leg, with the
-/// goal's foot heading `goal_heading` (§4, Figure 2): φ, the angle of the goal around the
-/// stance heel from the stance foot's direction, + towards the stepping leg's side; lateral for
+/// The type of the step to `goal` (the flat foot's ankle) from the stance foot `stance` for the
+/// `side` leg, with the goal's foot heading `goal_heading` (§4, Figure 2): φ, the angle of the
+/// goal foot's heel (`heel_behind` behind its ankle, as the stance heel) around the stance heel
+/// from the stance foot's direction — so that a foot set down beside the stance foot is at
+/// 90°, lateral — + towards the stepping leg's side; lateral for
 /// φ ∈ [90° − ν/2, 90° + ν/2], forward from there down to −(90° − (90° − ν/2)) and backward up to
 /// the same angle beyond 180°, illegal in between (the stance side). Within `boundary` of the
 /// forward/lateral or lateral/backward boundary a foot heading within `parallel` of the stance
@@ -24,7 +26,11 @@ pub fn classify(
         stance.flat[0] - heel_behind * d[0],
         stance.flat[1] - heel_behind * d[1],
     ];
-    let g = [goal[0] - heel[0], goal[1] - heel[1]];
+    let gd = direction(goal_heading);
+    let g = [
+        goal[0] - heel_behind * gd[0] - heel[0],
+        goal[1] - heel_behind * gd[1] - heel[1],
+    ];
     let lat = side.sign() * (g[0] * r[0] + g[1] * r[1]);
     let phi = lat.atan2(g[0] * d[0] + g[1] * d[1]);
     let right = std::f64::consts::FRAC_PI_2;

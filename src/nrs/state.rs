@@ -96,26 +96,25 @@ impl WalkerState {
 
     /// The figure in this state.
     pub fn figure(&self) -> Result<Landmarks, NrsError> {
+        self.figure_with(&self.upper, self.time)
+    }
+
+    /// The figure with these feet and the pelvis and upper body `upper`, at `time`.
+    pub fn figure_with(&self, upper: &Upper, time: f64) -> Result<Landmarks, NrsError> {
         let foot = Foot::new(&self.body);
         let lim = self.attrs.metatarsal_limit;
         let [r, l] = self.feet.map(|f| f.pose(&foot, lim));
-        figure(
-            &self.upper,
-            [&r, &l],
-            &self.body,
-            &foot,
-            self.time,
-            self.step,
-        )
-        .map_err(|(side, distance)| NrsError::Goal {
-            position: self.foot(side).flat,
-            side: side.name(),
-            reason: crate::nrs::GoalReason::Unreachable {
-                leg: side.name(),
-                distance,
-                length: self.body.l1,
-                t: 0.0,
-            },
+        figure(upper, [&r, &l], &self.body, &foot, time, self.step).map_err(|(side, distance)| {
+            NrsError::Goal {
+                position: self.foot(side).flat,
+                side: side.name(),
+                reason: crate::nrs::GoalReason::Unreachable {
+                    leg: side.name(),
+                    distance,
+                    length: self.body.l1,
+                    t: 0.0,
+                },
+            }
         })
     }
 

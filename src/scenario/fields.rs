@@ -2,9 +2,11 @@
 //! the place and field of any problem (src/scenario/file.rs).
 use toml::{Table, Value};
 
-use super::file::MAX_WORLD;
 use super::file_error::{Place, Problem};
 use crate::model::InputError;
+
+/// The largest |coordinate| of a world point (m).
+pub const MAX_WORLD: f64 = 1.0e4;
 
 /// A problem at a field, before the file's path is added.
 pub(super) struct FieldError {

@@ -30,8 +30,7 @@ pub const MAX_WALK_STEPS: i64 = 10_000;
 pub const MAX_SECONDS: f64 = 3600.0;
 /// The farthest a relative step goal may lie (m) in each direction (the NRS checks reach).
 pub const MAX_RELATIVE: f64 = 2.0;
-/// The largest |coordinate| of a world point (m).
-pub const MAX_WORLD: f64 = 1.0e4;
+pub use super::fields::MAX_WORLD;
 /// The largest turn of one turn action (deg); it is split into turnarounds of at most 100°.
 pub const MAX_TURN_DEG: f64 = 1080.0;
 /// The largest |foot angle| of `foot_angles` (deg).

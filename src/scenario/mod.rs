@@ -6,8 +6,11 @@
 mod fields;
 pub mod file;
 pub mod file_error;
+mod run;
 
 use serde::Serialize;
+
+pub use run::run;
 
 use crate::figure::Landmarks;
 use crate::model::attributes::Attributes;
@@ -73,8 +76,8 @@ pub enum Action {
         duration: Option<f64>,
         /// swhf (eq. 3); `None`: the default of `models/nrs.toml`.
         swing_height_factor: Option<f64>,
-        /// The gaze's change of heading over the step (rad, + left) relative to the pelvis's
-        /// final facing; `None`: looking where the pelvis faces.
+        /// The gaze's heading at the end of the step relative to the pelvis's facing at its
+        /// start (rad, + left); `None`: looking where the pelvis faces at the end.
         gaze: Option<f64>,
         /// θ_foot; `None`: the defaults of the step's type.
         foot_angles: Option<FootAngles>,

@@ -35,10 +35,7 @@ pub const DEFAULT_MASS: f64 = 80.0;
 pub const DEFAULT_STEPS: usize = 10;
 /// Most steps of one walk, as the command line allows.
 pub const MAX_STEPS: usize = 1_000_000;
-/// Lowest frame rate of the frame samplers and exports (frames/s), as the command line allows.
-pub const MIN_FPS: f64 = 0.001;
-/// Highest frame rate of the frame samplers and exports (frames/s), as the command line allows.
-pub const MAX_FPS: f64 = 10_000.0;
+pub use crate::export::{MAX_FPS, MIN_FPS};
 
 /// Where the walk's attributes come from.
 #[derive(Clone, Debug)]

