@@ -10,7 +10,7 @@ use crate::export::error::ExportError;
 use crate::figure::FigureError;
 use crate::model::InputError;
 use crate::plot::error::DrawError;
-use crate::scenario::ScenarioError;
+use crate::scenario::{ScenarioError, ScenarioFileError};
 
 /// Everything that can go wrong, from a bad value to a shooting solve that does not converge.
 #[derive(Debug, thiserror::Error)]
@@ -33,6 +33,9 @@ pub enum Error {
     /// A scenario whose action cannot be run.
     #[error(transparent)]
     Scenario(#[from] ScenarioError),
+    /// A scenario file that cannot be read into a scenario (boxed: the union stays small).
+    #[error(transparent)]
+    ScenarioFile(Box<ScenarioFileError>),
     /// Reading or writing a file failed.
     #[error("{action} {path}: {source}")]
     Io {
@@ -53,6 +56,12 @@ pub enum Error {
         /// Why it cannot be drawn.
         source: DrawError,
     },
+}
+
+impl From<ScenarioFileError> for Error {
+    fn from(e: ScenarioFileError) -> Self {
+        Error::ScenarioFile(Box::new(e))
+    }
 }
 
 /// A result of the crate, [`Error`] by default.

@@ -4,6 +4,7 @@ use std::path::Path;
 
 use super::read_text;
 use crate::error::Result;
+use crate::model::InputError;
 use crate::model::attributes::{self, AttributeTable, Attributes};
 
 /// Read a user attribute file (flat TOML `name = number`, user units) into overrides, to be
@@ -16,17 +17,32 @@ fn read_attributes(path: &Path) -> Result<BTreeMap<String, f64>> {
 /// The attributes of a walk: the bundled defaults, then the values of the style preset `style`,
 /// then those of the attribute file `path`, name by name, each checked against its range.
 pub fn load_attributes(style: Option<&str>, path: Option<&Path>) -> Result<Attributes> {
+    let (overrides, source) = match path {
+        Some(p) => (read_attributes(p)?, p.display().to_string()),
+        None => (BTreeMap::new(), String::new()),
+    };
+    Ok(attributes_with(style, overrides, &source)?)
+}
+
+/// The attributes of the bundled defaults, then the values of the style preset `style`, then
+/// `overrides` (user units, from `source`: a file, a scenario's `[attributes]`), name by name,
+/// each checked against its range.
+pub fn attributes_with(
+    style: Option<&str>,
+    overrides: BTreeMap<String, f64>,
+    source: &str,
+) -> Result<Attributes, InputError> {
     let table = AttributeTable::builtin();
-    let mut overrides = match style {
+    let mut all = match style {
         Some(name) => attributes::style(name)?,
         None => Default::default(),
     };
-    let mut source = style.map_or(String::new(), |s| format!("style {s}"));
-    if let Some(p) = path {
-        overrides.extend(read_attributes(p)?);
-        source = p.display().to_string();
-    }
-    Ok(table.resolve(&overrides, &source)?)
+    let source = match (style, overrides.is_empty()) {
+        (Some(s), true) => format!("style {s}"),
+        _ => source.to_string(),
+    };
+    all.extend(overrides);
+    table.resolve(&all, &source)
 }
 
 #[cfg(test)]

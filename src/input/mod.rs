@@ -5,7 +5,7 @@ pub mod schedule;
 
 use std::path::Path;
 
-pub use attribute_file::load_attributes;
+pub use attribute_file::{attributes_with, load_attributes};
 pub use schedule::{read_schedule, schedule_gaits};
 
 use crate::error::{Error, Result};

@@ -157,8 +157,20 @@ pub(crate) fn parse_overrides(
     text: &str,
     path: &Path,
 ) -> Result<BTreeMap<String, f64>, InputError> {
-    let malformed = |reason: Reason| InputError::malformed("attribute file", path, reason);
-    let table: toml::Table = toml::from_str(text).map_err(|e| malformed(Box::new(e)))?;
+    let table: toml::Table = toml::from_str(text)
+        .map_err(|e| InputError::malformed("attribute file", path, Box::new(e)))?;
+    overrides_of_table(table, "attribute file", path)
+}
+
+/// The overrides of a parsed flat table `name = number` (user units; a `description = "…"` is
+/// ignored), `what` at `path` naming it in errors (an attribute file, a scenario's
+/// `[attributes]`).
+pub fn overrides_of_table(
+    table: toml::Table,
+    what: &'static str,
+    path: &Path,
+) -> Result<BTreeMap<String, f64>, InputError> {
+    let malformed = |reason: Reason| InputError::malformed(what, path, reason);
     let mut out = BTreeMap::new();
     for (key, value) in table {
         if key == "description" {

@@ -3,6 +3,9 @@
 //! non-rhythmic steps and turnarounds of [`crate::nrs`] handing over to each other at matching
 //! poses and pelvis velocities (starts from standing and stops into standing are inserted where
 //! a walk begins or ends).
+mod fields;
+pub mod file;
+pub mod file_error;
 mod run;
 
 use serde::Serialize;
@@ -14,6 +17,9 @@ use crate::model::attributes::Attributes;
 use crate::model::body::Body;
 use crate::nrs::specs::{FootAngles, Side, TurnKind};
 use crate::plan::GaitRequest;
+
+pub use file::{parse_scenario, read_scenario};
+pub use file_error::ScenarioFileError;
 
 /// Where a step's foot goes.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]

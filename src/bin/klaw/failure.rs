@@ -28,7 +28,7 @@ pub(crate) fn exit_code(e: &Error) -> u8 {
         | FigureError::Parallel { .. } => BAD_INPUT,
     };
     match e {
-        Error::Input(_) | Error::Export(_) => BAD_INPUT,
+        Error::Input(_) | Error::Export(_) | Error::ScenarioFile(_) => BAD_INPUT,
         Error::Simulation(SimulationError::Plan(_)) => BAD_INPUT,
         Error::Simulation(
             SimulationError::NotConverged { .. }
