@@ -182,3 +182,39 @@ fn scenarios_are_deterministic() {
     assert_eq!(a.frames, b.frames);
     assert_eq!(a.footprints, b.footprints);
 }
+
+/// Every example scenario runs, within the hand-over bounds of `hand_overs_are_continuous`'s
+/// kind checked coarsely here: the pelvis moves less than 5 cm between frames at 100 fps.
+#[test]
+fn the_example_scenarios_run() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenarios");
+    let mut names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    names.sort();
+    assert!(names.len() >= 3);
+    for path in names {
+        let s = klaw::scenario::read_scenario(&path).unwrap();
+        let m = run(&s, FPS).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        for w in m.frames.windows(2) {
+            let d = (0..3)
+                .map(|c| (w[1].pelvis[c] - w[0].pelvis[c]).powi(2))
+                .sum::<f64>();
+            assert!(
+                d.sqrt() < 0.05,
+                "{}: the pelvis jumps at {}",
+                path.display(),
+                w[1].time
+            );
+        }
+        eprintln!(
+            "{}: {:.2} s, {} frames, {} footprints",
+            path.display(),
+            m.frames.last().unwrap().time,
+            m.frames.len(),
+            m.footprints.len()
+        );
+    }
+}

@@ -105,7 +105,12 @@ impl Runner<'_> {
     fn hold(&mut self, seconds: f64, action: usize, kind: &'static str) {
         let mut end = self.state.clone();
         end.time += seconds;
-        self.push(Piece::Hold(Box::new(self.state.clone())), action, kind, seconds);
+        self.push(
+            Piece::Hold(Box::new(self.state.clone())),
+            action,
+            kind,
+            seconds,
+        );
         self.state = end;
     }
 
