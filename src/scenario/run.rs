@@ -19,11 +19,11 @@ use crate::scenario::{Action, Footprint, Goal, Motion, Scenario, ScenarioError, 
 enum Piece {
     /// The figure holds `state`'s pose.
     Hold(Box<WalkerState>),
-    Step(NrsStep),
-    Turn(Turnaround),
+    Step(Box<NrsStep>),
+    Turn(Box<Turnaround>),
     /// The engine's walk, placed, starting at `t0` with step index `step`.
     Walk {
-        walk: Walk,
+        walk: Box<Walk>,
         at: Placement,
         t0: f64,
         step: usize,
@@ -117,7 +117,7 @@ impl Runner<'_> {
     fn step(&mut self, step: NrsStep, action: usize, kind: &'static str, side: Side) {
         let end = step.end_state().clone();
         let d = step.duration();
-        self.push(Piece::Step(step), action, kind, d);
+        self.push(Piece::Step(Box::new(step)), action, kind, d);
         self.state = end;
         let t = self.state.time;
         self.footprint(side, action, t);
@@ -156,7 +156,17 @@ impl Runner<'_> {
         let last = walk.steps.last().expect("a walk has a step").side;
         let step = self.state.step;
         let d = walk.duration();
-        self.push(Piece::Walk { walk, at, t0, step }, action, "walk", d);
+        self.push(
+            Piece::Walk {
+                walk: Box::new(walk),
+                at,
+                t0,
+                step,
+            },
+            action,
+            "walk",
+            d,
+        );
         self.state = end;
         let striking = side_of(last).other();
         let t = self.state.time;
@@ -338,7 +348,7 @@ pub fn run(scenario: &Scenario, fps: f64) -> Result<Motion, ScenarioError> {
                 }
                 let end = turn.end_state().clone();
                 let d = turn.duration();
-                r.push(Piece::Turn(turn), i, "turn", d);
+                r.push(Piece::Turn(Box::new(turn)), i, "turn", d);
                 r.state = end;
             }
         }
