@@ -4,7 +4,9 @@
 //!   the target is ≤ 1 µs a pose;
 //! - `nrs_initialize_forward`: one forward step of 0.55 m precomputed (the engine's walking step
 //!   of the same length simulated, the tables built);
-//! - `nrs_initialize_lateral`: one lateral step of 0.4 m (no walking step).
+//! - `nrs_initialize_lateral`: one lateral step of 0.4 m (no walking step);
+//! - `scenario_table`: the table example (`examples/scenarios/table.toml`, 15.8 s of motion) run
+//!   and sampled at 100 frames/s (`scenario::run`), to set against its duration.
 //!
 //! Run: `cargo bench --bench nrs -- --warm-up-time 1 --measurement-time 3`.
 use std::hint::black_box;
@@ -50,6 +52,11 @@ fn nrs(c: &mut Criterion) {
     });
     c.bench_function("nrs_initialize_lateral", |b| {
         b.iter(|| NrsStep::initialize(black_box(&s), black_box(&lateral), None).expect("steps"))
+    });
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/scenarios/table.toml");
+    let table = klaw::scenario::read_scenario(std::path::Path::new(path)).expect("the example");
+    c.bench_function("scenario_table", |b| {
+        b.iter(|| klaw::scenario::run(black_box(&table), 100.0).expect("runs"))
     });
 }
 

@@ -31,31 +31,23 @@ fn walk(steps: usize, velocity: f64) -> Action {
     }
 }
 
+/// A step of the `side` foot `left` metres to the figure's left.
+fn side_step(side: Side, left: f64) -> Action {
+    Action::Step {
+        side,
+        goal: Goal::Relative {
+            forward: 0.0,
+            left,
+            turn: 0.0,
+        },
+        duration: None,
+        swing_height_factor: None,
+        gaze: None,
+        foot_angles: None,
+    }
+}
+
 fn table() -> Scenario {
-    let side_step = Action::Step {
-        side: Side::Left,
-        goal: Goal::Relative {
-            forward: 0.0,
-            left: 0.35,
-            turn: 0.0,
-        },
-        duration: None,
-        swing_height_factor: None,
-        gaze: None,
-        foot_angles: None,
-    };
-    let close = Action::Step {
-        side: Side::Right,
-        goal: Goal::Relative {
-            forward: 0.0,
-            left: 0.35,
-            turn: 0.0,
-        },
-        duration: None,
-        swing_height_factor: None,
-        gaze: None,
-        foot_angles: None,
-    };
     scenario(vec![
         Action::Stand {
             seconds: 0.5,
@@ -63,8 +55,8 @@ fn table() -> Scenario {
             facing: Some(0.4),
         },
         walk(4, 1.2),
-        side_step,
-        close,
+        side_step(Side::Left, 0.35),
+        side_step(Side::Right, 0.35),
         Action::Turn {
             angle: 180f64.to_radians(),
             side: Side::Left,

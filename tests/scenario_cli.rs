@@ -72,3 +72,101 @@ fn bad_files_exit_2_and_write_nothing() {
     }
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+/// The files in `d`.
+fn listing(d: &std::path::Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(d)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn step_and_turn_write_frames_events_and_report() {
+    let d = dir("one");
+    let p = |n: &str| d.join(n).to_str().unwrap().to_string();
+    let (code, err) = klaw(&[
+        "step",
+        "--side",
+        "left",
+        "--forward",
+        "0.6",
+        "--out",
+        &p("s.csv"),
+        "--events",
+        &p("s-events.csv"),
+        "--report",
+        &p("s.json"),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    // one step: the left foot lifts and lands, nothing else moves
+    let events = std::fs::read_to_string(d.join("s-events.csv")).unwrap();
+    let rows: Vec<&str> = events.lines().collect();
+    assert_eq!(rows[0], "time_s,side,event,action,kind");
+    assert_eq!(rows.len(), 3, "{events}");
+    assert!(rows[1].contains(",left,foot_off,1,step"), "{events}");
+    assert!(rows[2].contains(",left,foot_strike,1,step"), "{events}");
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("s.json")).unwrap()).unwrap();
+    // the standing feet and the step's
+    assert_eq!(report["footprints"].as_array().unwrap().len(), 3);
+    let (code, err) = klaw(&[
+        "turn",
+        "--angle",
+        "250",
+        "--side",
+        "right",
+        "--kind",
+        "stationary",
+        "--out",
+        &p("t.bvh"),
+        "--events",
+        &p("t-events.csv"),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    // 250° is three turnarounds of two steps: each foot lifts and lands three times
+    let events = std::fs::read_to_string(d.join("t-events.csv")).unwrap();
+    assert_eq!(events.lines().count(), 1 + 3 * 2 * 2, "{events}");
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+#[test]
+fn bad_steps_and_turns_exit_2_and_write_nothing() {
+    let d = dir("one-bad");
+    let out = d.join("x.csv");
+    let events = d.join("x-events.csv");
+    let o = out.to_str().unwrap();
+    let e = events.to_str().unwrap();
+    for (args, want) in [
+        (vec!["step"], "a step needs a goal"),
+        (vec!["step", "--forward", "5"], "valid range is [-2, 2] m"),
+        // the left foot across in front of the right: the illegal region
+        (
+            vec!["step", "--side", "left", "--left", "-0.3"],
+            "illegal region",
+        ),
+        (
+            vec!["step", "--forward", "0.6", "--duration", "9"],
+            "duration",
+        ),
+        (vec!["turn", "--angle", "0"], "angle"),
+        (vec!["turn", "--step-duration", "0.01"], "step_duration"),
+        (
+            vec!["step", "--forward", "0.6", "--events", "x.txt"],
+            "--events",
+        ),
+    ] {
+        let mut all = args.clone();
+        all.extend(["--out", o]);
+        if !args.contains(&"--events") {
+            all.extend(["--events", e]);
+        }
+        let (code, err) = klaw(&all);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(err.contains(want), "{args:?}: {err} should say {want}");
+        assert!(listing(&d).is_empty(), "{args:?} wrote {:?}", listing(&d));
+    }
+    std::fs::remove_dir_all(&d).unwrap();
+}

@@ -28,7 +28,7 @@ use std::path::Path;
 
 pub use cycle::write_cycle_csv;
 pub use error::ExportError;
-pub use events::write_events_csv;
+pub use events::{write_events_csv, write_rows_csv};
 pub use opensim::OpenSimModel;
 pub use report::write_report_json;
 pub use state::write_frames_csv;

@@ -2,11 +2,10 @@
 use std::path::Path;
 
 use super::file::write_atomic;
-use crate::engine::report::Report;
 use crate::error::Result;
 
 /// Write the report as pretty-printed JSON (with a final newline).
-pub fn write_report_json(path: &Path, report: &Report) -> Result<()> {
+pub fn write_report_json(path: &Path, report: &impl serde::Serialize) -> Result<()> {
     write_atomic(path, |out| {
         serde_json::to_writer_pretty(&mut *out, report)?;
         out.write_all(b"\n")
@@ -16,6 +15,7 @@ pub fn write_report_json(path: &Path, report: &Report) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::engine::report::Report;
     use std::fs;
 
     #[test]

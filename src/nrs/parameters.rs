@@ -46,6 +46,9 @@ pub struct NrsParameters {
     pub duration_min: f64,
     /// An NRS⁻'s longest duration (s).
     pub duration_max: f64,
+    /// Scenario events: a foot touches the floor while its lowest point is within this height
+    /// of it (m).
+    pub contact_height: f64,
     /// Intervals of the uniform tables over normalized time.
     pub table_intervals: usize,
 }

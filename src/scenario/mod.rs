@@ -3,6 +3,7 @@
 //! non-rhythmic steps and turnarounds of [`crate::nrs`] handing over to each other at matching
 //! poses and pelvis velocities (starts from standing and stops into standing are inserted where
 //! a walk begins or ends).
+pub mod contacts;
 mod fields;
 pub mod file;
 pub mod file_error;
@@ -10,6 +11,7 @@ mod run;
 
 use serde::Serialize;
 
+pub use contacts::Contact;
 pub use run::run;
 
 use crate::figure::Landmarks;
@@ -166,6 +168,8 @@ pub struct Motion {
     pub footprints: Vec<Footprint>,
     /// The actions as they ran.
     pub spans: Vec<Span>,
+    /// Every foot strike and foot off, in time order.
+    pub contacts: Vec<Contact>,
 }
 
 /// A scenario that cannot be run: the action that fails, by its index from 0, and why.

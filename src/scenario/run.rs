@@ -7,12 +7,12 @@ use crate::export::{MAX_FPS, MIN_FPS};
 use crate::figure::placement::Placement;
 use crate::figure::{Landmarks, landmarks};
 use crate::kinematics::foot::Foot;
-use crate::kinematics::pelvis::Side as EngineSide;
 use crate::model::InputError;
 use crate::nrs::handover::{planted, start, stop, walk_end};
 use crate::nrs::pose::{Planted, direction, right_of};
 use crate::nrs::{NrsError, NrsStep, Side, StepSpecs, TurnSpecs, Turnaround, WalkerState};
 use crate::plan::Gait;
+use crate::scenario::contacts::contacts;
 use crate::scenario::{Action, Footprint, Goal, Motion, Scenario, ScenarioError, Span};
 
 /// One piece of the scenario's motion.
@@ -132,7 +132,7 @@ impl Runner<'_> {
         let mut walk = walker::simulate(s.body, s.attrs.clone(), &more)?;
         let next = walk.steps.pop().expect("the extra step");
         let (first, at) = start(&self.state, &walk)?;
-        self.step(first, action, "start", side_of(walk.steps[0].side));
+        self.step(first, action, "start", walk.steps[0].side);
         let t0 = self.state.time;
         let end = walk_end(&self.state, &walk, &next, &at, t0)?;
         let closing = stop(&end, &walk, at.heading)?;
@@ -141,8 +141,8 @@ impl Runner<'_> {
         for st in walk.steps.iter().skip(1) {
             let own = landmarks(st, st.t_start, &walk.attrs)?;
             let leg = match st.side {
-                EngineSide::Right => own.right,
-                EngineSide::Left => own.left,
+                Side::Right => own.right,
+                Side::Left => own.left,
             };
             let p = planted(&leg, &foot, s.attrs.metatarsal_limit);
             let [x, _, z] = at.to_world([p.flat[0], 0.0, p.flat[1]]);
@@ -151,7 +151,7 @@ impl Runner<'_> {
                 heading: at.heading,
                 pitch: 0.0,
             };
-            self.place(placed, side_of(st.side), action, t0 + st.t_start);
+            self.place(placed, st.side, action, t0 + st.t_start);
         }
         let last = walk.steps.last().expect("a walk has a step").side;
         let step = self.state.step;
@@ -168,18 +168,11 @@ impl Runner<'_> {
             d,
         );
         self.state = end;
-        let striking = side_of(last).other();
+        let striking = last.other();
         let t = self.state.time;
         self.footprint(striking, action, t);
-        self.step(closing, action, "stop", side_of(last));
+        self.step(closing, action, "stop", last);
         Ok(())
-    }
-}
-
-fn side_of(s: EngineSide) -> Side {
-    match s {
-        EngineSide::Right => Side::Right,
-        EngineSide::Left => Side::Left,
     }
 }
 
@@ -386,9 +379,18 @@ fn sample(r: Runner<'_>, fps: f64) -> Result<Motion, ScenarioError> {
             source: Box::new(e),
         })?);
     }
+    let spans: Vec<Span> = r.pieces.iter().map(|p| p.span).collect();
+    let contacts = contacts(&spans, r.state.params.contact_height, |k, t| {
+        r.pieces[k].pose(t).map_err(|e| ScenarioError {
+            index: spans[k].action,
+            name: spans[k].kind,
+            source: Box::new(e),
+        })
+    })?;
     Ok(Motion {
         frames,
         footprints: r.footprints,
-        spans: r.pieces.iter().map(|p| p.span).collect(),
+        spans,
+        contacts,
     })
 }

@@ -1,4 +1,5 @@
-//! The gait, body and attribute flags shared by `klaw walk`, `klaw plot` and `klaw animate`.
+//! The gait, body and attribute flags shared by `klaw walk`, `klaw plot` and `klaw animate`;
+//! the body and attribute flags also by `klaw step` and `klaw turn`.
 use std::path::PathBuf;
 
 use clap::Args;
@@ -47,27 +48,6 @@ pub(crate) struct GaitArgs {
     )]
     step_frequency: Option<f64>,
 
-    /// Body height H in m, range [1.2, 2.2]
-    #[arg(
-        long,
-        value_name = "M",
-        default_value_t = DEFAULT_HEIGHT,
-        allow_negative_numbers = true,
-        long_help = "Body height H in m; valid range [1.2, 2.2] m. Segment lengths scale with H (Winter's\n\
-            anthropometric table) and H enters the normalizing formula."
-    )]
-    height: f64,
-
-    /// Body mass M in kg, range [25, 200]
-    #[arg(
-        long,
-        value_name = "KG",
-        default_value_t = DEFAULT_MASS,
-        allow_negative_numbers = true,
-        long_help = "Body mass M in kg; valid range [25, 200] kg. Segment masses and inertias scale with M."
-    )]
-    mass: f64,
-
     /// Number of steps, range [1, 1000000] [default: 10, or the schedule's length]
     #[arg(
         long,
@@ -93,6 +73,34 @@ pub(crate) struct GaitArgs {
     )]
     schedule: Option<PathBuf>,
 
+    #[command(flatten)]
+    body: BodyArgs,
+}
+
+/// The body and style flags of every command that moves a figure.
+#[derive(Args)]
+pub(crate) struct BodyArgs {
+    /// Body height H in m, range [1.2, 2.2]
+    #[arg(
+        long,
+        value_name = "M",
+        default_value_t = DEFAULT_HEIGHT,
+        allow_negative_numbers = true,
+        long_help = "Body height H in m; valid range [1.2, 2.2] m. Segment lengths scale with H (Winter's\n\
+            anthropometric table) and H enters the normalizing formula."
+    )]
+    height: f64,
+
+    /// Body mass M in kg, range [25, 200]
+    #[arg(
+        long,
+        value_name = "KG",
+        default_value_t = DEFAULT_MASS,
+        allow_negative_numbers = true,
+        long_help = "Body mass M in kg; valid range [25, 200] kg. Segment masses and inertias scale with M."
+    )]
+    mass: f64,
+
     /// Locomotion attribute overrides: a TOML file `name = value`
     #[arg(
         long,
@@ -114,7 +122,7 @@ pub(crate) struct GaitArgs {
     style: Option<String>,
 }
 
-impl GaitArgs {
+impl BodyArgs {
     /// The body of the flags.
     pub(crate) fn body(&self) -> Result<Body> {
         Ok(Body::standard(self.height, self.mass)?)
@@ -123,6 +131,18 @@ impl GaitArgs {
     /// The defaults, then the style preset's values, then the attribute file's.
     pub(crate) fn attributes(&self) -> Result<Attributes> {
         input::load_attributes(self.style.as_deref(), self.attributes.as_deref())
+    }
+}
+
+impl GaitArgs {
+    /// The body of the flags.
+    pub(crate) fn body(&self) -> Result<Body> {
+        self.body.body()
+    }
+
+    /// The defaults, then the style preset's values, then the attribute file's.
+    pub(crate) fn attributes(&self) -> Result<Attributes> {
+        self.body.attributes()
     }
 
     /// The gait of every step: the schedule's rows (the last one held) or the flags' one gait.
@@ -177,7 +197,7 @@ impl GaitArgs {
             );
             return Err(klaw::model::InputError::bad_value("steps", reason).into());
         }
-        let style = match (&self.style, &self.attributes) {
+        let style = match (&self.body.style, &self.body.attributes) {
             (Some(s), Some(a)) => format!("{s} + {}", a.display()),
             (Some(s), None) => s.clone(),
             (None, Some(a)) => a.display().to_string(),

@@ -7,6 +7,7 @@ mod args;
 mod bench;
 mod failure;
 mod merge;
+mod one_action;
 mod outputs;
 mod plot;
 mod plot_sweep;
@@ -182,6 +183,28 @@ enum Command {
             Example: klaw scenario examples/scenarios/table.toml --out table.bvh"
     )]
     Scenario(scenario::ScenarioArgs),
+    /// One non-rhythmic step from quiet standing (forward, backward or lateral; Ko & Badler 1993)
+    #[command(
+        long_about = "Take one non-rhythmic step from quiet standing (Ko & Badler 1993): the stepping foot goes\n\
+            --forward / --left metres from where it stands, turned by --turn degrees; the step is\n\
+            forward, backward or lateral by where the goal lies around the stance heel (docs/nrs.md).\n\
+            A goal in the illegal region (crossing the stance leg), out of the legs' reach, on the\n\
+            stance foot or shorter than the engine's shortest walking step exits 2 naming the goal\n\
+            and the reason; nothing is written. The outputs are those of `klaw scenario`.\n\
+            \n\
+            Example: klaw step --side right --forward -0.5 --out back.bvh --animate back.gif"
+    )]
+    Step(one_action::StepArgs),
+    /// One turnaround on the spot from quiet standing (Ko & Badler 1993)
+    #[command(
+        long_about = "Turn on the spot from quiet standing (Ko & Badler 1993, §6): two steps per turnaround of at\n\
+            most 100°, larger turns split into equal turnarounds; dynamic (the second foot lands\n\
+            ahead, ready to walk on) or stationary (feet side by side). The outputs are those of\n\
+            `klaw scenario`.\n\
+            \n\
+            Example: klaw turn --angle 180 --side right --kind stationary --out turn.csv --events turn-events.csv"
+    )]
+    Turn(one_action::TurnArgs),
 }
 
 fn main() -> ExitCode {
@@ -200,6 +223,8 @@ fn main() -> ExitCode {
         Command::Plot(args) => plot::run(&args),
         Command::Animate(args) => animate::run(&args),
         Command::Scenario(args) => scenario::run(&args),
+        Command::Step(args) => one_action::step(&args),
+        Command::Turn(args) => one_action::turn(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

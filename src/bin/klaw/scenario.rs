@@ -1,78 +1,162 @@
 //! `klaw scenario`: run a scenario file (stand, walk, step, turn, pause; docs/nrs.md) and write
-//! its frames, and optionally a stick-figure animation of it.
+//! its frames, contacts, report and animation; the outputs are shared with `klaw step` and
+//! `klaw turn`, which run a one-action scenario.
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::Args;
 use klaw::Result;
 use klaw::export::{self, Options};
 use klaw::model::InputError;
 use klaw::plot::animation;
-use klaw::scenario::{read_scenario, run as run_scenario};
+use klaw::scenario::{
+    Contact, Footprint, Motion, Scenario, Span, read_scenario, run as run_scenario,
+};
+use serde::Serialize;
 
 use crate::outputs::{self, Output};
-use crate::{DEFAULT_FPS, MAX_FPS, MIN_FPS};
+use crate::{DEFAULT_FPS, MAX_FPS, MIN_FPS, count};
 
 #[derive(Args)]
 pub(crate) struct ScenarioArgs {
     /// The scenario file (TOML: [body], [attributes], [[action]] tables; docs/nrs.md)
     #[arg(value_name = "FILE.toml")]
     file: PathBuf,
-    /// Frames to write (.csv clinical angles, .mot/.sto OpenSim, .bvh), world frame
-    #[arg(long, value_name = "FILE", default_value = "scenario.csv")]
-    out: PathBuf,
-    /// Frames per second of --out
+    #[command(flatten)]
+    outputs: MotionOutputs,
+}
+
+/// The output flags of the commands that run a scenario.
+#[derive(Args)]
+pub(crate) struct MotionOutputs {
+    /// Frames to write (.csv clinical angles, .mot/.sto OpenSim, .bvh), world frame [default:
+    /// the command's name, .csv]
+    #[arg(long, value_name = "FILE")]
+    out: Option<PathBuf>,
+    /// Frames per second of --out, range [0.001, 10000]
     #[arg(long, value_name = "HZ", default_value_t = DEFAULT_FPS, allow_negative_numbers = true)]
     fps: f64,
+    /// Foot contacts as CSV: time_s, side, event (foot_strike, foot_off), action, kind
+    #[arg(long, value_name = "FILE.csv")]
+    events: Option<PathBuf>,
+    /// Report as JSON: the actions' time spans, the footprints and the contacts
+    #[arg(long, value_name = "FILE.json")]
+    report: Option<PathBuf>,
     /// Also write a stick-figure animation (.gif, 25 frames/s, side and front view)
     #[arg(long, value_name = "FILE.gif")]
     animate: Option<PathBuf>,
 }
 
+/// What `--report` writes.
+#[derive(Serialize)]
+struct Report<'a> {
+    /// What ran (the file, or the command's action).
+    scenario: &'a str,
+    height_m: f64,
+    mass_kg: f64,
+    duration_s: f64,
+    /// The actions as they ran, with the starts and stops added around walks.
+    actions: &'a [Span],
+    /// Every footprint: ankle (x, z) in m, direction in rad (+ left).
+    footprints: &'a [Footprint],
+    contacts: &'a [Contact],
+}
+
 pub(crate) fn run(args: &ScenarioArgs) -> Result<()> {
-    let fps = InputError::check_range("fps", args.fps, MIN_FPS, MAX_FPS, "frames/s")?;
-    let mut outs = vec![Output::new("out", &args.out, outputs::MOTION)];
-    if let Some(p) = &args.animate {
-        outs.push(Output::new("animate", p, &["gif"]));
-    }
-    outputs::check(&outs)?;
-    let format = export::Format::from_path(&args.out)?;
+    let o = &args.outputs;
+    let out = o.out_path("scenario");
+    o.check(&out)?;
     let scenario = read_scenario(&args.file)?;
-    let motion = run_scenario(&scenario, fps)?;
-    let anim = match &args.animate {
-        Some(_) => {
-            let options = animation::Options::new(25.0, (900, 450))?;
-            Some((run_scenario(&scenario, options.fps)?, options))
+    o.write(
+        &scenario,
+        &out,
+        &format!("scenario {}", args.file.display()),
+    )
+}
+
+impl MotionOutputs {
+    /// `--out`, or `<name>.csv`.
+    pub(crate) fn out_path(&self, name: &str) -> PathBuf {
+        self.out
+            .clone()
+            .unwrap_or_else(|| format!("{name}.csv").into())
+    }
+
+    /// Refuse a bad frame rate and any output that could not be written, before any work.
+    pub(crate) fn check(&self, out: &Path) -> Result<()> {
+        InputError::check_range("fps", self.fps, MIN_FPS, MAX_FPS, "frames/s")?;
+        let mut outs = vec![Output::new("out", out, outputs::MOTION)];
+        for (flag, path, ext) in [
+            ("events", &self.events, outputs::CSV),
+            ("report", &self.report, outputs::JSON),
+            ("animate", &self.animate, &["gif"][..]),
+        ] {
+            if let Some(p) = path {
+                outs.push(Output::new(flag, p, ext));
+            }
         }
-        None => None,
-    };
-    let body = scenario.body;
-    export::write(
-        &args.out,
-        format,
-        &body,
-        fps,
-        motion.frames.iter().copied(),
-        &Options::default(),
-    )?;
-    if let (Some(path), Some((m, options))) = (&args.animate, &anim) {
-        let title = format!("scenario {}", args.file.display());
-        animation::write_gif(&m.frames, &body, &title, path, options)?;
+        outputs::check(&outs)?;
+        export::Format::from_path(out)?;
+        Ok(())
     }
-    let mut out = std::io::stdout().lock();
-    let duration = motion.frames.last().map_or(0.0, |f| f.time);
-    let _ = writeln!(
-        out,
-        "scenario {}: {} actions, {:.2} s, {} footprints, {} frames: {}",
-        args.file.display(),
-        scenario.actions.len(),
-        duration,
-        motion.footprints.len(),
-        motion.frames.len(),
-        args.out.display()
-    );
-    if let Some(p) = &args.animate {
-        let _ = writeln!(out, "animation: {}", p.display());
+
+    /// Run `scenario` and write every output asked for, then the summary; `what` names it in
+    /// the report, the animation's title and the summary.
+    pub(crate) fn write(&self, scenario: &Scenario, out: &Path, what: &str) -> Result<()> {
+        let format = export::Format::from_path(out)?;
+        let motion = run_scenario(scenario, self.fps)?;
+        let anim = match &self.animate {
+            Some(_) => {
+                let options = animation::Options::new(25.0, (900, 450))?;
+                Some((run_scenario(scenario, options.fps)?, options))
+            }
+            None => None,
+        };
+        let body = scenario.body;
+        let frames = motion.frames.iter().copied();
+        export::write(out, format, &body, self.fps, frames, &Options::default())?;
+        if let Some(path) = &self.events {
+            let header = ["time_s", "side", "event", "action", "kind"];
+            export::write_rows_csv(path, &header, &motion.contacts)?;
+        }
+        let duration = motion.frames.last().map_or(0.0, |f| f.time);
+        if let Some(path) = &self.report {
+            let report = Report {
+                scenario: what,
+                height_m: body.height,
+                mass_kg: body.mass,
+                duration_s: duration,
+                actions: &motion.spans,
+                footprints: &motion.footprints,
+                contacts: &motion.contacts,
+            };
+            export::write_report_json(path, &report)?;
+        }
+        if let (Some(path), Some((m, options))) = (&self.animate, &anim) {
+            animation::write_gif(&m.frames, &body, what, path, options)?;
+        }
+        self.summary(scenario, &motion, out, what, duration);
+        Ok(())
     }
-    Ok(())
+
+    fn summary(&self, scenario: &Scenario, motion: &Motion, out: &Path, what: &str, t: f64) {
+        let mut o = std::io::stdout().lock();
+        let _ = writeln!(
+            o,
+            "{what}: {}, {t:.2} s, {}, {}: {}",
+            count(scenario.actions.len(), "action"),
+            count(motion.footprints.len(), "footprint"),
+            count(motion.frames.len(), "frame"),
+            out.display()
+        );
+        for (path, name) in [
+            (&self.events, "events"),
+            (&self.report, "report"),
+            (&self.animate, "animation"),
+        ] {
+            if let Some(p) = path {
+                let _ = writeln!(o, "{name}: {}", p.display());
+            }
+        }
+    }
 }
