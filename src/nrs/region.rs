@@ -9,7 +9,7 @@ use crate::nrs::specs::{Side, StepType};
 /// from the stance foot's direction — so that a foot set down beside the stance foot is at
 /// 90°, lateral — + towards the stepping leg's side; lateral for
 /// φ ∈ [90° − ν/2, 90° + ν/2], forward from there down to −(90° − (90° − ν/2)) and backward up to
-/// the same angle beyond 180°, illegal in between (the stance side). Within `boundary` of the
+/// the same angle beyond 180°, illegal in between (the stance side). Strictly within `boundary` of the
 /// forward/lateral or lateral/backward boundary a foot heading within `parallel` of the stance
 /// foot's makes the step lateral. Returns the type or φ (rad) for an illegal goal.
 pub fn classify(
@@ -36,7 +36,9 @@ pub fn classify(
     let right = std::f64::consts::FRAC_PI_2;
     let (lo, hi) = (right - nu / 2.0, right + nu / 2.0);
     let parallel_foot = turn_between(stance.heading, goal_heading).abs() <= parallel;
-    if (phi - lo).abs() < boundary || (phi - hi).abs() < boundary {
+    // "within": strictly, to 1e-9 rad, so that a goal exactly `boundary` from it is outside
+    let near = |edge: f64| (phi - edge).abs() < boundary - 1e-9;
+    if near(lo) || near(hi) {
         return Ok(if parallel_foot {
             StepType::Lateral
         } else if phi < right {

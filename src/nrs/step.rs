@@ -62,6 +62,9 @@ impl NrsStep {
             p.swing_height_factor_max,
             "",
         )?;
+        if let Some(t) = duration {
+            InputError::check_range("duration", t, p.duration_min, p.duration_max, "s")?;
+        }
         let stance_side = specs.side.other();
         let stance = *state.foot(stance_side);
         let foot = Foot::new(&state.body);
