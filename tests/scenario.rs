@@ -210,3 +210,87 @@ fn the_example_scenarios_run() {
         );
     }
 }
+
+/// A turn past ±180°: the exported pelvis rotation stays continuous and ends at the turn the
+/// scenario asks for (the spin example: 270° to the right from facing 0, −270°), in the clinical
+/// angles, the CSV, the .mot and the BVH root's Yrotation.
+#[test]
+fn a_turn_past_180_degrees_exports_a_continuous_rotation() {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenarios/spin.toml");
+    let s = klaw::scenario::read_scenario(&path).unwrap();
+    let m = run(&s, FPS).unwrap();
+    let clin: Vec<f64> = m
+        .frames
+        .iter()
+        .map(|lm| clinical(lm, &s.body).unwrap().pelvis_rotation.to_degrees())
+        .collect();
+    let dir = std::env::temp_dir().join(format!("klaw-spin-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let column = |ext: &str| -> Vec<f64> {
+        let out = dir.join(format!("spin.{ext}"));
+        let format = klaw::export::Format::from_path(&out).unwrap();
+        let options = klaw::export::Options::default();
+        klaw::export::write(
+            &out,
+            format,
+            &s.body,
+            FPS,
+            m.frames.iter().copied(),
+            &options,
+        )
+        .unwrap();
+        let text = std::fs::read_to_string(&out).unwrap();
+        match ext {
+            "csv" => {
+                let mut lines = text.lines();
+                let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+                let i = head
+                    .iter()
+                    .position(|h| *h == "pelvis_rotation_deg")
+                    .unwrap();
+                lines
+                    .map(|l| l.split(',').nth(i).unwrap().parse().unwrap())
+                    .collect()
+            }
+            "mot" => {
+                let mut lines = text.split("endheader").nth(1).unwrap().trim().lines();
+                let head: Vec<&str> = lines.next().unwrap().split('\t').collect();
+                let i = head.iter().position(|h| *h == "pelvis_rotation").unwrap();
+                lines
+                    .map(|l| l.split('\t').nth(i).unwrap().parse().unwrap())
+                    .collect()
+            }
+            _ => {
+                // the root's channels: 3 positions, then Yrotation
+                let motion = text.split("Frame Time:").nth(1).unwrap();
+                motion
+                    .lines()
+                    .skip(1)
+                    .map(|l| l.split(' ').nth(3).unwrap().parse().unwrap())
+                    .collect()
+            }
+        }
+    };
+    for (what, v) in [
+        ("clinical", clin),
+        ("csv", column("csv")),
+        ("mot", column("mot")),
+        ("bvh", column("bvh")),
+    ] {
+        let step = v
+            .windows(2)
+            .map(|w| (w[1] - w[0]).abs())
+            .fold(0.0, f64::max);
+        assert!(
+            step < 5.0,
+            "{what}: the pelvis rotation jumps {step:.1}° in a frame"
+        );
+        let last = *v.last().unwrap();
+        assert!(
+            (last + 270.0).abs() < 1.0,
+            "{what}: ends at {last:.2}°, not −270°"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

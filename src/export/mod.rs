@@ -36,6 +36,7 @@ pub use state::write_frames_csv;
 use crate::error::{Error, Result};
 use crate::figure::Landmarks;
 use crate::figure::clinical::Clinical;
+use crate::figure::euler::nearest_turn;
 use crate::figure::skeleton::Skeleton;
 use crate::model::InputError;
 use crate::model::body::Body;
@@ -89,7 +90,8 @@ pub struct Options {
 }
 
 /// One frame as the writers see it: the landmarks, their segment frames and (made when first
-/// asked for: BVH does not use them) clinical angles.
+/// asked for: BVH does not use them) clinical angles, the pelvis rotation continuous with the
+/// landmarks' heading (not wrapped at ±180°).
 pub(crate) struct FrameData<'a> {
     pub index: usize,
     pub landmarks: &'a Landmarks,
@@ -101,8 +103,12 @@ impl FrameData<'_> {
     /// The frame's clinical angles.
     pub fn clinical(&self) -> &Clinical {
         self.clinical.get_or_init(|| {
-            self.skeleton
-                .clinical(self.landmarks.time, self.landmarks.step)
+            let mut c = self
+                .skeleton
+                .clinical(self.landmarks.time, self.landmarks.step);
+            // the landmarks' heading is continuous; the decomposition's lies in (−π, π]
+            c.pelvis_rotation = nearest_turn(c.pelvis_rotation, self.landmarks.pelvis_rotation);
+            c
         })
     }
 }

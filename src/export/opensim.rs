@@ -36,7 +36,7 @@ use glam::DVec3;
 use super::number::push_f64;
 use super::{ExportError, FrameData, RowWriter};
 use crate::figure::clinical::Clinical;
-use crate::figure::euler::zxy_angles;
+use crate::figure::euler::{nearest_turn, zxy_angles};
 use crate::figure::skeleton::{Side, Skeleton};
 use crate::model::body::Body;
 
@@ -139,7 +139,10 @@ pub(crate) fn coordinates(
     let [tilt, list, rotation] = zxy_angles(&skeleton.pelvis.axes);
     rot("pelvis_tilt", tilt);
     rot("pelvis_list", list);
-    rot("pelvis_rotation", rotation);
+    rot(
+        "pelvis_rotation",
+        nearest_turn(rotation, clinical.pelvis_rotation),
+    );
     let origin = skeleton
         .pelvis
         .point(model.pelvis_origin_from_hips() * (height / model.reference_height()));

@@ -22,7 +22,7 @@ use glam::DMat3;
 
 use crate::figure::Landmarks;
 use crate::figure::error::Result;
-use crate::figure::euler::{yxz_angles, yxz_round_trip, zxy_from, zxy_round_trip};
+use crate::figure::euler::{nearest_turn, yxz_angles, yxz_round_trip, zxy_from, zxy_round_trip};
 use crate::figure::skeleton::{Frame, LegFrames, Side, Skeleton, Trunk, arm_angles, leg_frames};
 use crate::model::body::Body;
 
@@ -186,13 +186,16 @@ pub fn clinical(lm: &Landmarks, _body: &Body) -> Result<Clinical> {
     let left_arm = arm_joints(arm_angles(&lm.left_arm, Side::Left)?, Side::Left);
     let [lr, lb, le] = trunk.lumbar;
     let [neck_rotation, _, _] = yxz_round_trip(trunk.neck, 0.0, 0.0);
+    let mut pelvis = yxz_round_trip(trunk.rotation, -trunk.list, -trunk.tilt);
+    // continuous with the landmarks' heading past ±180°, as the exporters write it
+    pelvis[0] = nearest_turn(pelvis[0], lm.pelvis_rotation);
     Ok(Clinical {
         neck_rotation,
         ..assemble(
             lm.time,
             lm.step,
             &trunk.pelvis,
-            yxz_round_trip(trunk.rotation, -trunk.list, -trunk.tilt),
+            pelvis,
             yxz_round_trip(lr, lb, le),
             [&right, &left],
             [right_arm, left_arm],

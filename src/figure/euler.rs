@@ -98,6 +98,14 @@ pub(crate) fn yxz_angles(m: &DMat3) -> [f64; 3] {
     [r, p, q]
 }
 
+/// The angle equal to `angle` modulo 2π that lies nearest to `reference` (rad): a heading
+/// decomposed into (−π, π] carried back to the turn count of a continuous `reference`, so that
+/// a figure that turns past ±180° keeps a continuous rotation.
+pub(crate) fn nearest_turn(angle: f64, reference: f64) -> f64 {
+    let tau = std::f64::consts::TAU;
+    angle + tau * ((reference - angle) / tau).round()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -7,7 +7,7 @@ use super::Channel::{self, *};
 use super::to_bvh;
 use crate::export::number::{Number, push_f64};
 use crate::export::{ExportError, FrameData, RowWriter};
-use crate::figure::euler::{yxz_angles, zxy_angles};
+use crate::figure::euler::{nearest_turn, yxz_angles, zxy_angles};
 use crate::figure::skeleton::{LENGTH_TOLERANCE, Side, Skeleton};
 use crate::model::body::Body;
 
@@ -320,7 +320,13 @@ impl RowWriter for BvhWriter {
                     for v in p.to_array() {
                         put(out, v);
                     }
-                    for v in rotation_channels(&j.channels[3..], &sk.pelvis.axes) {
+                    let mut r = rotation_channels(&j.channels[3..], &sk.pelvis.axes);
+                    if j.channels[3..] == YZX {
+                        // Yrotation, the heading: continuous past ±180°
+                        let heading = lm.pelvis_rotation.to_degrees();
+                        r[0] = nearest_turn(r[0].to_radians(), heading.to_radians()).to_degrees();
+                    }
+                    for v in r {
                         put(out, v);
                     }
                 }
