@@ -103,7 +103,13 @@ pub(crate) fn yxz_angles(m: &DMat3) -> [f64; 3] {
 /// a figure that turns past ±180° keeps a continuous rotation.
 pub(crate) fn nearest_turn(angle: f64, reference: f64) -> f64 {
     let tau = std::f64::consts::TAU;
-    angle + tau * ((reference - angle) / tau).round()
+    let turns = ((reference - angle) / tau).round();
+    // untouched when no turn is added (so that −0 stays −0)
+    if turns == 0.0 {
+        angle
+    } else {
+        angle + tau * turns
+    }
 }
 
 #[cfg(test)]
