@@ -1,5 +1,5 @@
 //! `klaw scenario`: run a scenario file (stand, walk, step, turn, pause; docs/nrs.md) and write
-//! its frames, and optionally a stick-figure animation of it.
+//! its frames, and optionally a stick-figure animation of it and a plot of its footprints.
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -24,9 +24,12 @@ pub(crate) struct ScenarioArgs {
     /// Frames per second of --out
     #[arg(long, value_name = "HZ", default_value_t = DEFAULT_FPS, allow_negative_numbers = true)]
     fps: f64,
-    /// Also write a stick-figure animation (.gif, 25 frames/s, side and front view)
+    /// Also write a stick-figure animation (.gif, 25 frames/s, side, front and top view)
     #[arg(long, value_name = "FILE.gif")]
     animate: Option<PathBuf>,
+    /// Also write the footprints seen from above (.png or .svg): feet, pelvis path, gaze
+    #[arg(long, value_name = "FILE.png|.svg")]
+    footprints: Option<PathBuf>,
 }
 
 pub(crate) fn run(args: &ScenarioArgs) -> Result<()> {
@@ -35,13 +38,16 @@ pub(crate) fn run(args: &ScenarioArgs) -> Result<()> {
     if let Some(p) = &args.animate {
         outs.push(Output::new("animate", p, &["gif"]));
     }
+    if let Some(p) = &args.footprints {
+        outs.push(Output::new("footprints", p, outputs::FIGURE));
+    }
     outputs::check(&outs)?;
     let format = export::Format::from_path(&args.out)?;
     let scenario = read_scenario(&args.file)?;
     let motion = run_scenario(&scenario, fps)?;
     let anim = match &args.animate {
         Some(_) => {
-            let options = animation::Options::new(25.0, (900, 450))?;
+            let options = animation::Options::new(25.0, (1200, 450))?;
             Some((run_scenario(&scenario, options.fps)?, options))
         }
         None => None,
@@ -55,9 +61,12 @@ pub(crate) fn run(args: &ScenarioArgs) -> Result<()> {
         motion.frames.iter().copied(),
         &Options::default(),
     )?;
+    let title = format!("scenario {}", args.file.display());
     if let (Some(path), Some((m, options))) = (&args.animate, &anim) {
-        let title = format!("scenario {}", args.file.display());
-        animation::write_gif(&m.frames, &body, &title, path, options)?;
+        animation::write_scenario_gif(m, &body, &title, path, options)?;
+    }
+    if let Some(path) = &args.footprints {
+        klaw::plot::footprints::write(path, &motion, &body, &title)?;
     }
     let mut out = std::io::stdout().lock();
     let duration = motion.frames.last().map_or(0.0, |f| f.time);
@@ -73,6 +82,9 @@ pub(crate) fn run(args: &ScenarioArgs) -> Result<()> {
     );
     if let Some(p) = &args.animate {
         let _ = writeln!(out, "animation: {}", p.display());
+    }
+    if let Some(p) = &args.footprints {
+        let _ = writeln!(out, "footprints: {}", p.display());
     }
     Ok(())
 }
