@@ -6,6 +6,11 @@
 //! - front view: the walker coming towards the viewer, so its right side (+z) is on the left of
 //!   the picture (horizontal axis −z), y up; the camera stays on the walk's plane z = 0.
 //!
+//! A scenario's animation ([`write_scenario_gif`], `klaw scenario --animate`, issue 15) has a
+//! third view beside these, from above (module `top`; axes of [`crate::plot::floor`]: x across,
+//! −z up): the whole scenario's floor, the footprints placed so far, the pelvis path, and the
+//! figure with an arrow along its gaze. There the front view's camera follows the pelvis's z.
+//!
 //! Both views have one scale (px per m) on both axes. The figure: each leg hip–knee–ankle–heel–
 //! metatarsal joint–toe tip (and ankle–metatarsal joint, closing the foot), the pelvis line
 //! between the hip joints, the spine from the pelvis centre to the shoulder line, neck and head
@@ -15,7 +20,7 @@
 //! blue, the left red, the trunk grey; in
 //! the side view the far (left) limbs are drawn first and paler. Every foot point (heel,
 //! metatarsal joint, toe tip) within 1 mm of the ground (`CONTACT_TOLERANCE_M`) gets a black
-//! dot in both views.
+//! dot in every view.
 //!
 //! The GIF is written by plotters' [`BitMapBackend::gif`] frame by frame into a temporary file
 //! next to the target, renamed over it when complete: written whole or not at all. Text (the
@@ -34,6 +39,12 @@ use crate::figure::{Landmarks, LegPoints};
 use crate::model::InputError;
 use crate::model::body::Body;
 use crate::plot::{self, Chart, DrawError, FONT, LEFT_COLOR, RIGHT_COLOR, msg};
+use crate::scenario::Motion;
+
+pub use crate::plot::ViewMap;
+
+mod text;
+mod top;
 
 /// A foot point this close to the ground (m) is drawn as a contact.
 pub(crate) const CONTACT_TOLERANCE_M: f64 = 1e-3;
@@ -144,28 +155,6 @@ pub fn check_path(path: &Path) -> Result<(), InputError> {
     }
 }
 
-/// A view's world-to-pixel map: pixel = (px0 + scale · (u − u0), py0 − scale · (v − v0)), u the
-/// view's horizontal coordinate (x in the side view, −z in the front view), v = y.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ViewMap {
-    pub(crate) u0: f64,
-    pub(crate) v0: f64,
-    pub(crate) px0: f64,
-    pub(crate) py0: f64,
-    /// Pixels per metre, both axes.
-    pub(crate) scale: f64,
-}
-
-impl ViewMap {
-    /// The pixel of view coordinates (u, v).
-    pub fn pixel(&self, u: f64, v: f64) -> (i32, i32) {
-        (
-            (self.px0 + self.scale * (u - self.u0)).round() as i32,
-            (self.py0 - self.scale * (v - self.v0)).round() as i32,
-        )
-    }
-}
-
 /// Where one frame's views were drawn.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FrameViews {
@@ -173,6 +162,8 @@ pub struct FrameViews {
     pub side: ViewMap,
     /// The front view (−z across, y up).
     pub front: ViewMap,
+    /// The top view of a scenario (x across, −z up; [`crate::plot::floor`]).
+    pub top: Option<ViewMap>,
 }
 
 /// What was written.
@@ -220,6 +211,32 @@ pub fn write_gif(
     path: &Path,
     options: &Options,
 ) -> Result<Summary> {
+    write_frames(frames, None, body, title, path, options)
+}
+
+/// [`write_gif`] of a scenario's frames with a third view, from above: the floor over the whole
+/// scenario's extent, the footprints placed so far, the pelvis path, and the figure seen from
+/// above with its gaze (module doc). The same errors as [`write_gif`].
+pub fn write_scenario_gif(
+    motion: &Motion,
+    body: &Body,
+    title: &str,
+    path: &Path,
+    options: &Options,
+) -> Result<Summary> {
+    let floor = top::Floor::new(motion, body);
+    write_frames(&motion.frames, Some(&floor), body, title, path, options)
+}
+
+/// [`write_gif`], with the top view of `floor` when there is one.
+fn write_frames(
+    frames: &[Landmarks],
+    floor: Option<&top::Floor>,
+    body: &Body,
+    title: &str,
+    path: &Path,
+    options: &Options,
+) -> Result<Summary> {
     check_path(path)?;
     let options = Options::new(options.fps, options.size)?;
     if frames.is_empty() || frames.len() > MAX_FRAMES {
@@ -248,7 +265,8 @@ pub fn write_gif(
             .map_err(|e| fail(msg(e)))?;
         let root = backend.into_drawing_area();
         for (lm, sk) in frames.iter().zip(&skeletons) {
-            views.push(draw_frame(&root, lm, sk, body, title, text).map_err(fail)?);
+            let drawn = draw_frame(&root, lm, sk, body, title, text, floor);
+            views.push(drawn.map_err(fail)?);
             root.present().map_err(|e| fail(msg(e)))?;
         }
         // dropping the backend writes the GIF trailer (errors there are not reported: checked
@@ -274,38 +292,24 @@ fn gif_is_complete(path: &Path) -> std::io::Result<bool> {
     Ok(bytes.starts_with(b"GIF8") && bytes.last() == Some(&0x3B))
 }
 
-/// A view's chart over `area` with one scale on both axes: vertical range [v_lo, v_hi], the
-/// horizontal range centred on `u_mid`.
+/// A view's chart over `area` with one scale on both axes, showing the extent `u` × `v` whole
+/// and centred (the side and front views pass an empty `u` span: their height fixes the scale).
 fn view_chart<'a, DB: DrawingBackend>(
     area: &'a DrawingArea<DB, Shift>,
-    u_mid: f64,
-    (v_lo, v_hi): (f64, f64),
+    u: (f64, f64),
+    v: (f64, f64),
 ) -> std::result::Result<(Chart<'a, DB>, ViewMap), DrawError> {
     let (w, h) = area.dim_in_pixel();
-    let (pw, ph) = (
-        f64::from(w.saturating_sub(2 * MARGIN).max(2)),
-        f64::from(h.saturating_sub(2 * MARGIN).max(2)),
+    let plot_px = (
+        w.saturating_sub(2 * MARGIN).max(2),
+        h.saturating_sub(2 * MARGIN).max(2),
     );
-    let scale = ph / (v_hi - v_lo);
-    let half = 0.5 * pw / scale;
-    let (u_lo, u_hi) = (u_mid - half, u_mid + half);
+    let fit = plot::equal_scale(u, v, plot_px);
     let chart = ChartBuilder::on(area)
         .margin(MARGIN)
-        .build_cartesian_2d(u_lo..u_hi, v_lo..v_hi)
+        .build_cartesian_2d(fit.x.0..fit.x.1, fit.y.0..fit.y.1)
         .map_err(msg)?;
-    // the map from two corners, as plotters places them
-    let (x0, y0) = chart.backend_coord(&(u_lo, v_lo));
-    let (x1, y1) = chart.backend_coord(&(u_hi, v_hi));
-    let sx = f64::from(x1 - x0) / (u_hi - u_lo);
-    let sy = f64::from(y0 - y1) / (v_hi - v_lo);
-    // backend coordinates: already in the whole image's pixels
-    let map = ViewMap {
-        u0: u_lo,
-        v0: v_lo,
-        px0: f64::from(x0),
-        py0: f64::from(y0),
-        scale: 0.5 * (sx + sy),
-    };
+    let map = ViewMap::of_chart(&chart, &fit);
     Ok((chart, map))
 }
 
@@ -360,35 +364,6 @@ enum Limb {
     Trunk,
 }
 
-/// `lines` broken at spaces so that each fits in `width` pixels (a word longer than that stays
-/// whole).
-fn wrap<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
-    lines: &[String],
-    width: u32,
-    style: &TextStyle,
-) -> std::result::Result<Vec<String>, DrawError> {
-    let mut out = Vec::new();
-    for line in lines {
-        let mut current = String::new();
-        for word in line.split(' ') {
-            let candidate = if current.is_empty() {
-                word.to_string()
-            } else {
-                format!("{current} {word}")
-            };
-            let (tw, _) = area.estimate_text_size(&candidate, style).map_err(msg)?;
-            if tw > width && !current.is_empty() {
-                out.push(std::mem::replace(&mut current, word.to_string()));
-            } else {
-                current = candidate;
-            }
-        }
-        out.push(current);
-    }
-    Ok(out)
-}
-
 /// The foot points on the ground.
 fn contacts(lm: &Landmarks) -> Vec<[f64; 3]> {
     [&lm.right, &lm.left]
@@ -398,8 +373,9 @@ fn contacts(lm: &Landmarks) -> Vec<[f64; 3]> {
         .collect()
 }
 
-/// One GIF frame: the side view (two thirds of the width) and the front view, each with its
-/// lines of text above the figure.
+/// One GIF frame: the side view (two thirds of the width) and the front view, or with a
+/// `floor` the side, front and top views (`top::PANELS`), each with its lines of text above the
+/// figure.
 fn draw_frame<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     lm: &Landmarks,
@@ -407,22 +383,25 @@ fn draw_frame<DB: DrawingBackend>(
     body: &Body,
     title: &str,
     text: bool,
+    floor: Option<&top::Floor>,
 ) -> std::result::Result<FrameViews, DrawError> {
     root.fill(&WHITE).map_err(msg)?;
     let (w, h) = root.dim_in_pixel();
-    let side_w = w * 2 / 3;
-    let (side_area, front_area) = root.split_horizontally(side_w);
+    let widths: Vec<u32> = match floor {
+        None => vec![w * 2 / 3, w - w * 2 / 3],
+        Some(_) => top::panel_widths(w),
+    };
     let f = &body.figure;
     // the text, wrapped to each view's width, in the room above the figure
     let font_px = (h / 30).clamp(12, 16) as i32;
     let style = (FONT, font_px).into_font().color(&BLACK);
-    let (side_lines, front_lines) = if text {
-        frame_text(root, lm, title, (side_w, w), &style)?
+    let lines = if text {
+        text::frame_text(root, lm, title, &widths, &style)?
     } else {
-        (Vec::new(), Vec::new())
+        vec![Vec::new(); widths.len()]
     };
     let line_px = font_px + 4;
-    let text_px = match side_lines.len().max(front_lines.len()) {
+    let text_px = match lines.iter().map(Vec::len).max().unwrap_or(0) {
         0 => 0.0,
         n => f64::from(n as i32 * line_px + 8),
     };
@@ -442,87 +421,131 @@ fn draw_frame<DB: DrawingBackend>(
             .point(glam::DVec3::new(0.0, f.neck + f.head / 2.0, 0.0))
             .to_array(),
         head: f.head,
+        gaze: plot::floor::gaze_heading(sk),
+        time: lm.time,
         pelvis_x: lm.pelvis[0],
+        // a scenario's figure leaves the plane z = 0: the front view follows it
+        front_u: if floor.is_some() { -lm.pelvis[2] } else { 0.0 },
         v_range: (-0.12, top + headroom),
         style,
         line_px,
+        text_px: text_px as u32,
     };
+    let (side_area, rest) = root.split_horizontally(widths[0]);
+    let (front_area, top_area) = rest.split_horizontally(widths[1]);
     Ok(FrameViews {
-        side: draw_view(&side_area, &scene, true, &side_lines)?,
-        front: draw_view(&front_area, &scene, false, &front_lines)?,
+        side: draw_view(&side_area, &scene, View::Side, &lines[0])?,
+        front: draw_view(&front_area, &scene, View::Front, &lines[1])?,
+        top: match floor {
+            Some(floor) => Some(draw_view(&top_area, &scene, View::Top(floor), &lines[2])?),
+            None => None,
+        },
     })
 }
 
-/// The lines of text of the side and the front view, wrapped to their widths (`side_w` of the
-/// image's `w` pixels is the side view's).
-fn frame_text<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    lm: &Landmarks,
-    title: &str,
-    (side_w, w): (u32, u32),
-    style: &TextStyle,
-) -> std::result::Result<(Vec<String>, Vec<String>), DrawError> {
-    let stance = if lm.step.is_multiple_of(2) {
-        "right"
-    } else {
-        "left"
-    };
-    let side = [
-        format!("side view: {title}"),
-        format!(
-            "t = {:.2} s, step {} ({stance} stance); dots: feet on the ground",
-            lm.time,
-            lm.step + 1
-        ),
-    ];
-    let front = ["front view: walker's right on the left".to_string()];
-    let width = |px: u32| px.saturating_sub(2 * MARGIN + 12);
-    Ok((
-        wrap(root, &side, width(side_w), style)?,
-        wrap(root, &front, width(w - side_w), style)?,
-    ))
-}
-
-/// What both views of a frame show, in world coordinates (m).
+/// What the views of a frame show, in world coordinates (m).
 struct Scene<'a> {
     segments: Vec<(Limb, Vec<[f64; 3]>)>,
     contacts: Vec<[f64; 3]>,
     head_centre: [f64; 3],
     /// The head's diameter.
     head: f64,
+    /// The head's heading (rad, + left).
+    gaze: f64,
+    /// The frame's time (s).
+    time: f64,
     pelvis_x: f64,
-    /// The vertical range of both views.
+    /// The horizontal centre of the front view (m of −z).
+    front_u: f64,
+    /// The vertical range of the side and front views.
     v_range: (f64, f64),
     style: TextStyle<'a>,
     line_px: i32,
+    /// The height of the views' text (px).
+    text_px: u32,
 }
 
-/// One view of `scene` on `area` (the side view, else the front view) and its lines of text:
-/// the ground (with moving ticks in the side view), the segments, the head, the contacts.
+/// Which view of the figure a panel shows.
+#[derive(Clone, Copy)]
+enum View<'a> {
+    /// x across, y up.
+    Side,
+    /// −z across, y up.
+    Front,
+    /// From above, over this floor: x across, −z up.
+    Top(&'a top::Floor<'a>),
+}
+
+impl View<'_> {
+    /// The view coordinates (u, v) of a world point.
+    fn project(self, p: [f64; 3]) -> (f64, f64) {
+        match self {
+            View::Side => (p[0], p[1]),
+            View::Front => (-p[2], p[1]),
+            View::Top(_) => plot::floor::top(p[0], p[2]),
+        }
+    }
+}
+
+/// One view of `scene` on `area` and its lines of text: the ground (with moving ticks in the
+/// side view) or the floor from above, the segments, the head, the contacts.
 fn draw_view<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     scene: &Scene,
-    side_view: bool,
+    view: View,
     lines: &[String],
 ) -> std::result::Result<ViewMap, DrawError> {
-    let project = move |p: [f64; 3]| {
-        if side_view {
-            (p[0], p[1])
-        } else {
-            (-p[2], p[1])
+    let (text_area, chart_area) = match view {
+        // the floor's extent is fixed: the text goes above it
+        View::Top(_) => area.split_vertically(scene.text_px),
+        _ => (area.clone(), area.clone()),
+    };
+    let (mut chart, map) = match view {
+        View::Side | View::Front => {
+            let u_mid = if matches!(view, View::Side) {
+                scene.pelvis_x
+            } else {
+                scene.front_u
+            };
+            let (chart, map) = view_chart(&chart_area, (u_mid, u_mid), scene.v_range)?;
+            let (u_lo, u_hi) = (map.u0, map.u0 + 2.0 * (u_mid - map.u0));
+            ground(chart, map, (u_lo, u_hi), matches!(view, View::Side))?
+        }
+        View::Top(floor) => {
+            let (mut chart, map) = view_chart(&chart_area, floor.extent.0, floor.extent.1)?;
+            top::draw_floor(&mut chart, floor, scene.time)?;
+            (chart, map)
         }
     };
-    let u_mid = if side_view { scene.pelvis_x } else { 0.0 };
-    let (mut chart, map) = view_chart(area, u_mid, scene.v_range)?;
-    let (u_lo, u_hi) = (map.u0, map.u0 + 2.0 * (u_mid - map.u0));
-    // ground, and ticks below it that move with the walk
+    figure(&mut chart, scene, view, &map)?;
+    let style = &scene.style;
+    for (i, line) in lines.iter().enumerate() {
+        let at = (
+            MARGIN as i32 + 6,
+            MARGIN as i32 + 4 + scene.line_px * i as i32,
+        );
+        text_area
+            .draw(&Text::new(line.clone(), at, style.clone()))
+            .map_err(msg)?;
+    }
+    Ok(map)
+}
+
+/// The ground line over `u_lo..u_hi`, and in the side view ticks below it that move with the
+/// walk.
+fn ground<'a, DB: DrawingBackend>(
+    mut chart: Chart<'a, DB>,
+    map: ViewMap,
+    (u_lo, u_hi): (f64, f64),
+    ticks: bool,
+) -> std::result::Result<(Chart<'a, DB>, ViewMap), DrawError> {
     chart
         .draw_series(std::iter::once(PathElement::new(
             vec![(u_lo, 0.0), (u_hi, 0.0)],
             GROUND_COLOR.stroke_width(1),
         )))
         .map_err(msg)?;
-    if side_view {
+    if ticks {
         let first = (u_lo / GROUND_TICK_M).ceil() as i64;
         let last = (u_hi / GROUND_TICK_M).floor() as i64;
         chart
@@ -532,14 +555,25 @@ fn draw_view<DB: DrawingBackend>(
             }))
             .map_err(msg)?;
     }
+    Ok((chart, map))
+}
+
+/// The figure in `view`: the segments (the far, left limbs paler in the side view), the head,
+/// the contacts, and from above the gaze.
+fn figure<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    scene: &Scene,
+    view: View,
+    map: &ViewMap,
+) -> std::result::Result<(), DrawError> {
     for (limb, points) in &scene.segments {
         let color = match limb {
             Limb::Right => RIGHT_COLOR.to_rgba(),
-            Limb::Left if side_view => LEFT_COLOR.mix(0.55),
+            Limb::Left if matches!(view, View::Side) => LEFT_COLOR.mix(0.55),
             Limb::Left => LEFT_COLOR.to_rgba(),
             Limb::Trunk => TRUNK_COLOR.to_rgba(),
         };
-        let pts: Vec<(f64, f64)> = points.iter().map(|&p| project(p)).collect();
+        let pts: Vec<(f64, f64)> = points.iter().map(|&p| view.project(p)).collect();
         chart
             .draw_series(std::iter::once(PathElement::new(
                 pts,
@@ -547,31 +581,25 @@ fn draw_view<DB: DrawingBackend>(
             )))
             .map_err(msg)?;
     }
+    let head = view.project(scene.head_centre);
     let radius = (map.scale * scene.head / 2.0).round().max(2.0) as i32;
     chart
         .draw_series(std::iter::once(Circle::new(
-            project(scene.head_centre),
+            head,
             radius,
             TRUNK_COLOR.stroke_width(3),
         )))
         .map_err(msg)?;
+    if let View::Top(_) = view {
+        top::draw_gaze(chart, head, scene.gaze)?;
+    }
     chart
         .draw_series(
             scene
                 .contacts
                 .iter()
-                .map(|&p| Circle::new(project(p), CONTACT_RADIUS, CONTACT_COLOR.filled())),
+                .map(|&p| Circle::new(view.project(p), CONTACT_RADIUS, CONTACT_COLOR.filled())),
         )
         .map_err(msg)?;
-    chart
-        .draw_series(lines.iter().enumerate().map(|(i, line)| {
-            EmptyElement::at((u_lo, scene.v_range.1))
-                + Text::new(
-                    line.clone(),
-                    (6, 4 + scene.line_px * i as i32),
-                    scene.style.clone(),
-                )
-        }))
-        .map_err(msg)?;
-    Ok(map)
+    Ok(())
 }

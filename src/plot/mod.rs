@@ -1,7 +1,9 @@
 //! Figures of walks and sweeps: the walk figure ([`walk`], `klaw walk --plot`), the gait-cycle
-//! figure ([`cycle`], `klaw plot`), sweep heat maps ([`heat_map`], `klaw plot-sweep`) and the
-//! stick-figure animation ([`animation`], `klaw animate`); here what they share: the font, the
-//! colours, the file format by extension and the writing of a drawn figure.
+//! figure ([`cycle`], `klaw plot`), sweep heat maps ([`heat_map`], `klaw plot-sweep`), the
+//! stick-figure animation ([`animation`], `klaw animate`) and a scenario's footprints seen from
+//! above ([`footprints`], `klaw scenario --footprints`); here what they share: the font, the
+//! colours, the file format by extension, charts with one scale on both axes and the writing of
+//! a drawn figure.
 //!
 //! PNG (rendered in memory, encoded here) or SVG, chosen by the file's extension, written
 //! atomically through `write_atomic`. Text needs a TrueType font: it is read at run time from
@@ -10,6 +12,8 @@
 pub mod animation;
 pub mod cycle;
 pub mod error;
+pub mod floor;
+pub mod footprints;
 pub mod heat_map;
 pub mod walk;
 
@@ -153,6 +157,125 @@ pub(crate) trait Draw {
     ) -> std::result::Result<Self::Output, DrawError>;
 }
 
+/// [lo, hi] widened by `frac` of its span on each side, and to at least `min_span`.
+pub(crate) fn padded((lo, hi): (f64, f64), frac: f64, min_span: f64) -> (f64, f64) {
+    let pad = (hi - lo) * frac;
+    let (lo, hi) = (lo - pad, hi + pad);
+    if hi - lo < min_span {
+        let mid = 0.5 * (lo + hi);
+        (mid - 0.5 * min_span, mid + 0.5 * min_span)
+    } else {
+        (lo, hi)
+    }
+}
+
+/// A chart builder with the figures' margins; label areas only when there is text.
+pub(crate) fn builder<'a, 'b, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    text: bool,
+) -> ChartBuilder<'a, 'b, DB> {
+    let mut b = ChartBuilder::on(area);
+    b.margin(12);
+    if text {
+        b.x_label_area_size(48).y_label_area_size(64);
+    }
+    b
+}
+
+/// The outline of the plotting area (drawn instead of the axes when there is no text).
+pub(crate) fn frame_border<DB: DrawingBackend>(chart: &Chart<'_, DB>) -> Drawn {
+    let (w, h) = chart.plotting_area().dim_in_pixel();
+    let area = chart.plotting_area().strip_coord_spec();
+    area.draw(&Rectangle::new(
+        [(0, 0), (w as i32 - 1, h as i32 - 1)],
+        BLACK.stroke_width(1),
+    ))
+    .map_err(msg)
+}
+
+/// The ranges of a chart with one scale on both axes (see [`equal_scale`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EqualScale {
+    /// The horizontal range shown.
+    pub x: (f64, f64),
+    /// The vertical range shown.
+    pub y: (f64, f64),
+    /// Pixels per unit (metre), both axes.
+    pub scale: f64,
+}
+
+/// The largest scale (px per unit, one for both axes) at which the extent `x` × `y` fits in a
+/// plotting area of `pw` × `ph` px, and the ranges that fill the area at it, centred on the
+/// extent (the axis with room to spare is widened on both sides). A span of 0 (or less) asks
+/// for nothing along that axis: the other fixes the scale.
+pub fn equal_scale(x: (f64, f64), y: (f64, f64), (pw, ph): (u32, u32)) -> EqualScale {
+    let (pw, ph) = (f64::from(pw.max(1)), f64::from(ph.max(1)));
+    let fit = |px: f64, (lo, hi): (f64, f64)| {
+        if hi > lo {
+            px / (hi - lo)
+        } else {
+            f64::INFINITY
+        }
+    };
+    let scale = fit(pw, x).min(fit(ph, y));
+    // two empty spans: one metre across the narrower side
+    let scale = if scale.is_finite() { scale } else { pw.min(ph) };
+    let around = |(lo, hi): (f64, f64), px: f64| {
+        let (mid, half) = (0.5 * (lo + hi), 0.5 * px / scale);
+        (mid - half, mid + half)
+    };
+    EqualScale {
+        x: around(x, pw),
+        y: around(y, ph),
+        scale,
+    }
+}
+
+/// A chart's world-to-pixel map: pixel = (px0 + scale · (u − u0), py0 − scale · (v − v0)), u
+/// the chart's horizontal coordinate (x in a side view, −z in a front view, x in a top view), v
+/// its vertical one (y, or −z in a top view).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ViewMap {
+    pub(crate) u0: f64,
+    pub(crate) v0: f64,
+    pub(crate) px0: f64,
+    pub(crate) py0: f64,
+    /// Pixels per metre, both axes.
+    pub(crate) scale: f64,
+}
+
+impl ViewMap {
+    /// The pixel of view coordinates (u, v).
+    pub fn pixel(&self, u: f64, v: f64) -> (i32, i32) {
+        (
+            (self.px0 + self.scale * (u - self.u0)).round() as i32,
+            (self.py0 - self.scale * (v - self.v0)).round() as i32,
+        )
+    }
+
+    /// Pixels per metre, both axes.
+    pub fn scale(&self) -> f64 {
+        self.scale
+    }
+
+    /// The map of a chart built over `fit`'s ranges, read off two corners as plotters places
+    /// them (backend coordinates: the whole image's pixels).
+    pub(crate) fn of_chart<DB: DrawingBackend>(chart: &Chart<'_, DB>, fit: &EqualScale) -> Self {
+        let ((u_lo, u_hi), (v_lo, v_hi)) = (fit.x, fit.y);
+        let (x0, y0) = chart.backend_coord(&(u_lo, v_lo));
+        let (x1, y1) = chart.backend_coord(&(u_hi, v_hi));
+        let sx = f64::from(x1 - x0) / (u_hi - u_lo);
+        let sy = f64::from(y0 - y1) / (v_hi - v_lo);
+        ViewMap {
+            u0: u_lo,
+            v0: v_lo,
+            px0: f64::from(x0),
+            py0: f64::from(y0),
+            scale: 0.5 * (sx + sy),
+        }
+    }
+}
+
 /// How a PNG is encoded.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Png {
@@ -223,6 +346,23 @@ fn write_png(path: &Path, pixels: &[u8], (w, h): (u32, u32), png: Png) -> Result
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn equal_scale_fits_the_extent_at_one_scale() {
+        // a 4 m × 1 m extent in 800 × 400 px: the width binds at 200 px/m, the height shows 2 m
+        let fit = equal_scale((0.0, 4.0), (-0.5, 0.5), (800, 400));
+        assert!((fit.scale - 200.0).abs() < 1e-12);
+        assert!((fit.x.0 - 0.0).abs() < 1e-12 && (fit.x.1 - 4.0).abs() < 1e-12);
+        assert!((fit.y.0 + 1.0).abs() < 1e-12 && (fit.y.1 - 1.0).abs() < 1e-12);
+        // both ranges at that scale fill the area exactly
+        for (range, px) in [(fit.x, 800.0), (fit.y, 400.0)] {
+            assert!(((range.1 - range.0) * fit.scale - px).abs() < 1e-9);
+        }
+        // a zero span leaves the scale to the other axis
+        let fit = equal_scale((3.0, 3.0), (0.0, 2.0), (600, 400));
+        assert!((fit.scale - 200.0).abs() < 1e-12);
+        assert!((fit.x.0 - 1.5).abs() < 1e-12 && (fit.x.1 - 4.5).abs() < 1e-12);
+    }
 
     #[test]
     fn extension_chooses_the_format() {

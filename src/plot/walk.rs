@@ -11,7 +11,7 @@ use crate::engine::report::StateFrame;
 use crate::error::Result;
 use crate::plot::{
     self, Chart, Draw, DrawError, Drawn, FONT, FigureFormat, LEFT_COLOR, Png, RIGHT_COLOR,
-    TITLE_SIZE, msg, titled,
+    TITLE_SIZE, builder, frame_border, msg, padded, titled,
 };
 
 /// Figure size in pixels (width, height).
@@ -87,18 +87,6 @@ impl Draw for WalkFigure<'_> {
 
 /// A named, coloured curve in pieces (each piece a polyline of finite points).
 type Series<'a> = (&'a str, RGBColor, Vec<Vec<(f64, f64)>>);
-
-/// [lo, hi] widened by `frac` of its span on each side, and to at least `min_span`.
-fn padded((lo, hi): (f64, f64), frac: f64, min_span: f64) -> (f64, f64) {
-    let pad = (hi - lo) * frac;
-    let (lo, hi) = (lo - pad, hi + pad);
-    if hi - lo < min_span {
-        let mid = 0.5 * (lo + hi);
-        (mid - 0.5 * min_span, mid + 0.5 * min_span)
-    } else {
-        (lo, hi)
-    }
-}
 
 fn finite(points: impl IntoIterator<Item = (f64, f64)>) -> Vec<(f64, f64)> {
     points
@@ -247,19 +235,6 @@ fn angle_series(frames: &[StateFrame]) -> Vec<Series<'static>> {
         .collect()
 }
 
-/// A chart builder with the figure's margins; label areas only when there is text.
-fn builder<'a, 'b, DB: DrawingBackend>(
-    area: &'a DrawingArea<DB, Shift>,
-    text: bool,
-) -> ChartBuilder<'a, 'b, DB> {
-    let mut b = ChartBuilder::on(area);
-    b.margin(12);
-    if text {
-        b.x_label_area_size(48).y_label_area_size(64);
-    }
-    b
-}
-
 fn side_title(frames: &[StateFrame], steps: usize) -> String {
     match (frames.first(), frames.last()) {
         (Some(a), Some(b)) => {
@@ -349,12 +324,10 @@ fn equal_aspect_chart<'a, DB: DrawingBackend>(
         let probe = b.build_cartesian_2d(0.0..1.0, 0.0..1.0).map_err(msg)?;
         probe.plotting_area().dim_in_pixel()
     };
-    let (pw, ph) = (f64::from(pw.max(1)), f64::from(ph.max(1)));
-    let scale = (pw / (x_hi - x_lo)).min(ph / (y_hi - y_lo));
-    let x_mid = 0.5 * (x_lo + x_hi);
-    let x_range = (x_mid - 0.5 * pw / scale)..(x_mid + 0.5 * pw / scale);
+    let fit = plot::equal_scale((x_lo, x_hi), (y_lo, y_hi), (pw, ph));
+    let x_range = fit.x.0..fit.x.1;
     // extra height goes above the figures: the ground stays near the bottom
-    let y_range = y_lo..(y_lo + ph / scale);
+    let y_range = y_lo..(y_lo + fit.y.1 - fit.y.0);
     let mut chart = b
         .build_cartesian_2d(x_range.clone(), y_range)
         .map_err(msg)?;
@@ -425,17 +398,6 @@ fn stick_figures<DB: DrawingBackend>(chart: &mut Chart<'_, DB>, frames: &[StateF
         }
     }
     Ok(())
-}
-
-/// The outline of the plotting area (drawn instead of the axes when there is no text).
-fn frame_border<DB: DrawingBackend>(chart: &Chart<'_, DB>) -> Drawn {
-    let (w, h) = chart.plotting_area().dim_in_pixel();
-    let area = chart.plotting_area().strip_coord_spec();
-    area.draw(&Rectangle::new(
-        [(0, 0), (w as i32 - 1, h as i32 - 1)],
-        BLACK.stroke_width(1),
-    ))
-    .map_err(msg)
 }
 
 /// The time and value ranges of a time plot, with headroom for the legend (one row per series)

@@ -1,5 +1,5 @@
 //! `klaw scenario`: run a scenario file (stand, walk, step, turn, pause; docs/nrs.md) and write
-//! its frames, contacts, report and animation; the outputs are shared with `klaw step` and
+//! its frames, contacts, report, footprint plot and animation; the outputs are shared with `klaw step` and
 //! `klaw turn`, which run a one-action scenario.
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -42,9 +42,28 @@ pub(crate) struct MotionOutputs {
     /// Report as JSON: the actions' time spans, the footprints and the contacts
     #[arg(long, value_name = "FILE.json")]
     report: Option<PathBuf>,
-    /// Also write a stick-figure animation (.gif, 25 frames/s, side and front view)
+    /// Also write a stick-figure animation (.gif: side, front and top view)
     #[arg(long, value_name = "FILE.gif")]
     animate: Option<PathBuf>,
+    /// The animation's frames per second of scenario time (also its playback rate), range [1, 100]
+    #[arg(
+        long,
+        value_name = "HZ",
+        default_value_t = 25.0,
+        allow_negative_numbers = true
+    )]
+    animate_fps: f64,
+    /// The animation's size in pixels, WIDTHxHEIGHT
+    #[arg(
+        long,
+        value_name = "WxH",
+        default_value = "1200x450",
+        allow_hyphen_values = true
+    )]
+    animate_size: String,
+    /// Also write the footprints seen from above (.png or .svg): feet, pelvis path, gaze
+    #[arg(long, value_name = "FILE.png|.svg")]
+    footprints: Option<PathBuf>,
 }
 
 /// What `--report` writes.
@@ -85,11 +104,13 @@ impl MotionOutputs {
     /// Refuse a bad frame rate and any output that could not be written, before any work.
     pub(crate) fn check(&self, out: &Path) -> Result<()> {
         InputError::check_range("fps", self.fps, MIN_FPS, MAX_FPS, "frames/s")?;
+        self.animation()?;
         let mut outs = vec![Output::new("out", out, outputs::MOTION)];
         for (flag, path, ext) in [
             ("events", &self.events, outputs::CSV),
             ("report", &self.report, outputs::JSON),
             ("animate", &self.animate, &["gif"][..]),
+            ("footprints", &self.footprints, outputs::FIGURE),
         ] {
             if let Some(p) = path {
                 outs.push(Output::new(flag, p, ext));
@@ -107,8 +128,11 @@ impl MotionOutputs {
         let motion = run_scenario(scenario, self.fps)?;
         let anim = match &self.animate {
             Some(_) => {
-                let options = animation::Options::new(25.0, (900, 450))?;
-                Some((run_scenario(scenario, options.fps)?, options))
+                let options = self.animation()?;
+                let m = run_scenario(scenario, options.fps)?;
+                let t = m.frames.last().map_or(0.0, |f| f.time);
+                animation::check_frame_count(t, options.fps)?;
+                Some((m, options))
             }
             None => None,
         };
@@ -133,10 +157,21 @@ impl MotionOutputs {
             export::write_report_json(path, &report)?;
         }
         if let (Some(path), Some((m, options))) = (&self.animate, &anim) {
-            animation::write_gif(&m.frames, &body, what, path, options)?;
+            animation::write_scenario_gif(m, &body, what, path, options)?;
+        }
+        if let Some(path) = &self.footprints {
+            klaw::plot::footprints::write(path, &motion, &body, what)?;
         }
         self.summary(scenario, &motion, out, what, duration);
         Ok(())
+    }
+
+    /// The animation's frame rate and size.
+    fn animation(&self) -> Result<animation::Options> {
+        let (lo, hi) = (1.0, 100.0);
+        InputError::check_range("animate-fps", self.animate_fps, lo, hi, "frames/s")?;
+        let size = animation::parse_size(&self.animate_size)?;
+        Ok(animation::Options::new(self.animate_fps, size)?)
     }
 
     fn summary(&self, scenario: &Scenario, motion: &Motion, out: &Path, what: &str, t: f64) {
@@ -153,6 +188,7 @@ impl MotionOutputs {
             (&self.events, "events"),
             (&self.report, "report"),
             (&self.animate, "animation"),
+            (&self.footprints, "footprints"),
         ] {
             if let Some(p) = path {
                 let _ = writeln!(o, "{name}: {}", p.display());
