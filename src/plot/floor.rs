@@ -7,11 +7,11 @@
 //! along (x, z) = (cos d, −sin d), i.e. (u, v) = (cos d, sin d): a positive heading turns the
 //! arrow counter-clockwise on the page.
 //!
-//! A foot is drawn as an outline from the heel l8 behind the ankle to the toe tip √(l12² − l9²)
-//! + l13 ahead of it (the flat foot of [`crate::figure::skeleton`]), of breadth
-//! `FOOT_BREADTH_PER_LENGTH` times that length, widest at the ball and with the big toe (the
-//! longest) on the medial side, so that a left and a right print differ in shape as well as in
-//! colour.
+//! A foot is drawn as an outline from the heel l8 behind the ankle to the toe tip l13 beyond
+//! the metatarsal joint, itself √(l12² − l9²) ahead of the ankle (the flat foot of
+//! [`crate::figure::skeleton`]), of breadth `FOOT_BREADTH_PER_LENGTH` times that length, widest
+//! at the ball and with the big toe (the longest) on the medial side, so that a left and a
+//! right print differ in shape as well as in colour.
 use plotters::prelude::*;
 
 use crate::figure::Landmarks;
