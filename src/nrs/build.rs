@@ -9,6 +9,7 @@ use crate::nrs::curves::{
     swing_rise,
 };
 use crate::nrs::pose::{FootPose, Planted, Upper, heading_of, hip_joint, right_of, turn_between};
+use crate::nrs::range::plantarflex_in_air;
 use crate::nrs::segment::{K, Segment};
 use crate::nrs::specs::{FootAngles, Side, StepType};
 use crate::nrs::state::{WalkerState, hanging_arm};
@@ -220,7 +221,10 @@ fn swing_ankle(
             let y = take_off.ankle[1]
                 + a * (landing.ankle[1] - take_off.ankle[1])
                 + swing_rise(a, plan.swing_height);
-            let theta6 = take_off.theta6 * (1.0 - smoothstep(2.0 * s));
+            // the toes straighten in the first half of the swing and, for a foot that lands
+            // heel up (toe first), bend to the landing's in the second
+            let theta6 = take_off.theta6 * (1.0 - smoothstep(2.0 * s))
+                + landing.theta6 * smoothstep(2.0 * s - 1.0);
             let (pitch, _) = foot.clear_pitch(rule, [0.0, y], theta6, 0.0);
             let t = i as f64 / n as f64;
             let heading = pelvis(t) + r_off + smoothstep(s) * (r_land - r_off);
@@ -435,7 +439,7 @@ pub(crate) fn build(state: &WalkerState, plan: &Plan) -> Result<Segment, NrsErro
     let heading0 = state.upper.heading;
     let heading1 = heading_end(state, plan);
     let heading = |t: f64| heading0 + plan.heading_clock.at(t) * turn_between(heading0, heading1);
-    let swing = swing_ankle(state, plan, &pitches, heading);
+    let mut swing = swing_ankle(state, plan, &pitches, heading);
     let end = centre_end(state, plan, heading1);
     let [x, y, z] = centre_path(state, plan, end, heading, &pitches.stance, &swing);
     // the upper body: the rules of §5.4, moved to start at the state's and end at `upper_end`
@@ -447,23 +451,22 @@ pub(crate) fn build(state: &WalkerState, plan: &Plan) -> Result<Segment, NrsErro
     let start = upper_channels(&state.upper);
     let (r0, r1) = (rule_at(0.0), rule_at(1.0));
     let end_upper = plan.upper_end.as_ref().map_or(r1, upper_channels);
-    let table = Table::new(n, |i, t| {
-        let w = smoothstep(t);
-        let r = rule_at(t);
-        let mut row = [0.0; K];
-        row[0] = x[i];
-        row[1] = y[i];
-        row[2] = z[i];
-        row[3] = heading(t);
-        for k in 0..12 {
-            row[4 + k] = r[k] + (1.0 - w) * (start[k] - r0[k]) + w * (end_upper[k] - r1[k]);
-        }
-        row[16] = pitches.stance[i];
-        row[17..23].copy_from_slice(&swing[i]);
-        row
-    });
-    let seg = Segment {
-        table,
+    let segment = |swing: &[[f64; 6]]| Segment {
+        table: Table::new(n, |i, t| {
+            let w = smoothstep(t);
+            let r = rule_at(t);
+            let mut row = [0.0; K];
+            row[0] = x[i];
+            row[1] = y[i];
+            row[2] = z[i];
+            row[3] = heading(t);
+            for k in 0..12 {
+                row[4 + k] = r[k] + (1.0 - w) * (start[k] - r0[k]) + w * (end_upper[k] - r1[k]);
+            }
+            row[16] = pitches.stance[i];
+            row[17..23].copy_from_slice(&swing[i]);
+            row
+        }),
         stance: plan.stance,
         stance_foot: *state.foot(plan.stance),
         swing_foot: *state.foot(plan.stance.other()),
@@ -475,6 +478,18 @@ pub(crate) fn build(state: &WalkerState, plan: &Plan) -> Result<Segment, NrsErro
         body,
         theta6_max: state.attrs.metatarsal_limit,
     };
+    let seg = segment(&swing);
+    check_reach(&seg, plan, n)?;
+    // the airborne swing foot plantarflexes where its ankle would leave its range (docs/nrs.md)
+    let max = state.params.ankle_dorsiflexion_max;
+    if plantarflex_in_air(&seg, &mut swing, pitches.toe_off, max) {
+        return Ok(segment(&swing));
+    }
+    Ok(seg)
+}
+
+/// Every row of `seg` is reachable by both legs, or the error naming the leg and the instant.
+fn check_reach(seg: &Segment, plan: &Plan, n: usize) -> Result<(), NrsError> {
     for i in 0..=n {
         let t = i as f64 / n as f64;
         if let Err((side, distance)) = seg.pose(t) {
@@ -484,13 +499,13 @@ pub(crate) fn build(state: &WalkerState, plan: &Plan) -> Result<Segment, NrsErro
                 reason: GoalReason::Unreachable {
                     leg: side.name(),
                     distance,
-                    length: body.l1,
+                    length: seg.body.l1,
                     t,
                 },
             });
         }
     }
-    Ok(seg)
+    Ok(())
 }
 
 #[cfg(test)]

@@ -7,6 +7,7 @@ use crate::kinematics::foot::Foot;
 use crate::model::InputError;
 use crate::nrs::build::{Clock, Height, Plan, build};
 use crate::nrs::pose::{Planted, direction};
+use crate::nrs::range::largest_dorsiflexion;
 use crate::nrs::segment::Segment;
 use crate::nrs::specs::{FootAngles, Side, StepSpecs, StepType};
 use crate::nrs::state::WalkerState;
@@ -15,6 +16,53 @@ use crate::nrs::{GoalReason, NrsError};
 use crate::plan::GaitRequest;
 
 pub use crate::nrs::region::classify;
+
+/// [ours] The step frequency (steps/min) of the walking step a step of `length` m borrows when
+/// no duration is given: the normalizing formula's, sf = sl / (0.004 k H) (KLAW 1989 eq. 1,
+/// k the attribute `stride_factor`), moved into the engine's ranges — the speed sl · sf / 60
+/// within [velocity_min, velocity_max] and sf within [step_frequency_min, step_frequency_max].
+/// Short steps thus borrow the engine's slowest walk of their length rather than one it refuses
+/// (docs/nrs.md); where the ranges do not meet, the formula's and the engine's error.
+fn walking_frequency(state: &WalkerState, length: f64) -> f64 {
+    let a = &state.attrs;
+    let formula = length / (0.004 * a.stride_factor * state.body.height);
+    let lo = a.step_frequency_min.max(60.0 * a.velocity_min / length);
+    let hi = a.step_frequency_max.min(60.0 * a.velocity_max / length);
+    if lo <= hi {
+        formula.clamp(lo, hi)
+    } else {
+        formula
+    }
+}
+
+/// [ours] θ_HSM+^SW's default for a backward step (docs/nrs.md): the swing foot, the hind foot
+/// at HSM⁺, lands flat unless its ankle would then dorsiflex beyond `ankle_dorsiflexion_max`;
+/// then it lands heel up (toe first), its pitch raised by the excess and again with the rebuilt
+/// step (the pelvis and knee follow the foot), up to 8 times, keeping the best.
+fn fit_landing_pitch(state: &WalkerState, plan: &mut Plan) -> Result<(), NrsError> {
+    let max = state.params.ankle_dorsiflexion_max;
+    let swing = plan.stance.other();
+    let mut best = (f64::INFINITY, plan.angles.strike_swing);
+    for _ in 0..8 {
+        let seg = build(state, plan)?;
+        let d = largest_dorsiflexion(&seg, swing, std::iter::once(1.0));
+        let pitch = plan.angles.strike_swing;
+        if d < best.0 {
+            best = (d, pitch);
+        }
+        if d <= max {
+            break;
+        }
+        set_landing_pitch(plan, pitch + (d - max));
+    }
+    set_landing_pitch(plan, best.1);
+    Ok(())
+}
+
+fn set_landing_pitch(plan: &mut Plan, pitch: f64) {
+    plan.angles.strike_swing = pitch;
+    plan.goal.pitch = pitch;
+}
 
 /// A non-rhythmic step, precomputed.
 #[derive(Clone, Debug)]
@@ -93,16 +141,20 @@ impl NrsStep {
         let walking = if kind == StepType::Lateral {
             None
         } else {
-            if length < state.attrs.step_length_min {
+            // the engine's shortest step: the attribute is a fraction of the leg length l1
+            let min = (state.attrs.step_length_min * state.body.l1 * 1e4).round() / 1e4;
+            if length < min {
                 return Err(goal_err(GoalReason::TooShort {
                     kind: kind.name(),
                     length,
-                    min: state.attrs.step_length_min,
+                    min,
                 }));
             }
             let request = GaitRequest {
                 step_length: Some(length),
-                step_frequency: duration.map(|t| 60.0 / t),
+                step_frequency: Some(
+                    duration.map_or_else(|| walking_frequency(state, length), |t| 60.0 / t),
+                ),
                 velocity: None,
             };
             let gait = request.complete(&state.body, &state.attrs)?;
@@ -149,6 +201,9 @@ impl NrsStep {
             heading_clock: Clock::WHOLE,
             gaze_clock: Clock::WHOLE,
         };
+        if specs.foot_angles.is_none() && kind == StepType::Backward {
+            fit_landing_pitch(state, &mut plan)?;
+        }
         // the gaze ends where the pelvis faces unless given
         let probe = build(
             state,
