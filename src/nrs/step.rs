@@ -14,6 +14,7 @@ use crate::nrs::state::WalkerState;
 use crate::nrs::walking::WalkingStep;
 use crate::nrs::{GoalReason, NrsError};
 use crate::plan::GaitRequest;
+use crate::plan::gait::NORMALIZING_CONSTANT;
 
 pub use crate::nrs::region::classify;
 
@@ -25,7 +26,7 @@ pub use crate::nrs::region::classify;
 /// (docs/nrs.md); where the ranges do not meet, the formula's and the engine's error.
 fn walking_frequency(state: &WalkerState, length: f64) -> f64 {
     let a = &state.attrs;
-    let formula = length / (0.004 * a.stride_factor * state.body.height);
+    let formula = length / (NORMALIZING_CONSTANT * a.stride_factor * state.body.height);
     let lo = a.step_frequency_min.max(60.0 * a.velocity_min / length);
     let hi = a.step_frequency_max.min(60.0 * a.velocity_max / length);
     if lo <= hi {
