@@ -370,3 +370,64 @@ fn a_straight_swing_path_is_straight() {
         );
     }
 }
+
+/// Where the ankles were brought into range (docs/nrs.md, "Ranges of motion", causes 1 and 2):
+/// a lateral step's airborne swing ankle stays within `ankle_dorsiflexion_max` (18°) plus 0.5°
+/// for the table's interpolation; a backward step's swing foot lands heel up with its ankle
+/// within it; in the air its ankle stays below 22° (21.9° measured where the floor stops the
+/// toe), where a level foot reached 39°.
+#[test]
+fn lateral_and_backward_ankles_keep_their_bounds() {
+    let body = Body::standard(1.6, 55.0).unwrap();
+    let s = WalkerState::standing(body, AttributeTable::builtin().defaults(), [0.0, 0.0], 0.0);
+    let max = s.params.ankle_dorsiflexion_max;
+    let swing_ankle = |step: &NrsStep, t: f64| {
+        clinical(&step.advance(t), &body)
+            .unwrap()
+            .right
+            .ankle
+            .flexion
+    };
+    let stance = s.foot(Side::Left).flat;
+    for d in [0.2, 0.45] {
+        let goal = [stance[0], stance[1] + d];
+        let step = NrsStep::initialize(&s, &specs(Side::Right, goal, 0.0), None).unwrap();
+        assert_eq!(step.kind(), StepType::Lateral);
+        let worst = (0..=SAMPLES)
+            .map(|i| swing_ankle(&step, i as f64 / SAMPLES as f64))
+            .fold(f64::NEG_INFINITY, f64::max);
+        assert!(
+            worst <= max + 0.5f64.to_radians(),
+            "lateral {d}: {}°",
+            worst.to_degrees()
+        );
+    }
+    let start = s.foot(Side::Right).flat;
+    let step = NrsStep::initialize(
+        &s,
+        &specs(Side::Right, [start[0] - 0.496, start[1]], 0.0),
+        None,
+    )
+    .unwrap();
+    assert_eq!(step.kind(), StepType::Backward);
+    assert!(
+        step.end_state().foot(Side::Right).pitch > 0.0,
+        "lands heel up"
+    );
+    let landing = swing_ankle(&step, 1.0);
+    assert!(
+        landing <= max + 0.5f64.to_radians(),
+        "{}°",
+        landing.to_degrees()
+    );
+    let worst = (0..=SAMPLES)
+        .map(|i| swing_ankle(&step, i as f64 / SAMPLES as f64))
+        .fold(f64::NEG_INFINITY, f64::max);
+    assert!(worst < 22f64.to_radians(), "{}°", worst.to_degrees());
+    eprintln!(
+        "backward 0.496 m: lands {:.2}° heel up, ankle {:.2}° there, {:.2}° at worst",
+        step.end_state().foot(Side::Right).pitch.to_degrees(),
+        landing.to_degrees(),
+        worst.to_degrees()
+    );
+}

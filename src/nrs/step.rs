@@ -271,3 +271,61 @@ impl NrsStep {
         &self.end
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::attributes::AttributeTable;
+    use crate::model::body::Body;
+
+    fn standing(height: f64) -> WalkerState {
+        let body = Body::standard(height, 60.0).unwrap();
+        WalkerState::standing(body, AttributeTable::builtin().defaults(), [0.0, 0.0], 0.0)
+    }
+
+    /// Hand computation (1.6 m, k = 1, v_min 0.4 m/s, sf in [50, 182]): a 0.6 m step keeps the
+    /// formula's sf = 0.6 / (0.004 · 1.6) = 93.75 steps/min (0.9375 m/s); a 0.32 m step's
+    /// formula gives 50 steps/min, 0.267 m/s, so it takes the slowest speed's 60 · 0.4 / 0.32 =
+    /// 75 steps/min; a 0.2 m step 120.
+    #[test]
+    fn the_walking_frequency_stays_in_the_engines_ranges() {
+        let s = standing(1.6);
+        assert!((walking_frequency(&s, 0.6) - 93.75).abs() < 1e-9);
+        assert!((walking_frequency(&s, 0.32) - 75.0).abs() < 1e-9);
+        assert!((walking_frequency(&s, 0.2) - 120.0).abs() < 1e-9);
+    }
+
+    /// The shortest forward step is the engine's, step_length_min (0.2) · l1 in metres: just
+    /// below it a typed error naming that length, just above it not that error.
+    #[test]
+    fn the_minimum_step_length_is_in_metres() {
+        let s = standing(1.6);
+        let min = 0.2 * s.body.l1;
+        let start = s.foot(Side::Right).flat;
+        let step = |l: f64| {
+            let specs = StepSpecs {
+                foot_position: [start[0] + l, start[1]],
+                foot_direction: 0.0,
+                side: Side::Right,
+                swing_height_factor: 1.0,
+                gaze_direction: None,
+                foot_angles: None,
+            };
+            NrsStep::initialize(&s, &specs, None)
+        };
+        match step(min - 0.002) {
+            Err(NrsError::Goal {
+                reason: GoalReason::TooShort { min: m, .. },
+                ..
+            }) => assert!((m - min).abs() < 1e-4, "{m} vs {min}"),
+            other => panic!("{other:?}"),
+        }
+        assert!(!matches!(
+            step(min + 0.002),
+            Err(NrsError::Goal {
+                reason: GoalReason::TooShort { .. },
+                ..
+            })
+        ));
+    }
+}
