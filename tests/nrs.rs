@@ -227,11 +227,14 @@ fn several_walkers_are_independent() {
 /// height h of the walking step of the same length, plus eq. 4's end correction (linear in t)
 /// plus the Hermite end-slope terms t(1 − t)² and t²(t − 1) that bring it to rest: so
 /// y(t) − h(t) is a cubic in t, whose fourth differences over the uniform table vanish (to
-/// round-off), and it meets the standing height at t = 0.
+/// round-off), and it meets the standing height at t = 0 — away from the rows where the centre
+/// rises [ours, docs/nrs.md]: where eq. 4 would dorsiflex the flat stance ankle beyond
+/// `ankle_dorsiflexion_max`, which it then keeps. (In this 0.45 m step that is most of the
+/// step: eq. 4 holds on 73 of the 253 windows of five rows, the first third.)
 #[test]
 fn a_forward_step_borrows_the_walking_steps_hip_height() {
     let s = standing();
-    let length = 0.6;
+    let length = 0.45;
     let goal = [s.feet[1].flat[0] + length, s.feet[0].flat[1]];
     let step = NrsStep::initialize(&s, &specs(Side::Right, goal, 0.0), None).unwrap();
     let n = s.params.table_intervals;
@@ -242,14 +245,35 @@ fn a_forward_step_borrows_the_walking_steps_hip_height() {
     .complete(&s.body, &s.attrs)
     .unwrap();
     let w = klaw::nrs::walking::WalkingStep::simulate(s.body, &s.attrs, gait, n).unwrap();
-    let d: Vec<f64> = (0..=n)
-        .map(|i| step.advance(i as f64 / n as f64).pelvis[1] - w.height[i])
+    let poses: Vec<Landmarks> = (0..=n).map(|i| step.advance(i as f64 / n as f64)).collect();
+    // the stance (left) ankle's clinical dorsiflexion: where it is near its bound the centre
+    // may have been raised (the rule measures it in the leg's plane, within a degree of this)
+    let dorsi = |lm: &Landmarks| {
+        klaw::figure::clinical::clinical(lm, &s.body)
+            .unwrap()
+            .left
+            .ankle
+            .flexion
+    };
+    let max = s.params.ankle_dorsiflexion_max;
+    let raised: Vec<bool> = poses
+        .iter()
+        .map(|lm| dorsi(lm) > max - 1.5f64.to_radians())
         .collect();
+    let d: Vec<f64> = (0..=n).map(|i| poses[i].pelvis[1] - w.height[i]).collect();
     assert!((d[0] + w.height[0] - s.upper.centre[1]).abs() < 1e-12);
-    let worst = d
-        .windows(5)
-        .map(|q| (q[0] - 4.0 * q[1] + 6.0 * q[2] - 4.0 * q[3] + q[4]).abs())
-        .fold(0.0, f64::max);
+    let mut windows = 0;
+    let mut worst: f64 = 0.0;
+    for i in 0..n - 3 {
+        if raised[i..i + 5].iter().any(|r| *r) {
+            continue;
+        }
+        let q = &d[i..i + 5];
+        worst = worst.max((q[0] - 4.0 * q[1] + 6.0 * q[2] - 4.0 * q[3] + q[4]).abs());
+        windows += 1;
+    }
+    assert!(windows > n / 4, "eq. 4 holds on {windows} windows only");
+    eprintln!("eq. 4 on {windows} of {} windows", n - 3);
     assert!(
         worst < 1e-11,
         "y − h is not a cubic: fourth difference {worst}"
