@@ -9,7 +9,7 @@ use crate::nrs::curves::{
     swing_rise,
 };
 use crate::nrs::pose::{FootPose, Planted, Upper, heading_of, hip_joint, right_of, turn_between};
-use crate::nrs::range::plantarflex_in_air;
+use crate::nrs::range::{plantarflex_in_air, raised_height};
 use crate::nrs::segment::{K, Segment};
 use crate::nrs::specs::{FootAngles, Side, StepType};
 use crate::nrs::state::{WalkerState, hanging_arm};
@@ -414,61 +414,6 @@ fn centre_path(
         monotone(&mut y, end[1] < c0[1]);
     }
     [x, y, z]
-}
-
-/// The stance ankle's dorsiflexion (rad) in the leg's plane for the hip `hip` and the foot of
-/// heading `heading` and pitch `pitch` with its ankle at `ankle`: 90° less the angle between
-/// the shank (ankle to knee, [`crate::nrs::pose::knee`]) and the foot's axis heel → toe.
-fn sagittal_dorsiflexion(
-    body: &crate::model::body::Body,
-    hip: glam::DVec3,
-    ankle: [f64; 3],
-    heading: f64,
-    pitch: f64,
-) -> Option<f64> {
-    let a = glam::DVec3::from_array(ankle);
-    let d = crate::nrs::pose::direction(heading);
-    let (k, _) = crate::nrs::pose::knee(hip, a, d, body.l3, body.l4).ok()?;
-    let (sp, cp) = pitch.sin_cos();
-    let axis = glam::DVec3::new(cp * d[0], -sp, cp * d[1]);
-    Some(std::f64::consts::FRAC_PI_2 - (k - a).angle_between(axis))
-}
-
-/// The centre height at a row (its hip `o` at centre height 0): `y` unless the stance ankle
-/// would there dorsiflex beyond `ankle_dorsiflexion_max`; then the lowest height up to the
-/// standing knee's reach at which it does not (bisection), or that reach.
-fn raised_height(
-    state: &WalkerState,
-    o: glam::DVec3,
-    ankle: [f64; 3],
-    heading: f64,
-    pitch: f64,
-    y: f64,
-) -> f64 {
-    let body = &state.body;
-    let max = state.params.ankle_dorsiflexion_max;
-    let horiz2 = (o.x - ankle[0]).powi(2) + (o.z - ankle[2]).powi(2);
-    let r = reach(body.l3, body.l4, state.params.stand_knee.cos());
-    if horiz2 >= r * r {
-        return y;
-    }
-    let top = ankle[1] - o.y + (r * r - horiz2).sqrt();
-    let dorsi = |h: f64| {
-        let hip = o + glam::DVec3::new(0.0, h, 0.0);
-        sagittal_dorsiflexion(body, hip, ankle, heading, pitch).unwrap_or(f64::NEG_INFINITY)
-    };
-    if top <= y || dorsi(y) <= max {
-        return y;
-    }
-    if dorsi(top) > max {
-        return top;
-    }
-    let (mut lo, mut hi) = (y, top);
-    for _ in 0..50 {
-        let mid = 0.5 * (lo + hi);
-        if dorsi(mid) > max { lo = mid } else { hi = mid }
-    }
-    hi
 }
 
 /// Make `y` monotone without raising any value: a running minimum from the start when it
