@@ -89,12 +89,22 @@ fn a_forward_step_lands_on_its_goal() {
         .map(|f| f.right.ankle[1])
         .fold(f64::MIN, f64::max);
     assert!(peak > s.body.l9 + 0.03, "peak {peak}");
-    // the pelvis ends above the ankles' midpoint, at rest
-    let mid = [
-        (goal[0] + s.feet[1].flat[0]) / 2.0,
-        (goal[1] + s.feet[1].flat[1]) / 2.0,
-    ];
-    assert!((last.pelvis[0] - mid[0]).abs() < 1e-9 && (last.pelvis[2] - mid[1]).abs() < 1e-9);
+    // the pelvis ends on the line between the ankles (docs/nrs.md): above their midpoint when
+    // the stance foot ends flat, between them when its heel ends up (the highest point)
+    let (a, b) = (last.left.ankle, last.right.ankle);
+    let (u, v) = (
+        [b[0] - a[0], b[2] - a[2]],
+        [last.pelvis[0] - a[0], last.pelvis[2] - a[2]],
+    );
+    let along = (u[0] * v[0] + u[1] * v[1]) / (u[0] * u[0] + u[1] * u[1]);
+    let off = (u[0] * v[1] - u[1] * v[0]) / (u[0] * u[0] + u[1] * u[1]).sqrt();
+    assert!(
+        off.abs() < 1e-9 && (0.0..=1.0).contains(&along),
+        "{off} {along}"
+    );
+    if end.feet[1].pitch == 0.0 {
+        assert!((along - 0.5).abs() < 1e-9, "{along}");
+    }
 }
 
 #[test]

@@ -271,9 +271,12 @@ fn heading_end(state: &WalkerState, plan: &Plan) -> f64 {
     }
 }
 
-/// §5.3: the centre site at HSM⁺ above the ankles' midpoint, as high as both legs reach with
-/// the walking step's knees at its heel strike (or the standing knee): the lower of the two
-/// heights.
+/// §5.3: the centre site at HSM⁺ on the line between the ankles, as high as both legs reach
+/// with the walking step's knees at its heel strike (or the standing knee): the lower of the
+/// two heights. Above the ankles' midpoint, except in a forward step whose stance heel is up at
+/// HSM⁺ [ours]: there the point of the line where that height is greatest, so that both legs
+/// keep the walking step's knee flexions (§5.3's assumption) and the raised heel lifts the hip
+/// instead of bending the hind knee (docs/nrs.md).
 fn centre_end(state: &WalkerState, plan: &Plan, heading: f64) -> [f64; 3] {
     if let Some(u) = &plan.upper_end {
         return u.centre;
@@ -288,26 +291,47 @@ fn centre_end(state: &WalkerState, plan: &Plan, heading: f64) -> [f64; 3] {
     }
     .pose(&foot, lim)
     .ankle;
-    let mid = [
-        (stance[0] + landing[0]) / 2.0,
-        (stance[2] + landing[2]) / 2.0,
-    ];
     let reaches = match &plan.walking {
         Some(w) => w.reach_at_strike,
         None => [reach(body.l3, body.l4, state.params.stand_knee.cos()); 2],
     };
-    let mut up = upper_rule(state, heading, plan.gaze_end);
-    up.centre = [mid[0], 0.0, mid[1]];
-    let mut h = f64::INFINITY;
-    for (ankle, side, l) in [
-        (landing, plan.stance.other(), reaches[0]),
-        (stance, plan.stance, reaches[1]),
-    ] {
-        let o = hip_joint(&up, side, body.l0 / 2.0);
-        let horiz2 = (o.x - ankle[0]).powi(2) + (o.z - ankle[2]).powi(2);
-        h = h.min(ankle[1] - o.y + (l * l - horiz2).max(0.0).sqrt());
+    let up0 = upper_rule(state, heading, plan.gaze_end);
+    // the centre a fraction f of the way from the stance ankle to the landing one, its height
+    let at = |f: f64| {
+        let c = [
+            stance[0] + f * (landing[0] - stance[0]),
+            stance[2] + f * (landing[2] - stance[2]),
+        ];
+        let up = Upper {
+            centre: [c[0], 0.0, c[1]],
+            ..up0
+        };
+        let mut h = f64::INFINITY;
+        for (ankle, side, l) in [
+            (landing, plan.stance.other(), reaches[0]),
+            (stance, plan.stance, reaches[1]),
+        ] {
+            let o = hip_joint(&up, side, body.l0 / 2.0);
+            let horiz2 = (o.x - ankle[0]).powi(2) + (o.z - ankle[2]).powi(2);
+            h = h.min(ankle[1] - o.y + (l * l - horiz2).max(0.0).sqrt());
+        }
+        [c[0], h, c[1]]
+    };
+    if plan.kind != StepType::Forward || plan.angles.strike_stance <= 0.0 {
+        return at(0.5);
     }
-    [mid[0], h, mid[1]]
+    // golden-section search: the lower of a rising and a falling height has one maximum
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut a, mut b) = (0.0, 1.0);
+    for _ in 0..60 {
+        let (p, q) = (b - g * (b - a), a + g * (b - a));
+        if at(p)[1] < at(q)[1] {
+            a = p;
+        } else {
+            b = q;
+        }
+    }
+    at(0.5 * (a + b))
 }
 
 /// §5.3: the centre site's rows from the state's to `end`: the planar path a line with the
@@ -365,10 +389,8 @@ fn centre_path(
     let body = state.body;
     let foot = Foot::new(&body);
     let stance_foot = *state.foot(plan.stance);
-    let straighten = plan.kind == StepType::Forward
-        && plan.walking.is_some()
-        && plan.upper_end.is_none()
-        && plan.angles.strike_stance == 0.0;
+    let straighten =
+        plan.kind == StepType::Forward && plan.walking.is_some() && plan.upper_end.is_none();
     for i in 0..=n {
         let probe = Upper {
             centre: [x[i], 0.0, z[i]],
@@ -509,8 +531,10 @@ pub(crate) fn build(state: &WalkerState, plan: &Plan) -> Result<Segment, NrsErro
 
 /// Every row of `seg` is reachable by both legs, or the error naming the leg and the instant.
 fn check_reach(seg: &Segment, plan: &Plan, n: usize) -> Result<(), NrsError> {
-    for i in 0..=n {
-        let t = i as f64 / n as f64;
+    // the rows and the midpoints between them (a rolling foot's ankle moves on an arc, the
+    // table's centre on the chord)
+    for i in 0..=2 * n {
+        let t = i as f64 / (2 * n) as f64;
         if let Err((side, distance)) = seg.pose(t) {
             return Err(NrsError::Goal {
                 position: plan.goal.flat,

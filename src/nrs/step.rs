@@ -36,33 +36,61 @@ fn walking_frequency(state: &WalkerState, length: f64) -> f64 {
     }
 }
 
-/// [ours] θ_HSM+^SW's default for a backward step (docs/nrs.md): the swing foot, the hind foot
-/// at HSM⁺, lands flat unless its ankle would then dorsiflex beyond `ankle_dorsiflexion_max`;
-/// then it lands heel up (toe first), its pitch raised by the excess and again with the rebuilt
-/// step (the pelvis and knee follow the foot), up to 8 times, keeping the best.
-fn fit_landing_pitch(state: &WalkerState, plan: &mut Plan) -> Result<(), NrsError> {
+/// [ours] θ_foot's defaults at HSM⁺ for the hind foot (docs/nrs.md): a backward step's swing
+/// foot lands flat, and a forward step's stance foot ends flat, unless its ankle would then
+/// dorsiflex beyond `ankle_dorsiflexion_max` (at the landing; at HSM⁺ for the stance foot);
+/// then the heel is raised (the swing foot lands toe first) by the excess, and again with the
+/// rebuilt step (the pelvis and knee follow the foot), up to 8 times, keeping the best whole
+/// step (its largest dorsiflexion of that foot).
+fn fit_hind_pitch(state: &WalkerState, plan: &mut Plan) -> Result<(), NrsError> {
     let max = state.params.ankle_dorsiflexion_max;
-    let swing = plan.stance.other();
-    let mut best = (f64::INFINITY, plan.angles.strike_swing);
-    for _ in 0..8 {
-        let seg = build(state, plan)?;
-        let d = largest_dorsiflexion(&seg, swing, std::iter::once(1.0));
-        let pitch = plan.angles.strike_swing;
-        if d < best.0 {
-            best = (d, pitch);
+    let n = state.params.table_intervals;
+    let backward = plan.kind == StepType::Backward;
+    let hind = if backward {
+        plan.stance.other()
+    } else {
+        plan.stance
+    };
+    let pitch_of = |plan: &Plan| {
+        if backward {
+            plan.angles.strike_swing
+        } else {
+            plan.angles.strike_stance
         }
-        if d <= max {
+    };
+    let mut best = (f64::INFINITY, pitch_of(plan));
+    for k in 0..8 {
+        let seg = match build(state, plan) {
+            Ok(seg) => seg,
+            Err(e) if k == 0 => return Err(e),
+            Err(_) => break,
+        };
+        let at_end = largest_dorsiflexion(&seg, hind, std::iter::once(1.0));
+        let whole = if backward {
+            at_end
+        } else {
+            largest_dorsiflexion(&seg, hind, (0..=n).map(|i| i as f64 / n as f64))
+        };
+        let pitch = pitch_of(plan);
+        if whole < best.0 {
+            best = (whole, pitch);
+        }
+        if at_end <= max {
             break;
         }
-        set_landing_pitch(plan, pitch + (d - max));
+        set_hind_pitch(plan, backward, pitch + (at_end - max));
     }
-    set_landing_pitch(plan, best.1);
+    set_hind_pitch(plan, backward, best.1);
     Ok(())
 }
 
-fn set_landing_pitch(plan: &mut Plan, pitch: f64) {
-    plan.angles.strike_swing = pitch;
-    plan.goal.pitch = pitch;
+fn set_hind_pitch(plan: &mut Plan, backward: bool, pitch: f64) {
+    if backward {
+        plan.angles.strike_swing = pitch;
+        plan.goal.pitch = pitch;
+    } else {
+        plan.angles.strike_stance = pitch;
+    }
 }
 
 /// A non-rhythmic step, precomputed.
@@ -202,8 +230,8 @@ impl NrsStep {
             heading_clock: Clock::WHOLE,
             gaze_clock: Clock::WHOLE,
         };
-        if specs.foot_angles.is_none() && kind == StepType::Backward {
-            fit_landing_pitch(state, &mut plan)?;
+        if specs.foot_angles.is_none() && kind != StepType::Lateral {
+            fit_hind_pitch(state, &mut plan)?;
         }
         // the gaze ends where the pelvis faces unless given
         let probe = build(
