@@ -343,7 +343,7 @@ fn centre_path(
     plan: &Plan,
     end: [f64; 3],
     heading: impl Fn(f64) -> f64,
-    stance_pitch: &[f64],
+    stance_pitch: &mut [f64],
     swing: &[[f64; 6]],
 ) -> [Vec<f64>; 3] {
     let n = state.params.table_intervals;
@@ -398,28 +398,35 @@ fn centre_path(
             tilt: state.attrs.pelvis_tilt,
             ..Upper::default()
         };
-        let stance_ankle = Planted {
-            pitch: stance_pitch[i],
-            ..stance_foot
-        }
-        .pose(&foot, state.attrs.metatarsal_limit)
-        .ankle;
+        let stance_at = |p: f64| {
+            Planted {
+                pitch: p,
+                ..stance_foot
+            }
+            .pose(&foot, state.attrs.metatarsal_limit)
+            .ankle
+        };
         let swing_ankle = [swing[i][0], swing[i][1], swing[i][2]];
         // [ours] a forward step's centre rises where eq. 4 would dorsiflex the stance ankle
         // beyond its bound (docs/nrs.md): the heights are the walking step's, whose stance heel
         // rises under them; the NRS's stays down, so its leg straightens instead, at most to
-        // the standing knee; the swing leg's reach below still limits the height
+        // the standing knee; where that is not enough (before HSM⁺) its heel rises by the
+        // excess and the hip with it; the swing leg's reach below still limits the height
         if straighten {
             let o = hip_joint(&probe, plan.stance, body.l0 / 2.0);
-            y[i] = raised_height(
-                state,
-                o,
-                stance_ankle,
-                stance_foot.heading,
-                stance_pitch[i],
-                y[i],
-            );
+            let eq4 = y[i];
+            for _ in 0..6 {
+                let ankle = stance_at(stance_pitch[i]);
+                let (h, excess) =
+                    raised_height(state, o, ankle, stance_foot.heading, stance_pitch[i], eq4);
+                y[i] = h;
+                if excess <= 1e-4 || i == n {
+                    break;
+                }
+                stance_pitch[i] += excess;
+            }
         }
+        let stance_ankle = stance_at(stance_pitch[i]);
         for (ankle, side) in [
             (stance_ankle, plan.stance),
             (swing_ankle, plan.stance.other()),
@@ -476,13 +483,13 @@ fn upper_channels(u: &Upper) -> [f64; 12] {
 pub(crate) fn build(state: &WalkerState, plan: &Plan) -> Result<Segment, NrsError> {
     let n = state.params.table_intervals;
     let body = state.body;
-    let pitches = foot_pitches(state, plan);
+    let mut pitches = foot_pitches(state, plan);
     let heading0 = state.upper.heading;
     let heading1 = heading_end(state, plan);
     let heading = |t: f64| heading0 + plan.heading_clock.at(t) * turn_between(heading0, heading1);
     let mut swing = swing_ankle(state, plan, &pitches, heading);
     let end = centre_end(state, plan, heading1);
-    let [x, y, z] = centre_path(state, plan, end, heading, &pitches.stance, &swing);
+    let [x, y, z] = centre_path(state, plan, end, heading, &mut pitches.stance, &swing);
     // the upper body: the rules of §5.4, moved to start at the state's and end at `upper_end`
     let gaze0 = state.gaze();
     let rule_at = |t: f64| {

@@ -86,7 +86,8 @@ fn sagittal_dorsiflexion(
 
 /// The centre height at a row (its hip `o` at centre height 0): `y` unless the stance ankle
 /// would there dorsiflex beyond `ankle_dorsiflexion_max`; then the lowest height up to the
-/// standing knee's reach at which it does not (bisection), or that reach.
+/// standing knee's reach at which it does not (bisection), or that reach. And the excess (rad)
+/// that remains at that height (0 if none).
 pub(crate) fn raised_height(
     state: &WalkerState,
     o: DVec3,
@@ -94,31 +95,37 @@ pub(crate) fn raised_height(
     heading: f64,
     pitch: f64,
     y: f64,
-) -> f64 {
+) -> (f64, f64) {
     let body = &state.body;
     let max = state.params.ankle_dorsiflexion_max;
     let horiz2 = (o.x - ankle[0]).powi(2) + (o.z - ankle[2]).powi(2);
     let r = reach(body.l3, body.l4, state.params.stand_knee.cos());
     if horiz2 >= r * r {
-        return y;
+        return (y, 0.0);
     }
     let top = ankle[1] - o.y + (r * r - horiz2).sqrt();
     let dorsi = |h: f64| {
         let hip = o + DVec3::new(0.0, h, 0.0);
         sagittal_dorsiflexion(body, hip, ankle, heading, pitch).unwrap_or(f64::NEG_INFINITY)
     };
-    if top <= y || dorsi(y) <= max {
-        return y;
+    // above the straight leg's reach the centre is lowered to it later (`centre_path`)
+    let l = body.l1 - 1e-7;
+    let ym = y.min(ankle[1] - o.y + (l * l - horiz2).max(0.0).sqrt());
+    if dorsi(ym) <= max {
+        return (y, 0.0);
+    }
+    if top <= ym {
+        return (y, dorsi(ym) - max);
     }
     if dorsi(top) > max {
-        return top;
+        return (top, dorsi(top) - max);
     }
     let (mut lo, mut hi) = (y, top);
     for _ in 0..50 {
         let mid = 0.5 * (lo + hi);
         if dorsi(mid) > max { lo = mid } else { hi = mid }
     }
-    hi
+    (hi, 0.0)
 }
 
 #[cfg(test)]
