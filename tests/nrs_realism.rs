@@ -5,7 +5,8 @@
 //! engine's start-up step of that walk fails, the hip dropping 1.1e-3 m below its heel-strike
 //! height; docs/nrs.md.) At 201 instants of every step: no foot point below the floor, the
 //! stance foot's floor contacts do not slide, no leg longer than l3 + l4, the joint angles inside
-//! the normal ranges of motion of AAOS 1965 (`models/rom.toml`); at the end the stepping foot
+//! the normal ranges of motion of AAOS 1965 (`models/rom.toml`; two measured exceptions bounded
+//! in the test); at the end the stepping foot
 //! stands on its goal with its heading. Then the swing path round the stance ankle: the
 //! quadratic Bézier's clearance (derived below) and a straight path's straightness.
 use klaw::Landmarks;
