@@ -89,12 +89,22 @@ fn a_forward_step_lands_on_its_goal() {
         .map(|f| f.right.ankle[1])
         .fold(f64::MIN, f64::max);
     assert!(peak > s.body.l9 + 0.03, "peak {peak}");
-    // the pelvis ends above the ankles' midpoint, at rest
-    let mid = [
-        (goal[0] + s.feet[1].flat[0]) / 2.0,
-        (goal[1] + s.feet[1].flat[1]) / 2.0,
-    ];
-    assert!((last.pelvis[0] - mid[0]).abs() < 1e-9 && (last.pelvis[2] - mid[1]).abs() < 1e-9);
+    // the pelvis ends on the line between the ankles (docs/nrs.md): above their midpoint when
+    // the stance foot ends flat, between them when its heel ends up (the highest point)
+    let (a, b) = (last.left.ankle, last.right.ankle);
+    let (u, v) = (
+        [b[0] - a[0], b[2] - a[2]],
+        [last.pelvis[0] - a[0], last.pelvis[2] - a[2]],
+    );
+    let along = (u[0] * v[0] + u[1] * v[1]) / (u[0] * u[0] + u[1] * u[1]);
+    let off = (u[0] * v[1] - u[1] * v[0]) / (u[0] * u[0] + u[1] * u[1]).sqrt();
+    assert!(
+        off.abs() < 1e-9 && (0.0..=1.0).contains(&along),
+        "{off} {along}"
+    );
+    if end.feet[1].pitch == 0.0 {
+        assert!((along - 0.5).abs() < 1e-9, "{along}");
+    }
 }
 
 #[test]
@@ -234,11 +244,14 @@ fn several_walkers_are_independent() {
 /// height h of the walking step of the same length, plus eq. 4's end correction (linear in t)
 /// plus the Hermite end-slope terms t(1 − t)² and t²(t − 1) that bring it to rest: so
 /// y(t) − h(t) is a cubic in t, whose fourth differences over the uniform table vanish (to
-/// round-off), and it meets the standing height at t = 0.
+/// round-off), and it meets the standing height at t = 0 — away from the rows where the centre
+/// rises [ours, docs/nrs.md]: where eq. 4 would dorsiflex the flat stance ankle beyond
+/// `ankle_dorsiflexion_max`, which it then keeps. (In this 0.45 m step that is most of the
+/// step: eq. 4 holds on 73 of the 253 windows of five rows, the first third.)
 #[test]
 fn a_forward_step_borrows_the_walking_steps_hip_height() {
     let s = standing();
-    let length = 0.6;
+    let length = 0.45;
     let goal = [s.feet[1].flat[0] + length, s.feet[0].flat[1]];
     let step = NrsStep::initialize(&s, &specs(Side::Right, goal, 0.0), None).unwrap();
     let n = s.params.table_intervals;
@@ -249,14 +262,35 @@ fn a_forward_step_borrows_the_walking_steps_hip_height() {
     .complete(&s.body, &s.attrs)
     .unwrap();
     let w = klaw::nrs::walking::WalkingStep::simulate(s.body, &s.attrs, gait, n).unwrap();
-    let d: Vec<f64> = (0..=n)
-        .map(|i| step.advance(i as f64 / n as f64).pelvis[1] - w.height[i])
+    let poses: Vec<Landmarks> = (0..=n).map(|i| step.advance(i as f64 / n as f64)).collect();
+    // the stance (left) ankle's clinical dorsiflexion: where it is near its bound the centre
+    // may have been raised (the rule measures it in the leg's plane, within a degree of this)
+    let dorsi = |lm: &Landmarks| {
+        klaw::figure::clinical::clinical(lm, &s.body)
+            .unwrap()
+            .left
+            .ankle
+            .flexion
+    };
+    let max = s.params.ankle_dorsiflexion_max;
+    let raised: Vec<bool> = poses
+        .iter()
+        .map(|lm| dorsi(lm) > max - 1.5f64.to_radians())
         .collect();
+    let d: Vec<f64> = (0..=n).map(|i| poses[i].pelvis[1] - w.height[i]).collect();
     assert!((d[0] + w.height[0] - s.upper.centre[1]).abs() < 1e-12);
-    let worst = d
-        .windows(5)
-        .map(|q| (q[0] - 4.0 * q[1] + 6.0 * q[2] - 4.0 * q[3] + q[4]).abs())
-        .fold(0.0, f64::max);
+    let mut windows = 0;
+    let mut worst: f64 = 0.0;
+    for i in 0..n - 3 {
+        if raised[i..i + 5].iter().any(|r| *r) {
+            continue;
+        }
+        let q = &d[i..i + 5];
+        worst = worst.max((q[0] - 4.0 * q[1] + 6.0 * q[2] - 4.0 * q[3] + q[4]).abs());
+        windows += 1;
+    }
+    assert!(windows > n / 4, "eq. 4 holds on {windows} windows only");
+    eprintln!("eq. 4 on {windows} of {} windows", n - 3);
     assert!(
         worst < 1e-11,
         "y − h is not a cubic: fourth difference {worst}"

@@ -9,6 +9,7 @@ use crate::nrs::curves::{
     swing_rise,
 };
 use crate::nrs::pose::{FootPose, Planted, Upper, heading_of, hip_joint, right_of, turn_between};
+use crate::nrs::range::{plantarflex_in_air, raised_height};
 use crate::nrs::segment::{K, Segment};
 use crate::nrs::specs::{FootAngles, Side, StepType};
 use crate::nrs::state::{WalkerState, hanging_arm};
@@ -220,7 +221,10 @@ fn swing_ankle(
             let y = take_off.ankle[1]
                 + a * (landing.ankle[1] - take_off.ankle[1])
                 + swing_rise(a, plan.swing_height);
-            let theta6 = take_off.theta6 * (1.0 - smoothstep(2.0 * s));
+            // the toes straighten in the first half of the swing and, for a foot that lands
+            // heel up (toe first), bend to the landing's in the second
+            let theta6 = take_off.theta6 * (1.0 - smoothstep(2.0 * s))
+                + landing.theta6 * smoothstep(2.0 * s - 1.0);
             let (pitch, _) = foot.clear_pitch(rule, [0.0, y], theta6, 0.0);
             let t = i as f64 / n as f64;
             let heading = pelvis(t) + r_off + smoothstep(s) * (r_land - r_off);
@@ -267,9 +271,12 @@ fn heading_end(state: &WalkerState, plan: &Plan) -> f64 {
     }
 }
 
-/// §5.3: the centre site at HSM⁺ above the ankles' midpoint, as high as both legs reach with
-/// the walking step's knees at its heel strike (or the standing knee): the lower of the two
-/// heights.
+/// §5.3: the centre site at HSM⁺ on the line between the ankles, as high as both legs reach
+/// with the walking step's knees at its heel strike (or the standing knee): the lower of the
+/// two heights. Above the ankles' midpoint, except in a forward step whose stance heel is up at
+/// HSM⁺ [ours]: there the point of the line where that height is greatest, so that both legs
+/// keep the walking step's knee flexions (§5.3's assumption) and the raised heel lifts the hip
+/// instead of bending the hind knee (docs/nrs.md).
 fn centre_end(state: &WalkerState, plan: &Plan, heading: f64) -> [f64; 3] {
     if let Some(u) = &plan.upper_end {
         return u.centre;
@@ -284,26 +291,47 @@ fn centre_end(state: &WalkerState, plan: &Plan, heading: f64) -> [f64; 3] {
     }
     .pose(&foot, lim)
     .ankle;
-    let mid = [
-        (stance[0] + landing[0]) / 2.0,
-        (stance[2] + landing[2]) / 2.0,
-    ];
     let reaches = match &plan.walking {
         Some(w) => w.reach_at_strike,
         None => [reach(body.l3, body.l4, state.params.stand_knee.cos()); 2],
     };
-    let mut up = upper_rule(state, heading, plan.gaze_end);
-    up.centre = [mid[0], 0.0, mid[1]];
-    let mut h = f64::INFINITY;
-    for (ankle, side, l) in [
-        (landing, plan.stance.other(), reaches[0]),
-        (stance, plan.stance, reaches[1]),
-    ] {
-        let o = hip_joint(&up, side, body.l0 / 2.0);
-        let horiz2 = (o.x - ankle[0]).powi(2) + (o.z - ankle[2]).powi(2);
-        h = h.min(ankle[1] - o.y + (l * l - horiz2).max(0.0).sqrt());
+    let up0 = upper_rule(state, heading, plan.gaze_end);
+    // the centre a fraction f of the way from the stance ankle to the landing one, its height
+    let at = |f: f64| {
+        let c = [
+            stance[0] + f * (landing[0] - stance[0]),
+            stance[2] + f * (landing[2] - stance[2]),
+        ];
+        let up = Upper {
+            centre: [c[0], 0.0, c[1]],
+            ..up0
+        };
+        let mut h = f64::INFINITY;
+        for (ankle, side, l) in [
+            (landing, plan.stance.other(), reaches[0]),
+            (stance, plan.stance, reaches[1]),
+        ] {
+            let o = hip_joint(&up, side, body.l0 / 2.0);
+            let horiz2 = (o.x - ankle[0]).powi(2) + (o.z - ankle[2]).powi(2);
+            h = h.min(ankle[1] - o.y + (l * l - horiz2).max(0.0).sqrt());
+        }
+        [c[0], h, c[1]]
+    };
+    if plan.kind != StepType::Forward || plan.angles.strike_stance <= 0.0 {
+        return at(0.5);
     }
-    [mid[0], h, mid[1]]
+    // golden-section search: the lower of a rising and a falling height has one maximum
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut a, mut b) = (0.0, 1.0);
+    for _ in 0..60 {
+        let (p, q) = (b - g * (b - a), a + g * (b - a));
+        if at(p)[1] < at(q)[1] {
+            a = p;
+        } else {
+            b = q;
+        }
+    }
+    at(0.5 * (a + b))
 }
 
 /// §5.3: the centre site's rows from the state's to `end`: the planar path a line with the
@@ -315,7 +343,7 @@ fn centre_path(
     plan: &Plan,
     end: [f64; 3],
     heading: impl Fn(f64) -> f64,
-    stance_pitch: &[f64],
+    stance_pitch: &mut [f64],
     swing: &[[f64; 6]],
 ) -> [Vec<f64>; 3] {
     let n = state.params.table_intervals;
@@ -361,6 +389,8 @@ fn centre_path(
     let body = state.body;
     let foot = Foot::new(&body);
     let stance_foot = *state.foot(plan.stance);
+    let straighten =
+        plan.kind == StepType::Forward && plan.walking.is_some() && plan.upper_end.is_none();
     for i in 0..=n {
         let probe = Upper {
             centre: [x[i], 0.0, z[i]],
@@ -368,13 +398,35 @@ fn centre_path(
             tilt: state.attrs.pelvis_tilt,
             ..Upper::default()
         };
-        let stance_ankle = Planted {
-            pitch: stance_pitch[i],
-            ..stance_foot
-        }
-        .pose(&foot, state.attrs.metatarsal_limit)
-        .ankle;
+        let stance_at = |p: f64| {
+            Planted {
+                pitch: p,
+                ..stance_foot
+            }
+            .pose(&foot, state.attrs.metatarsal_limit)
+            .ankle
+        };
         let swing_ankle = [swing[i][0], swing[i][1], swing[i][2]];
+        // [ours] a forward step's centre rises where eq. 4 would dorsiflex the stance ankle
+        // beyond its bound (docs/nrs.md): the heights are the walking step's, whose stance heel
+        // rises under them; the NRS's stays down, so its leg straightens instead, at most to
+        // the standing knee; where that is not enough (before HSM⁺) its heel rises by the
+        // excess and the hip with it; the swing leg's reach below still limits the height
+        if straighten {
+            let o = hip_joint(&probe, plan.stance, body.l0 / 2.0);
+            let eq4 = y[i];
+            for _ in 0..6 {
+                let ankle = stance_at(stance_pitch[i]);
+                let (h, excess) =
+                    raised_height(state, o, ankle, stance_foot.heading, stance_pitch[i], eq4);
+                y[i] = h;
+                if excess <= 1e-4 || i == n {
+                    break;
+                }
+                stance_pitch[i] += excess;
+            }
+        }
+        let stance_ankle = stance_at(stance_pitch[i]);
         for (ankle, side) in [
             (stance_ankle, plan.stance),
             (swing_ankle, plan.stance.other()),
@@ -431,13 +483,13 @@ fn upper_channels(u: &Upper) -> [f64; 12] {
 pub(crate) fn build(state: &WalkerState, plan: &Plan) -> Result<Segment, NrsError> {
     let n = state.params.table_intervals;
     let body = state.body;
-    let pitches = foot_pitches(state, plan);
+    let mut pitches = foot_pitches(state, plan);
     let heading0 = state.upper.heading;
     let heading1 = heading_end(state, plan);
     let heading = |t: f64| heading0 + plan.heading_clock.at(t) * turn_between(heading0, heading1);
-    let swing = swing_ankle(state, plan, &pitches, heading);
+    let mut swing = swing_ankle(state, plan, &pitches, heading);
     let end = centre_end(state, plan, heading1);
-    let [x, y, z] = centre_path(state, plan, end, heading, &pitches.stance, &swing);
+    let [x, y, z] = centre_path(state, plan, end, heading, &mut pitches.stance, &swing);
     // the upper body: the rules of §5.4, moved to start at the state's and end at `upper_end`
     let gaze0 = state.gaze();
     let rule_at = |t: f64| {
@@ -447,23 +499,22 @@ pub(crate) fn build(state: &WalkerState, plan: &Plan) -> Result<Segment, NrsErro
     let start = upper_channels(&state.upper);
     let (r0, r1) = (rule_at(0.0), rule_at(1.0));
     let end_upper = plan.upper_end.as_ref().map_or(r1, upper_channels);
-    let table = Table::new(n, |i, t| {
-        let w = smoothstep(t);
-        let r = rule_at(t);
-        let mut row = [0.0; K];
-        row[0] = x[i];
-        row[1] = y[i];
-        row[2] = z[i];
-        row[3] = heading(t);
-        for k in 0..12 {
-            row[4 + k] = r[k] + (1.0 - w) * (start[k] - r0[k]) + w * (end_upper[k] - r1[k]);
-        }
-        row[16] = pitches.stance[i];
-        row[17..23].copy_from_slice(&swing[i]);
-        row
-    });
-    let seg = Segment {
-        table,
+    let segment = |swing: &[[f64; 6]]| Segment {
+        table: Table::new(n, |i, t| {
+            let w = smoothstep(t);
+            let r = rule_at(t);
+            let mut row = [0.0; K];
+            row[0] = x[i];
+            row[1] = y[i];
+            row[2] = z[i];
+            row[3] = heading(t);
+            for k in 0..12 {
+                row[4 + k] = r[k] + (1.0 - w) * (start[k] - r0[k]) + w * (end_upper[k] - r1[k]);
+            }
+            row[16] = pitches.stance[i];
+            row[17..23].copy_from_slice(&swing[i]);
+            row
+        }),
         stance: plan.stance,
         stance_foot: *state.foot(plan.stance),
         swing_foot: *state.foot(plan.stance.other()),
@@ -475,8 +526,22 @@ pub(crate) fn build(state: &WalkerState, plan: &Plan) -> Result<Segment, NrsErro
         body,
         theta6_max: state.attrs.metatarsal_limit,
     };
-    for i in 0..=n {
-        let t = i as f64 / n as f64;
+    let seg = segment(&swing);
+    check_reach(&seg, plan, n)?;
+    // the airborne swing foot plantarflexes where its ankle would leave its range (docs/nrs.md)
+    let max = state.params.ankle_dorsiflexion_max;
+    if plantarflex_in_air(&seg, &mut swing, pitches.toe_off, max) {
+        return Ok(segment(&swing));
+    }
+    Ok(seg)
+}
+
+/// Every row of `seg` is reachable by both legs, or the error naming the leg and the instant.
+fn check_reach(seg: &Segment, plan: &Plan, n: usize) -> Result<(), NrsError> {
+    // the rows and the midpoints between them (a rolling foot's ankle moves on an arc, the
+    // table's centre on the chord)
+    for i in 0..=2 * n {
+        let t = i as f64 / (2 * n) as f64;
         if let Err((side, distance)) = seg.pose(t) {
             return Err(NrsError::Goal {
                 position: plan.goal.flat,
@@ -484,13 +549,13 @@ pub(crate) fn build(state: &WalkerState, plan: &Plan) -> Result<Segment, NrsErro
                 reason: GoalReason::Unreachable {
                     leg: side.name(),
                     distance,
-                    length: body.l1,
+                    length: seg.body.l1,
                     t,
                 },
             });
         }
     }
-    Ok(seg)
+    Ok(())
 }
 
 #[cfg(test)]

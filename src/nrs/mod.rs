@@ -10,6 +10,7 @@ pub mod error;
 pub mod handover;
 pub mod parameters;
 pub mod pose;
+pub(crate) mod range;
 pub mod region;
 pub(crate) mod segment;
 pub mod specs;

@@ -30,6 +30,8 @@ pub struct NrsParameters {
     pub strike_stance: f64,
     /// θ_TOM^SW's default for a lateral step.
     pub lateral_toe_off_swing: f64,
+    /// The ankles' largest dorsiflexion in an NRS⁻ (the heel rises or the foot plantarflexes).
+    pub ankle_dorsiflexion_max: f64,
     /// The largest turn of one turnaround (§6).
     pub turn_max: f64,
     /// δ's default (s).
@@ -72,6 +74,7 @@ impl NrsParameters {
             &mut p.strike_swing,
             &mut p.strike_stance,
             &mut p.lateral_toe_off_swing,
+            &mut p.ankle_dorsiflexion_max,
             &mut p.turn_max,
             &mut p.stand_knee,
         ] {

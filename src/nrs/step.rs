@@ -7,14 +7,91 @@ use crate::kinematics::foot::Foot;
 use crate::model::InputError;
 use crate::nrs::build::{Clock, Height, Plan, build};
 use crate::nrs::pose::{Planted, direction};
+use crate::nrs::range::largest_dorsiflexion;
 use crate::nrs::segment::Segment;
 use crate::nrs::specs::{FootAngles, Side, StepSpecs, StepType};
 use crate::nrs::state::WalkerState;
 use crate::nrs::walking::WalkingStep;
 use crate::nrs::{GoalReason, NrsError};
 use crate::plan::GaitRequest;
+use crate::plan::gait::NORMALIZING_CONSTANT;
 
 pub use crate::nrs::region::classify;
+
+/// [ours] The step frequency (steps/min) of the walking step a step of `length` m borrows when
+/// no duration is given: the normalizing formula's, sf = sl / (0.004 k H) (KLAW 1989 eq. 1,
+/// k the attribute `stride_factor`), moved into the engine's ranges — the speed sl · sf / 60
+/// within [velocity_min, velocity_max] and sf within [step_frequency_min, step_frequency_max].
+/// Short steps thus borrow the engine's slowest walk of their length rather than one it refuses
+/// (docs/nrs.md); where the ranges do not meet, the formula's and the engine's error.
+fn walking_frequency(state: &WalkerState, length: f64) -> f64 {
+    let a = &state.attrs;
+    let formula = length / (NORMALIZING_CONSTANT * a.stride_factor * state.body.height);
+    let lo = a.step_frequency_min.max(60.0 * a.velocity_min / length);
+    let hi = a.step_frequency_max.min(60.0 * a.velocity_max / length);
+    if lo <= hi {
+        formula.clamp(lo, hi)
+    } else {
+        formula
+    }
+}
+
+/// [ours] θ_foot's defaults at HSM⁺ for the hind foot (docs/nrs.md): a backward step's swing
+/// foot lands flat, and a forward step's stance foot ends flat, unless its ankle would then
+/// dorsiflex beyond `ankle_dorsiflexion_max` (at the landing; at HSM⁺ for the stance foot);
+/// then the heel is raised (the swing foot lands toe first) by the excess, and again with the
+/// rebuilt step (the pelvis and knee follow the foot), up to 8 times, keeping the best whole
+/// step (its largest dorsiflexion of that foot).
+fn fit_hind_pitch(state: &WalkerState, plan: &mut Plan) -> Result<(), NrsError> {
+    let max = state.params.ankle_dorsiflexion_max;
+    let n = state.params.table_intervals;
+    let backward = plan.kind == StepType::Backward;
+    let hind = if backward {
+        plan.stance.other()
+    } else {
+        plan.stance
+    };
+    let pitch_of = |plan: &Plan| {
+        if backward {
+            plan.angles.strike_swing
+        } else {
+            plan.angles.strike_stance
+        }
+    };
+    let mut best = (f64::INFINITY, pitch_of(plan));
+    for k in 0..8 {
+        let seg = match build(state, plan) {
+            Ok(seg) => seg,
+            Err(e) if k == 0 => return Err(e),
+            Err(_) => break,
+        };
+        let at_end = largest_dorsiflexion(&seg, hind, std::iter::once(1.0));
+        let whole = if backward {
+            at_end
+        } else {
+            largest_dorsiflexion(&seg, hind, (0..=n).map(|i| i as f64 / n as f64))
+        };
+        let pitch = pitch_of(plan);
+        if whole < best.0 {
+            best = (whole, pitch);
+        }
+        if at_end <= max {
+            break;
+        }
+        set_hind_pitch(plan, backward, pitch + (at_end - max));
+    }
+    set_hind_pitch(plan, backward, best.1);
+    Ok(())
+}
+
+fn set_hind_pitch(plan: &mut Plan, backward: bool, pitch: f64) {
+    if backward {
+        plan.angles.strike_swing = pitch;
+        plan.goal.pitch = pitch;
+    } else {
+        plan.angles.strike_stance = pitch;
+    }
+}
 
 /// A non-rhythmic step, precomputed.
 #[derive(Clone, Debug)]
@@ -96,16 +173,20 @@ impl NrsStep {
         let walking = if kind == StepType::Lateral {
             None
         } else {
-            if length < state.attrs.step_length_min {
+            // the engine's shortest step: the attribute is a fraction of the leg length l1
+            let min = (state.attrs.step_length_min * state.body.l1 * 1e4).round() / 1e4;
+            if length < min {
                 return Err(goal_err(GoalReason::TooShort {
                     kind: kind.name(),
                     length,
-                    min: state.attrs.step_length_min,
+                    min,
                 }));
             }
             let request = GaitRequest {
                 step_length: Some(length),
-                step_frequency: duration.map(|t| 60.0 / t),
+                step_frequency: Some(
+                    duration.map_or_else(|| walking_frequency(state, length), |t| 60.0 / t),
+                ),
                 velocity: None,
             };
             let gait = request.complete(&state.body, &state.attrs)?;
@@ -152,6 +233,9 @@ impl NrsStep {
             heading_clock: Clock::WHOLE,
             gaze_clock: Clock::WHOLE,
         };
+        if specs.foot_angles.is_none() && kind != StepType::Lateral {
+            fit_hind_pitch(state, &mut plan)?;
+        }
         // the gaze ends where the pelvis faces unless given
         let probe = build(
             state,
@@ -216,5 +300,63 @@ impl NrsStep {
     /// The walker after the step.
     pub fn end_state(&self) -> &WalkerState {
         &self.end
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::attributes::AttributeTable;
+    use crate::model::body::Body;
+
+    fn standing(height: f64) -> WalkerState {
+        let body = Body::standard(height, 60.0).unwrap();
+        WalkerState::standing(body, AttributeTable::builtin().defaults(), [0.0, 0.0], 0.0)
+    }
+
+    /// Hand computation (1.6 m, k = 1, v_min 0.4 m/s, sf in [50, 182]): a 0.6 m step keeps the
+    /// formula's sf = 0.6 / (0.004 · 1.6) = 93.75 steps/min (0.9375 m/s); a 0.32 m step's
+    /// formula gives 50 steps/min, 0.267 m/s, so it takes the slowest speed's 60 · 0.4 / 0.32 =
+    /// 75 steps/min; a 0.2 m step 120.
+    #[test]
+    fn the_walking_frequency_stays_in_the_engines_ranges() {
+        let s = standing(1.6);
+        assert!((walking_frequency(&s, 0.6) - 93.75).abs() < 1e-9);
+        assert!((walking_frequency(&s, 0.32) - 75.0).abs() < 1e-9);
+        assert!((walking_frequency(&s, 0.2) - 120.0).abs() < 1e-9);
+    }
+
+    /// The shortest forward step is the engine's, step_length_min (0.2) · l1 in metres: just
+    /// below it a typed error naming that length, just above it not that error.
+    #[test]
+    fn the_minimum_step_length_is_in_metres() {
+        let s = standing(1.6);
+        let min = 0.2 * s.body.l1;
+        let start = s.foot(Side::Right).flat;
+        let step = |l: f64| {
+            let specs = StepSpecs {
+                foot_position: [start[0] + l, start[1]],
+                foot_direction: 0.0,
+                side: Side::Right,
+                swing_height_factor: 1.0,
+                gaze_direction: None,
+                foot_angles: None,
+            };
+            NrsStep::initialize(&s, &specs, None)
+        };
+        match step(min - 0.002) {
+            Err(NrsError::Goal {
+                reason: GoalReason::TooShort { min: m, .. },
+                ..
+            }) => assert!((m - min).abs() < 1e-4, "{m} vs {min}"),
+            other => panic!("{other:?}"),
+        }
+        assert!(!matches!(
+            step(min + 0.002),
+            Err(NrsError::Goal {
+                reason: GoalReason::TooShort { .. },
+                ..
+            })
+        ));
     }
 }
