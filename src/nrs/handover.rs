@@ -9,7 +9,6 @@ use crate::engine::walker::Walk;
 use crate::figure::placement::Placement;
 use crate::figure::{Landmarks, LegPoints, landmarks};
 use crate::kinematics::foot::Foot;
-use crate::kinematics::pelvis::Side as EngineSide;
 use crate::nrs::NrsError;
 use crate::nrs::build::{Clock, Height, Plan};
 use crate::nrs::pose::{Planted, Upper, grounded_ankle, right_of};
@@ -59,13 +58,6 @@ pub fn upper_of(lm: &Landmarks) -> Upper {
     }
 }
 
-fn side(s: EngineSide) -> Side {
-    match s {
-        EngineSide::Right => Side::Right,
-        EngineSide::Left => Side::Left,
-    }
-}
-
 /// The walk's figure at `t` of `step`, placed.
 fn figure(walk: &Walk, step: &Step, t: f64, at: &Placement) -> Result<Landmarks, NrsError> {
     Ok(at.apply(&landmarks(step, t, &walk.attrs)?))
@@ -111,7 +103,7 @@ fn state_at(
 /// other foot from `state` into that heel strike. `state` stands with its feet flat.
 pub fn start(state: &WalkerState, walk: &Walk) -> Result<(NrsStep, Placement), NrsError> {
     let first = &walk.steps[0];
-    let front = side(first.side);
+    let front = first.side;
     let hind = front.other();
     let own = landmarks(first, first.t_start, &walk.attrs)?;
     let foot = Foot::new(&walk.body);
@@ -180,7 +172,7 @@ pub fn walk_end(
 pub fn stop(state: &WalkerState, walk: &Walk, heading: f64) -> Result<NrsStep, NrsError> {
     let last = walk.steps.last().expect("a walk has a step");
     // the foot that strikes at the end is the last step's swing foot
-    let front = side(last.side).other();
+    let front = last.side.other();
     let hind = front.other();
     let f = state.foot(front);
     let r = right_of(heading);
