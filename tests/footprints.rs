@@ -2,7 +2,9 @@
 //! PNG and SVG; one scale on both axes; an unknown extension a typed error that writes nothing,
 //! and on the command line exit 2 with nothing written.
 use std::path::{Path, PathBuf};
-use std::process::Command;
+mod common;
+
+use common::klaw_status as klaw;
 
 use klaw::Error;
 use klaw::model::InputError;
@@ -12,9 +14,7 @@ use klaw::plot::footprints::{self, HEIGHT_RANGE_PX, WIDTH_PX};
 use klaw::scenario::{Motion, read_scenario, run};
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("klaw-footprints-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::scratch("footprints", name)
 }
 
 fn example(name: &str) -> PathBuf {
@@ -140,17 +140,6 @@ fn an_unknown_extension_is_a_typed_error_and_writes_nothing() {
     }
     assert_eq!(std::fs::read_dir(&d).unwrap().count(), 0, "nothing written");
     std::fs::remove_dir_all(&d).unwrap();
-}
-
-fn klaw(args: &[&str]) -> (i32, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_klaw"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
 }
 
 #[test]

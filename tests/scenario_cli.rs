@@ -1,23 +1,12 @@
 //! `klaw scenario`: a good file writes its frames; a bad one exits 2 naming the action and the
 //! field, and writes nothing.
 use std::path::PathBuf;
-use std::process::Command;
+mod common;
+
+use common::klaw_status as klaw;
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("klaw-scenario-cli-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn klaw(args: &[&str]) -> (i32, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_klaw"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    common::scratch("scenario-cli", name)
 }
 
 #[test]

@@ -103,3 +103,22 @@ pub fn files(dir: &std::path::Path) -> Vec<(String, u64)> {
     v.sort();
     v
 }
+
+/// Run the `klaw` binary with `args`: its exit status and its stderr.
+pub fn klaw_status(args: &[&str]) -> (i32, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_klaw"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// A new scratch directory for the test `name` of the file `file`.
+pub fn scratch(file: &str, name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("klaw-{file}-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
