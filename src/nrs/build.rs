@@ -337,12 +337,12 @@ fn centre_end(state: &WalkerState, plan: &Plan, heading: f64) -> [f64; 3] {
 /// §5.3: the centre site's rows from the state's to `end`: the planar path a line with the
 /// time law of the walking step's hip (reversed for a backward step), the height by eq. 4 /
 /// eq. 5, the pendulum or monotone, the ends' velocities set by Hermite terms, and every row
-/// lowered where a leg would have to stretch (pelvis heading `heading(t)`).
+/// lowered where a leg would have to stretch (the pelvis's heading, tilt and list at t).
 fn centre_path(
     state: &WalkerState,
     plan: &Plan,
     end: [f64; 3],
-    heading: impl Fn(f64) -> f64,
+    (heading, tilt_list): (impl Fn(f64) -> f64, impl Fn(f64) -> (f64, f64)),
     stance_pitch: &mut [f64],
     swing: &[[f64; 6]],
 ) -> [Vec<f64>; 3] {
@@ -392,10 +392,12 @@ fn centre_path(
     let straighten =
         plan.kind == StepType::Forward && plan.walking.is_some() && plan.upper_end.is_none();
     for i in 0..=n {
+        let (tilt, list) = tilt_list(t[i]);
         let probe = Upper {
             centre: [x[i], 0.0, z[i]],
             heading: heading(t[i]),
-            tilt: state.attrs.pelvis_tilt,
+            tilt,
+            list,
             ..Upper::default()
         };
         let stance_at = |p: f64| {
@@ -489,7 +491,6 @@ pub(crate) fn build(state: &WalkerState, plan: &Plan) -> Result<Segment, NrsErro
     let heading = |t: f64| heading0 + plan.heading_clock.at(t) * turn_between(heading0, heading1);
     let mut swing = swing_ankle(state, plan, &pitches, heading);
     let end = centre_end(state, plan, heading1);
-    let [x, y, z] = centre_path(state, plan, end, heading, &mut pitches.stance, &swing);
     // the upper body: the rules of §5.4, moved to start at the state's and end at `upper_end`
     let gaze0 = state.gaze();
     let rule_at = |t: f64| {
@@ -499,18 +500,24 @@ pub(crate) fn build(state: &WalkerState, plan: &Plan) -> Result<Segment, NrsErro
     let start = upper_channels(&state.upper);
     let (r0, r1) = (rule_at(0.0), rule_at(1.0));
     let end_upper = plan.upper_end.as_ref().map_or(r1, upper_channels);
+    let upper_at = |t: f64| -> [f64; 12] {
+        let (w, r) = (smoothstep(t), rule_at(t));
+        std::array::from_fn(|k| r[k] + (1.0 - w) * (start[k] - r0[k]) + w * (end_upper[k] - r1[k]))
+    };
+    let tilt_list = |t: f64| {
+        let u = upper_at(t);
+        (u[0], u[1])
+    };
+    let pitch = &mut pitches.stance;
+    let [x, y, z] = centre_path(state, plan, end, (heading, tilt_list), pitch, &swing);
     let segment = |swing: &[[f64; 6]]| Segment {
         table: Table::new(n, |i, t| {
-            let w = smoothstep(t);
-            let r = rule_at(t);
             let mut row = [0.0; K];
             row[0] = x[i];
             row[1] = y[i];
             row[2] = z[i];
             row[3] = heading(t);
-            for k in 0..12 {
-                row[4 + k] = r[k] + (1.0 - w) * (start[k] - r0[k]) + w * (end_upper[k] - r1[k]);
-            }
+            row[4..16].copy_from_slice(&upper_at(t));
             row[16] = pitches.stance[i];
             row[17..23].copy_from_slice(&swing[i]);
             row

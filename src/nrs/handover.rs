@@ -145,22 +145,21 @@ pub fn start(state: &WalkerState, walk: &Walk) -> Result<(NrsStep, Placement), N
     Ok((NrsStep::from_plan(state, &plan)?, at))
 }
 
-/// The walker at the walk's last heel strike (time `t0` + the walk's duration), placed by `at`,
-/// with the hip velocity just after that heel strike: that of `next`, the step the engine
-/// would take after the walk's last (the engine's hip velocity jumps at every heel strike, and
-/// the stop goes on as the walk would).
+/// The walker `tau` after the walk's last heel strike (time `t0` + the walk's duration + `tau`),
+/// placed by `at`: the pose and hip velocity of `next`, the step the engine takes after the
+/// walk's last, `tau` into it (the engine's hip velocity jumps at the heel strike; from `tau` on
+/// its motion is smooth, and the stop goes on from it without a jump).
 pub fn walk_end(
     base: &WalkerState,
     walk: &Walk,
     next: &Step,
     at: &Placement,
-    t0: f64,
+    (t0, tau): (f64, f64),
 ) -> Result<WalkerState, NrsError> {
-    let last = walk.steps.last().expect("a walk has a step");
-    let t = walk.duration();
-    let mut lm = figure(walk, last, t, at)?;
+    let t = next.t_start + tau;
+    let mut lm = figure(walk, next, t, at)?;
     lm.time = t0 + t;
-    let v = velocity(walk, next, next.t_start, 1.0, at)?;
+    let v = velocity(walk, next, t, -1.0, at)?;
     let mut s = state_at(base, walk, &lm, at, v)?;
     s.step = base.step + walk.steps.len();
     Ok(s)

@@ -40,6 +40,8 @@ pub struct NrsParameters {
     pub turn_lift_off: f64,
     /// When the swing foot of a start from standing leaves the floor (normalized time).
     pub start_toe_off: f64,
+    /// How long the walk runs past its last heel strike before the stop takes over (s).
+    pub stop_handover: f64,
     /// The neck's share of the gaze twist (§5.4).
     pub neck_share: f64,
     /// The knees' flexion in quiet standing.

@@ -134,7 +134,8 @@ impl Runner<'_> {
         let (first, at) = start(&self.state, &walk)?;
         self.step(first, action, "start", walk.steps[0].side);
         let t0 = self.state.time;
-        let end = walk_end(&self.state, &walk, &next, &at, t0)?;
+        let tau = self.state.params.stop_handover;
+        let end = walk_end(&self.state, &walk, &next, &at, (t0, tau))?;
         let closing = stop(&end, &walk, at.heading)?;
         // every later heel strike of the walk places the striking foot
         let foot = Foot::new(&s.body);
@@ -156,6 +157,8 @@ impl Runner<'_> {
         let last = walk.steps.last().expect("a walk has a step").side;
         let step = self.state.step;
         let d = walk.duration();
+        // the walk runs `tau` into the next step, where the stop takes over
+        walk.steps.push(next);
         self.push(
             Piece::Walk {
                 walk: Box::new(walk),
@@ -165,12 +168,11 @@ impl Runner<'_> {
             },
             action,
             "walk",
-            d,
+            d + tau,
         );
         self.state = end;
         let striking = last.other();
-        let t = self.state.time;
-        self.footprint(striking, action, t);
+        self.footprint(striking, action, t0 + d);
         self.step(closing, action, "stop", last);
         Ok(())
     }
