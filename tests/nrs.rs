@@ -296,3 +296,30 @@ fn a_forward_step_borrows_the_walking_steps_hip_height() {
         "y − h is not a cubic: fourth difference {worst}"
     );
 }
+
+/// Steps shorter than the engine can walk from a start (its start-up step drops the hip below
+/// its heel-strike height for a 0.3 m walk of a 1.8 m figure) borrow a longer walking step at
+/// the same cadence, its hip excursion scaled down (docs/nrs.md): they run, land on their goal
+/// and keep every per-frame bound; below the engine's minimum step length they stay an error.
+#[test]
+fn short_steps_borrow_a_longer_walking_step() {
+    let s = standing();
+    let y = s.feet[0].flat[1];
+    for (goal, kind) in [
+        ([0.3, y], StepType::Forward),
+        ([0.22, y], StepType::Forward),
+        ([-0.3, y], StepType::Backward),
+    ] {
+        let step = NrsStep::initialize(&s, &specs(Side::Right, goal, 0.0), None)
+            .unwrap_or_else(|e| panic!("{goal:?}: {e}"));
+        assert_eq!(step.kind(), kind);
+        let frames = check_frames(&step, Side::Left, &s.body);
+        let ankle = frames.last().unwrap().right.ankle;
+        assert!(
+            dist(ankle, [goal[0], s.body.l9, goal[1]]) < 1e-9,
+            "{goal:?}: {ankle:?}"
+        );
+    }
+    let min = s.attrs.step_length_min * s.body.l1;
+    assert!(NrsStep::initialize(&s, &specs(Side::Right, [min - 0.01, y], 0.0), None).is_err());
+}

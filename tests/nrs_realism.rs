@@ -1,9 +1,7 @@
 //! Single non-rhythmic steps from quiet standing over a grid of goals (Ko & Badler 1993; issue
-//! 15, "Tests"): forward 0.3H and 0.45H (0.48–0.86 m), backward 0.28H and 0.31H, lateral 0.2 and
-//! 0.45 m, the foot turned −30°…+30°, either leg, two bodies. (Forward steps of 0.3 m are not in
-//! the grid: the walking step they borrow now has a speed inside the engine's range, but the
-//! engine's start-up step of that walk fails, the hip dropping 1.1e-3 m below its heel-strike
-//! height; docs/nrs.md.) At 201 instants of every step: no foot point below the floor, the
+//! 15, "Tests"): forward 0.18H, 0.3H and 0.45H (0.29–0.86 m; the shortest borrow a longer
+//! walking step, which the engine can start: docs/nrs.md), backward 0.28H and 0.31H, lateral 0.2
+//! and 0.45 m, the foot turned −30°…+30°, either leg, two bodies. At 201 instants of every step: no foot point below the floor, the
 //! stance foot's floor contacts do not slide, no leg longer than l3 + l4, the joint angles inside
 //! the normal ranges of motion of AAOS 1965 (`models/rom.toml`; two measured exceptions bounded
 //! in the test); at the end the stepping foot
@@ -169,7 +167,7 @@ fn grid(s: &WalkerState, side: Side, h: f64) -> Vec<(StepType, [f64; 2], f64)> {
     let out = right_of(0.0).map(|v| v * sign);
     let mut goals = Vec::new();
     for turn in [-30f64, 0.0, 30.0].map(f64::to_radians) {
-        for l in [0.3 * h, 0.45 * h] {
+        for l in [0.18 * h, 0.3 * h, 0.45 * h] {
             goals.push((StepType::Forward, [start[0] + l, start[1]], turn));
         }
         for l in [0.28 * h, 0.31 * h] {

@@ -190,7 +190,7 @@ impl NrsStep {
                 velocity: None,
             };
             let gait = request.complete(&state.body, &state.attrs)?;
-            Some(WalkingStep::simulate(
+            Some(WalkingStep::borrowed(
                 state.body,
                 &state.attrs,
                 gait,

@@ -8,6 +8,10 @@ use crate::model::body::Body;
 use crate::nrs::NrsError;
 use crate::plan::Gait;
 
+/// How much longer each try of [`WalkingStep::borrowed`] is (m), and how many tries.
+const BORROW_STEP: f64 = 0.05;
+const BORROW_TRIES: usize = 8;
+
 /// A foot's pitch (heel up +) from its heel and metatarsal joint, in the walk's sagittal plane.
 pub(crate) fn sagittal_pitch(leg: &LegPoints) -> f64 {
     (leg.heel[1] - leg.mtp[1]).atan2(leg.mtp[0] - leg.heel[0])
@@ -108,6 +112,54 @@ impl WalkingStep {
         Ok(Self::from_step(&walk.steps[1], attrs, n)?)
     }
 
+    /// [`Self::simulate`], or where the engine cannot walk `gait` (a short step's start-up step
+    /// fails: docs/nrs.md) [ours] the first of the steps `BORROW_STEP` m, 2 × …, up to
+    /// `BORROW_TRIES` × longer at the same frequency that it can walk, its hip height's
+    /// excursion about the line between its ends scaled by the length ratio ([`Self::shortened`]);
+    /// the engine's error when none works.
+    pub fn borrowed(
+        body: Body,
+        attrs: &Attributes,
+        gait: Gait,
+        n: usize,
+    ) -> Result<Self, NrsError> {
+        let first = match Self::simulate(body, attrs, gait, n) {
+            Ok(w) => return Ok(w),
+            Err(e @ NrsError::Walking { .. }) => e,
+            Err(e) => return Err(e),
+        };
+        for k in 1..=BORROW_TRIES {
+            let request = crate::plan::GaitRequest {
+                step_length: Some(gait.step_length + k as f64 * BORROW_STEP),
+                step_frequency: Some(gait.step_frequency),
+                velocity: None,
+            };
+            let Ok(longer) = request.complete(&body, attrs) else {
+                break;
+            };
+            if let Ok(w) = Self::simulate(body, attrs, longer, n) {
+                return Ok(w.shortened(gait.step_length));
+            }
+        }
+        Err(first)
+    }
+
+    /// This step as the hip heights of a step of `length`: the height's excursion about the
+    /// straight line between its two ends scaled by `length / self.length` (a shorter step
+    /// vaults less over its stance leg); the time law, the feet's pitches and the phase moments
+    /// kept.
+    pub fn shortened(mut self, length: f64) -> Self {
+        let ratio = length / self.length;
+        let n = self.height.len() - 1;
+        let (a, b) = (self.height[0], self.height[n]);
+        for (i, h) in self.height.iter_mut().enumerate() {
+            let line = a + (b - a) * i as f64 / n as f64;
+            *h = line + ratio * (*h - line);
+        }
+        self.length = length;
+        self
+    }
+
     /// The swing foot's pitch at TOM.
     pub fn toe_off_pitch(&self) -> f64 {
         at_fraction(&self.swing_pitch, self.toe_off)
@@ -174,5 +226,29 @@ mod tests {
                 .all(|r| *r <= body.l1 + 1e-9 && *r > 0.8 * body.l1)
         );
         assert!((w.duration - 60.0 / gait.step_frequency).abs() < 1e-12);
+    }
+
+    /// A shortened step keeps its end heights and its time law, and its height's excursion about
+    /// the line between the ends is the original's times the length ratio, at every sample.
+    #[test]
+    fn a_shortened_step_scales_its_hip_excursion() {
+        let body = Body::standard(1.8, 80.0).unwrap();
+        let attrs = crate::model::attributes::AttributeTable::builtin().defaults();
+        let gait = GaitRequest {
+            velocity: Some(1.0),
+            ..Default::default()
+        }
+        .complete(&body, &attrs)
+        .unwrap();
+        let w = WalkingStep::simulate(body, &attrs, gait, 64).unwrap();
+        let s = w.clone().shortened(0.5 * w.length);
+        let (a, b) = (w.height[0], w.height[64]);
+        assert_eq!((s.height[0], s.height[64]), (a, b));
+        for i in 0..=64 {
+            let line = a + (b - a) * i as f64 / 64.0;
+            assert!(((s.height[i] - line) - 0.5 * (w.height[i] - line)).abs() < 1e-15);
+        }
+        assert_eq!(s.travel, w.travel);
+        assert!((s.length - 0.5 * w.length).abs() < 1e-15);
     }
 }
