@@ -113,7 +113,7 @@ impl WalkingStep {
     }
 
     /// [`Self::simulate`], or where the engine cannot walk `gait` (a short step's start-up step
-    /// fails: docs/nrs.md) [ours] the first of the steps `BORROW_STEP` m, 2 × …, up to
+    /// fails: docs/nrs.md) \[ours\] the first of the steps `BORROW_STEP` m, 2 × …, up to
     /// `BORROW_TRIES` × longer at the same frequency that it can walk, its hip height's
     /// excursion about the line between its ends scaled by the length ratio ([`Self::shortened`]);
     /// the engine's error when none works.
