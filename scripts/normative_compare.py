@@ -139,6 +139,8 @@ def read_cycle(path):
                 cols[h].append(float(v))
         except ValueError as e:
             raise InputError(f"{path} line {n}: {e}") from e
+        if not all(math.isfinite(cols[h][-1]) for h in header):
+            raise InputError(f"{path} line {n}: a value is not finite")
     if cols["cycle_pct"] != [float(p) for p in range(101)]:
         raise InputError(f"{path}: cycle_pct must be 0, 1, ..., 100 (101 rows), "
                          f"got {len(body)} rows")

