@@ -6,11 +6,11 @@
 //! - knee peak swing flexion 63–67° (norm 55–65°): the swing1 knee damper (the shank pendulum
 //!   damped at ζ) brakes the knee's flexion from toe-off; at 1.35–1.5 m/s the knee, handed over
 //!   at toe-off flexing faster, still ends 0.2–2° over;
-//! - ankle peak stance dorsiflexion 20.5–23.4° (norm 8–15°) and a weak push-off plantarflexion
-//!   (−8.7…−9.0°, norm −15…−25°): the stance hip follows the virtual leg's reference from
-//!   mid-stance (knee held near straight, heel rising about the metatarsal joint, spec §7), but
-//!   the plan's heel-strike height leaves the trailing ankle at ≥ 17–19° for any human knee
-//!   ([`the_plan_heel_strike_leaves_the_trailing_ankle_above_its_norm`], docs/realism.md).
+//! - ankle peak stance dorsiflexion 17.7–19.8° (norm 8–15°): the plan's heel strike with the
+//!   hip's lead admits 11–13° with a human knee
+//!   ([`the_hip_lead_brings_the_trailing_ankle_into_its_norm`], docs/realism.md), but the
+//!   figure's trailing knee flexes to 16–19° by 50 % of the cycle; push-off plantarflexion
+//!   −14.4° at 1.2 m/s for H 1.85 (norm −15…−25°).
 mod common;
 
 use common::{body_of_height, default_attributes, gait};
@@ -122,26 +122,22 @@ fn default_walks_against_the_published_ranges() {
             within("knee swing peak at %", ksw_at as f64, 68.0, 77.0, &at);
             // deviation: 63° at 1.2 m/s, up to 67° at 1.5 m/s (norm 55–65°, for free walking)
             within("knee swing peak (partly a deviation)", ksw, 55.0, 68.0, &at);
-            // ankle: −5…+3° at heel strike; stance dorsiflexion peak (deviation, with its
-            // geometric floor in the test below)
+            // ankle: −5…+3° at heel strike; deviation: the stance dorsiflexion peak, 17.7–19.8°
+            // (norm 8–15°), although the plan now admits 11–13° at the other leg's heel strike
+            // (the test below): the knee flexes to 16–19° by 50 % instead of 5–10°
             within("ankle at HS", ankle[0], -5.0, 3.0, &at);
             let (dmax, _) = peak(&ankle, 10..60, true);
             within(
                 "ankle stance dorsiflexion peak (deviation)",
                 dmax,
                 16.0,
-                24.0,
+                21.0,
                 &at,
             );
-            // deviation: the push-off plantarflexion around toe-off (norm −15…−25° at 60–65 %)
+            // the push-off plantarflexion around toe-off: norm −15…−25° at 60–65 %; deviation:
+            // −14.4° at 1.2 m/s for H 1.85
             let (pmin, _) = peak(&ankle, 55..75, false);
-            within(
-                "ankle plantarflexion at push-off (deviation)",
-                pmin,
-                -11.0,
-                -6.0,
-                &at,
-            );
+            within("ankle plantarflexion at push-off", pmin, -25.0, -14.0, &at);
             // pelvis: list ±4–5°, rotation ±3–5°, vertical excursion 4–5 cm (± 1 cm)
             let list = c.col("pelvis_list");
             let rot = c.col("pelvis_rotation");
@@ -159,18 +155,67 @@ fn default_walks_against_the_published_ranges() {
     }
 }
 
-/// The geometric cause of the ankle deviation (spec §7: "document the deviation and its
-/// geometric cause ... in the test"), from the plan and the body alone, no simulation: at the
-/// other leg's heel strike the trailing hip joint is where the plan puts it (y_hs, sl/2 ahead
-/// of the trailing ankle less the pelvic rotation's (l0/2) sin A, lateral offset dz), and the
-/// trailing foot pivots about its metatarsal joint M. For every knee flexion from 5 to 30° (a
-/// human knee at 50 % of the cycle: ≈ 5° in terminal stance, folding towards toe-off) the foot
-/// pitch that closes the chain, found here by bisection on |J − A(p)| = a(κ), leaves the ankle
-/// dorsiflexed by more than the norm's 15° (a straight knee would need ≈ 15°): no stance
-/// reference that meets the plan's heel-strike height brings the late-stance ankle peak well
-/// into 8–15°.
+/// The trailing ankle at the other leg's heel strike, from the plan and the body alone, no
+/// simulation: the trailing hip joint is where the plan puts it (y_hs, φ sl ahead of the
+/// trailing ankle less the pelvic rotation's (l0/2) sin A, lateral offset dz), and the trailing
+/// foot pivots about its metatarsal joint M. For a knee flexion κ the foot pitch that closes the
+/// chain, found by bisection on |J − A(p)| = a(κ), gives the ankle's dorsiflexion: the least
+/// and the largest over `knees` (degrees).
+fn trailing_ankle(
+    body: &Body,
+    attrs: &Attributes,
+    g: Gait,
+    knees: std::ops::RangeInclusive<u32>,
+) -> (f64, f64) {
+    let c = klaw::StepConstraints::new(body, attrs, g).unwrap();
+    let (l3, l4, l9) = (body.l3, body.l4, body.l9);
+    let mx = body.ankle_to_metatarsal_horizontal();
+    // the trailing hip joint relative to the flat foot's ankle base (ankle at (0, l9))
+    let hip = [c.hip[0] - c.hip_shift, c.hip[1]];
+    let dz = c.lateral_offset;
+    // ankle with the foot pitched by p about M = (mx, 0), heel up
+    let ankle = |p: f64| {
+        let (s, co) = p.sin_cos();
+        [mx - mx * co + l9 * s, mx * s + l9 * co]
+    };
+    let in_plane = |p: f64| {
+        let a = ankle(p);
+        (hip[0] - a[0], (hip[1] - a[1]).hypot(dz))
+    };
+    let (mut least, mut most) = (f64::INFINITY, f64::NEG_INFINITY);
+    for k in knees {
+        let knee = (k as f64).to_radians();
+        let reach = (l3 * l3 + l4 * l4 + 2.0 * l3 * l4 * knee.cos()).sqrt();
+        let dist = |p: f64| {
+            let (dx, dy) = in_plane(p);
+            dx.hypot(dy)
+        };
+        // the distance falls as the heel rises (the ankle turns up towards the hip)
+        assert!(dist(0.0) > reach && dist(1.2) < reach, "knee {k}°");
+        let (mut lo, mut hi) = (0.0, 1.2);
+        for _ in 0..60 {
+            let m = 0.5 * (lo + hi);
+            if dist(m) > reach { lo = m } else { hi = m }
+        }
+        let p = 0.5 * (lo + hi);
+        let (dx, dy) = in_plane(p);
+        // the shank leads the ankle–hip line by the triangle's angle at the ankle
+        let lead = ((l4 * l4 + reach * reach - l3 * l3) / (2.0 * l4 * reach)).acos();
+        let dorsiflexion = (dx.atan2(dy) + lead - p).to_degrees();
+        least = least.min(dorsiflexion);
+        most = most.max(dorsiflexion);
+    }
+    (least, most)
+}
+
+/// The geometric cause of the old ankle deviation, and its cure (docs/realism.md): with the
+/// hip midway between the ankles at heel strike (the paper's step symmetry, `hip_lead_slope`
+/// 0) the chain closes only with the trailing ankle dorsiflexed by more than the norm's 15°
+/// for every human knee of 5–30°; with the hip's lead φ (fitted to Schwartz et al. 2008 by
+/// scripts/terminal_stance.py, which measured 5–14° in the children at 50 %) a knee of
+/// 5–10° closes it with the ankle inside the stance dorsiflexion norm of 8–15°.
 #[test]
-fn the_plan_heel_strike_leaves_the_trailing_ankle_above_its_norm() {
+fn the_hip_lead_brings_the_trailing_ankle_into_its_norm() {
     for (v, h) in [
         (1.2, 1.75),
         (1.2, 1.85),
@@ -180,49 +225,16 @@ fn the_plan_heel_strike_leaves_the_trailing_ankle_above_its_norm() {
         (1.5, 1.85),
     ] {
         let (body, attrs, g) = default_gait(v, h);
-        let c = klaw::StepConstraints::new(&body, &attrs, g).unwrap();
-        let (l3, l4, l9) = (body.l3, body.l4, body.l9);
-        let mx = body.ankle_to_metatarsal_horizontal();
-        // the trailing hip joint relative to the flat foot's ankle base (ankle at (0, l9))
-        let hip = [c.hip[0] - c.hip_shift, c.hip[1]];
-        let dz = c.lateral_offset;
-        // ankle with the foot pitched by p about M = (mx, 0), heel up
-        let ankle = |p: f64| {
-            let (s, co) = p.sin_cos();
-            [mx - mx * co + l9 * s, mx * s + l9 * co]
+        let midway = Attributes {
+            hip_lead_slope: 0.0,
+            ..attrs.clone()
         };
-        let in_plane = |p: f64| {
-            let a = ankle(p);
-            let dx = hip[0] - a[0];
-            let dy = (hip[1] - a[1]).hypot(dz);
-            (dx, dy)
-        };
-        let mut least = f64::INFINITY;
-        for k in 5..=30 {
-            let knee = (k as f64).to_radians();
-            let reach = (l3 * l3 + l4 * l4 + 2.0 * l3 * l4 * knee.cos()).sqrt();
-            let dist = |p: f64| {
-                let (dx, dy) = in_plane(p);
-                dx.hypot(dy)
-            };
-            // the distance falls as the heel rises (the ankle turns up towards the hip)
-            assert!(
-                dist(0.0) > reach && dist(1.2) < reach,
-                "v {v} H {h} knee {k}°"
-            );
-            let (mut lo, mut hi) = (0.0, 1.2);
-            for _ in 0..60 {
-                let m = 0.5 * (lo + hi);
-                if dist(m) > reach { lo = m } else { hi = m }
-            }
-            let p = 0.5 * (lo + hi);
-            let (dx, dy) = in_plane(p);
-            // the shank leads the ankle–hip line by the triangle's angle at the ankle
-            let lead = ((l4 * l4 + reach * reach - l3 * l3) / (2.0 * l4 * reach)).acos();
-            let dorsiflexion = (dx.atan2(dy) + lead - p).to_degrees();
-            least = least.min(dorsiflexion);
-        }
-        assert!(least > 15.0, "v {v} H {h}: {least:.1}°");
-        println!("v {v} H {h}: trailing ankle at heel strike ≥ {least:.1}° for knees 5–30°");
+        let (least, _) = trailing_ankle(&body, &midway, g, 5..=30);
+        assert!(least > 15.0, "v {v} H {h}: midway {least:.1}°");
+        let (lo, hi) = trailing_ankle(&body, &attrs, g, 5..=10);
+        println!(
+            "v {v} H {h}: trailing ankle ≥ {least:.1}° midway; {lo:.1}–{hi:.1}° with the hip's lead"
+        );
+        assert!(lo >= 8.0 && hi <= 15.0, "v {v} H {h}: {lo:.1}–{hi:.1}°");
     }
 }

@@ -213,6 +213,13 @@ attribute_struct! {
     heel_strike_ankle,
     /// κ_hs: knee flexion at heel strike (rad).
     heel_strike_knee,
+    /// k_φ: the hip's lead at heel strike grows by k_φ per unit of sl/H (see
+    /// [`StepConstraints::new`](crate::plan::StepConstraints::new)).
+    hip_lead_slope,
+    /// s_φ: the sl/H at which the hip is midway between the ankles at heel strike.
+    hip_lead_neutral,
+    /// φ_max: the largest hip lead at heel strike.
+    hip_lead_max,
     /// ε: hip excursion as a fraction of the step's height budget.
     bounciness,
     /// θ2_ref: forward lean of the upper body (rad).

@@ -22,11 +22,15 @@ pub struct StepConstraints {
     pub theta1: f64,
     /// w*: telescopic leg length at the end of the step (m).
     pub w: f64,
+    /// The next step's stance leg at this heel strike: its angle θ1 (rad, negative: the hip
+    /// behind its ankle) and its telescopic length w, from the landing foot's flat-foot ankle
+    /// (sl, l9) to the hip. The next step starts here.
+    pub lead: (f64, f64),
     /// θ3*: swing thigh angle at heel strike (rad, negative: knee ahead of the hip).
     pub theta3: f64,
     /// θ4* = κ_hs: swing knee flexion at heel strike (rad).
     pub theta4: f64,
-    /// Hip at heel strike: (sl/2, y_hs).
+    /// Hip at heel strike: (φ sl, y_hs).
     pub hip: [f64; 2],
     /// Heel of the striking foot at impact: (sl − l8, 0).
     pub heel_x: f64,
@@ -50,8 +54,12 @@ pub struct StepConstraints {
 }
 
 impl StepConstraints {
-    /// Step symmetry, spec §3 steps 1–4: at heel strike the hip is midway between the stance
-    /// ankle (0, l9) and the flat-foot position of the swing ankle (sl, l9); the swing leg
+    /// The heel-strike posture, spec §3 steps 1–4 with the hip's lead \[ours\]: at heel strike
+    /// the hip is φ sl ahead of the stance ankle (0, l9), φ = min(1/2 + k_φ (sl/H − s_φ), φ_max)
+    /// (the attributes `hip_lead_slope`, `hip_lead_neutral`, `hip_lead_max`; φ = 1/2 is the paper's step symmetry,
+    /// eq. 3, the hip midway to the flat-foot position (sl, l9) of the swing ankle). Real gait
+    /// puts the hip further ahead the longer the step, the trailing heel raised about its
+    /// metatarsal joint (docs/realism.md). The swing leg
     /// (hip–ankle distance a1 for knee flexion κ_hs) reaches the heel at (sl − l8, 0) with ankle
     /// dorsiflexion δ_hs. Cosine law: r² = a1² + l11² + 2 a1 l11 cos(ω8 − δ_hs + α), cos ω8 = l9/l11,
     /// where α = κ − β is the angle between shank and hip–ankle line (0 for a straight knee, the
@@ -78,7 +86,9 @@ impl StepConstraints {
             a1 * a1 + body.l11 * body.l11 + 2.0 * a1 * body.l11 * (omega8 - delta + alpha).cos();
         let r = r2.sqrt();
         let heel_x = sl - body.l8;
-        let x_h = sl / 2.0;
+        let phi = (0.5 + attrs.hip_lead_slope * (sl / body.height - attrs.hip_lead_neutral))
+            .min(attrs.hip_lead_max);
+        let x_h = phi * sl;
         let half = 0.5 * body.l0;
         let hip_shift = half * attrs.pelvic_rotation.sin();
         let lateral_offset = half * attrs.pelvic_rotation.cos() - 0.5 * attrs.step_width;
@@ -94,6 +104,8 @@ impl StepConstraints {
         let y_h = y_plane - crate::kinematics::pelvis::fold_height(fold_length, lateral_offset);
         let w = ((y_h - body.l9).powi(2) + x_h * x_h).sqrt();
         let theta1 = (x_h / w).asin();
+        let w_lead = ((y_h - body.l9).powi(2) + (sl - x_h).powi(2)).sqrt();
+        let lead = (-((sl - x_h) / w_lead).asin(), w_lead);
         let theta3 = line - beta;
         let shank = theta3 + kappa;
         let height_budget = body.l1 + body.l9 - y_h;
@@ -103,6 +115,7 @@ impl StepConstraints {
             timing,
             theta1,
             w,
+            lead,
             theta3,
             theta4: kappa,
             hip: [x_h, y_h],
@@ -132,6 +145,7 @@ mod tests {
             heel_strike_ankle: delta_deg.to_radians(),
             pelvic_rotation: 0.0,
             step_width: body.l0,
+            hip_lead_slope: 0.0,
             ..Default::default()
         };
         (body, constraints(&body, &attrs))
@@ -217,7 +231,49 @@ mod tests {
             let w = (c.hip[0].powi(2) + (c.hip[1] - b.l9).powi(2)).sqrt();
             assert!((w - c.w).abs() < 1e-12 && (c.theta1 - (c.hip[0] / w).asin()).abs() < 1e-12);
             assert!((c.sole_angle + p).abs() < 1e-12);
+            // the next stance leg runs from the landing foot's flat-foot ankle (heel + l8)
+            let ahead = c.heel_x + b.l8 - c.hip[0];
+            let w = (ahead.powi(2) + (c.hip[1] - b.l9).powi(2)).sqrt();
+            assert!((w - c.lead.1).abs() < 1e-12 && (c.lead.0 + (ahead / w).asin()).abs() < 1e-12);
         }
+    }
+
+    /// The hip's lead φ = 1/2 + k_φ (sl/H − s_φ): at sl/H = s_φ, or with k_φ = 0, the hip is
+    /// midway (the next stance starts from the mirror image, as in the paper); a longer step
+    /// puts it further ahead, so the trailing leg ends longer than the leading one starts.
+    #[test]
+    fn the_hip_leads_by_its_fraction_of_the_step() {
+        let body = Body::standard(1.8, 80.0).unwrap();
+        let sl = 0.7777;
+        let at = |slope: f64, neutral: f64| {
+            let attrs = Attributes {
+                hip_lead_slope: slope,
+                hip_lead_neutral: neutral,
+                ..Default::default()
+            };
+            constraints(&body, &attrs)
+        };
+        let neutral = at(0.0, 0.339).gait.step_length / 1.8;
+        for c in [at(0.0, 0.339), at(0.595, neutral)] {
+            assert!((c.hip[0] - sl / 2.0).abs() < 1e-4, "{c:?}");
+            assert!((c.lead.0 + c.theta1).abs() < 1e-12 && (c.lead.1 - c.w).abs() < 1e-12);
+        }
+        // below the cap φ_max, and held at it
+        let phi = 0.5 + 0.595 * (sl / 1.8 - 0.339);
+        for (max, want) in [(0.6, phi), (0.54, 0.54)] {
+            let c = constraints(
+                &body,
+                &Attributes {
+                    hip_lead_max: max,
+                    ..Default::default()
+                },
+            );
+            assert!((c.hip[0] / c.gait.step_length - want).abs() < 1e-4, "{c:?}");
+        }
+        let c = at(0.595, 0.339);
+        assert!(c.w > c.lead.1 && c.theta1 > -c.lead.0);
+        // the hip stands higher than midway: the leading leg reaches less far ahead
+        assert!(c.hip[1] > at(0.0, 0.339).hip[1] + 0.01);
     }
 
     #[test]

@@ -61,7 +61,7 @@ impl Walker {
             // first step [ours]: the mirrored heel-strike posture, hip moving horizontally at v
             None => (
                 c,
-                Vector3::new(c.w, -c.theta1, self.attrs.trunk_lean),
+                Vector3::new(c.lead.1, c.lead.0, self.attrs.trunk_lean),
                 [plan.gait.velocity, 0.0],
                 0.0,
             ),
@@ -69,7 +69,12 @@ impl Walker {
                 let q_old = Vector3::new(y_end[0], y_end[1], y_end[2]);
                 let qd_old = Vector3::new(y_end[3], y_end[4], y_end[5]);
                 let v = self.stance_model.hip_velocity(&q_old, &qd_old);
-                (*pc, Vector3::new(pc.w, -pc.theta1, y_end[2]), v, y_end[5])
+                (
+                    *pc,
+                    Vector3::new(pc.lead.1, pc.lead.0, y_end[2]),
+                    v,
+                    y_end[5],
+                )
             }
         };
         let qd_minus = impact::rates_about_pivot(&q, hip_v, trunk_rate);
@@ -98,7 +103,7 @@ impl Walker {
             d_2: 2.0 * a.trunk_damping_ratio * j2 * w2,
             theta2_ref: a.trunk_lean,
             t_step: c.timing.t_step,
-            theta1_start: prev.theta1,
+            theta1_start: -prev.lead.0,
             theta1_end: c.theta1,
             w_end: c.w,
             y_start: prev.hip[1],
