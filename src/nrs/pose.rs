@@ -7,6 +7,7 @@ use glam::{DMat3, DVec3};
 use crate::figure::{ArmAngles, Landmarks, LegPoints};
 use crate::kinematics::foot::Foot;
 use crate::model::body::Body;
+use crate::nrs::range::knee_heading;
 use crate::nrs::specs::Side;
 
 /// The floor direction (x, z) of heading ψ.
@@ -150,16 +151,18 @@ pub fn knee(
 }
 
 /// One leg's points for its hip and foot: the foot's heel, metatarsal joint and toe tip in its
-/// sagittal plane, the knee by [`knee`]. Err: the hip–ankle distance beyond the leg's length.
+/// sagittal plane, the knee by [`knee`] bending towards the floor heading `bend` (the foot's
+/// heading, or [`knee_heading`]'s). Err: the hip–ankle distance beyond the leg's length.
 pub fn leg_points(
     hip: DVec3,
     foot_pose: &FootPose,
+    bend: f64,
     foot: &Foot,
     body: &Body,
 ) -> Result<LegPoints, f64> {
     let ankle = DVec3::from_array(foot_pose.ankle);
     let d = direction(foot_pose.heading);
-    let (k, axis) = knee(hip, ankle, d, body.l3, body.l4)?;
+    let (k, axis) = knee(hip, ankle, direction(bend), body.l3, body.l4)?;
     let pts = foot.points([0.0, foot_pose.ankle[1]], foot_pose.pitch, foot_pose.theta6);
     let world = |p: [f64; 2]| [ankle.x + p[0] * d[0], p[1], ankle.z + p[0] * d[1]];
     Ok(LegPoints {
@@ -173,19 +176,22 @@ pub fn leg_points(
     })
 }
 
-/// The figure: the upper body, the right and the left foot, at `time` in step `step`.
+/// The figure: the upper body, the right and the left foot, at `time` in step `step`, each
+/// knee bending towards [`knee_heading`]'s heading for `eversion_max`.
 /// Err((side, distance)): a leg that cannot reach its foot.
 pub fn figure(
     upper: &Upper,
     feet: [&FootPose; 2],
-    body: &Body,
-    foot: &Foot,
+    (body, foot): (&Body, &Foot),
+    eversion_max: f64,
     time: f64,
     step: usize,
 ) -> Result<Landmarks, (Side, f64)> {
     let half = body.l0 / 2.0;
     let leg = |side: Side, f: &FootPose| {
-        leg_points(hip_joint(upper, side, half), f, foot, body).map_err(|d| (side, d))
+        let hip = hip_joint(upper, side, half);
+        let bend = knee_heading(hip, f, foot, side, eversion_max);
+        leg_points(hip, f, bend, foot, body).map_err(|d| (side, d))
     };
     Ok(Landmarks {
         time,
