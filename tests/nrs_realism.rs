@@ -50,8 +50,9 @@ fn leg(lm: &Landmarks, s: Side) -> LegPoints {
 #[derive(Default)]
 struct Seen {
     hip_rotation: f64,
-    /// The largest ankle dorsiflexion, eversion (−inversion) and |ankle rotation| (rad).
-    ankle: [f64; 3],
+    /// The largest ankle dorsiflexion, eversion (−inversion) and |ankle rotation| (rad), and
+    /// where.
+    ankle: [(f64, String); 3],
     /// Frames whose eversion was recomputed from the leg's plane.
     bent: usize,
     /// The largest excursion beyond each range of motion (rad) and where, by joint name.
@@ -118,12 +119,12 @@ fn check_step(
                 }
             }
             seen.hip_rotation = seen.hip_rotation.max(a.hip.rotation.abs());
-            let k = &mut seen.ankle;
-            *k = [
-                k[0].max(a.ankle.flexion),
-                k[1].max(-a.ankle.adduction),
-                k[2].max(a.ankle.rotation.abs()),
-            ];
+            let values = [a.ankle.flexion, -a.ankle.adduction, a.ankle.rotation.abs()];
+            for (k, v) in seen.ankle.iter_mut().zip(values) {
+                if v > k.0 {
+                    *k = (v, format!("{what}: {side} at t {t}"));
+                }
+            }
         }
         for (side, l, inversion) in [
             (Side::Right, lm.right, c.right.ankle.adduction),
@@ -267,17 +268,18 @@ fn single_steps_from_standing_are_realistic() {
             }
         }
     }
-    let d = seen.ankle.map(f64::to_degrees);
     eprintln!(
-        "max |hip axial rotation| {:.2}° over {} frames; ankle: max dorsiflexion {:.2}°, \
-         max eversion {:.2}°, max |rotation| {:.2}°; eversion from the leg's plane in {} legs",
+        "max |hip axial rotation| {:.2}° over {} frames; eversion from the leg's plane in {} legs",
         seen.hip_rotation.to_degrees(),
         seen.frames,
-        d[0],
-        d[1],
-        d[2],
         seen.bent
     );
+    for (name, (v, at)) in ["dorsiflexion", "eversion", "|rotation|"]
+        .iter()
+        .zip(&seen.ankle)
+    {
+        eprintln!("ankle: max {name} {:.2}° ({at})", v.to_degrees());
+    }
     // every range holds (docs/nrs.md, "Ranges of motion")
     for (name, (over, at)) in &seen.worst {
         eprintln!("{name}: {:.3}° beyond ({at})", over.to_degrees());
