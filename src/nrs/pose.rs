@@ -152,7 +152,8 @@ pub fn knee(
 
 /// One leg's points for its hip and foot: the foot's heel, metatarsal joint and toe tip in its
 /// sagittal plane, the knee by [`knee`] bending towards the floor heading `bend` (the foot's
-/// heading, or [`knee_heading`]'s). Err: the hip–ankle distance beyond the leg's length.
+/// heading, or that of `range::knee_heading`, docs/nrs.md). Err: the hip–ankle distance beyond
+/// the leg's length.
 pub fn leg_points(
     hip: DVec3,
     foot_pose: &FootPose,
@@ -177,7 +178,7 @@ pub fn leg_points(
 }
 
 /// The figure: the upper body, the right and the left foot, at `time` in step `step`, each
-/// knee bending towards [`knee_heading`]'s heading for `eversion_max`.
+/// knee bending towards the heading of `range::knee_heading` for `eversion_max`.
 /// Err((side, distance)): a leg that cannot reach its foot.
 pub fn figure(
     upper: &Upper,
