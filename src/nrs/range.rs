@@ -2,16 +2,16 @@
 //! the foot angles θ_foot to the animator; with both feet flat at HSM⁺ and the pelvis above the
 //! ankles' midpoint, the hind ankle of a long step dorsiflexes beyond the normal 20° (AAOS 1965),
 //! and a swing foot held flat in the air below a flexed knee does too (docs/nrs.md). The clinical
-//! ankle dorsiflexion is measured on the posed figure ([`crate::figure::clinical`]). A leg
+//! ankle dorsiflexion is measured on the posed figure ([`crate::figure::clinical`]). (A leg
 //! leaning sideways over a turned foot everts the ankle; its knee then bends towards a heading
-//! turned from the foot's ([`knee_heading`]).
+//! turned from the foot's: [`crate::nrs::pose::knee_heading`].)
 use glam::DVec3;
 
 use crate::figure::clinical::clinical;
 use crate::kinematics::foot::Foot;
 use crate::kinematics::leg::reach;
 use crate::model::body::Body;
-use crate::nrs::pose::{FootPose, direction, knee};
+use crate::nrs::pose::{direction, knee};
 use crate::nrs::segment::Segment;
 use crate::nrs::specs::Side;
 use crate::nrs::state::WalkerState;
@@ -90,81 +90,6 @@ pub(crate) fn toes_for(foot: &Foot, pitch: f64, ankle_y: f64, theta6: f64, theta
     let m = (ankle_y - (foot.h12 * s + foot.l9 * c)).max(0.0);
     let needed = p - (m / foot.l13).min(1.0).asin();
     theta6.max(needed.min(theta6_max))
-}
-
-/// The clinical ankle inversion (rad, eversion −) of a leg from `hip` to the foot `pose` whose
-/// knee bends towards the floor heading `bend`, computed from the geometry: the shank's lateral
-/// axis is the knee axis, the unit u × f of the hip → ankle direction u and the bending
-/// direction f ([`knee`]), whatever the knee's flexion; the foot's frame has x heel → mtp and y
-/// towards the ankle ([`crate::figure::skeleton`]); and in the ZXY decomposition of the foot in
-/// the shank, R = R_z(a) R_x(b) R_y(c), the foot's y in the shank's frame is (−sin a cos b,
-/// cos a cos b, sin b), so sin b = y_foot · z_shank; inversion = ±b (right/left).
-pub(crate) fn ankle_inversion(
-    hip: DVec3,
-    pose: &FootPose,
-    foot: &Foot,
-    bend: f64,
-    side: Side,
-) -> f64 {
-    let u = (DVec3::from_array(pose.ankle) - hip).normalize();
-    let b = direction(bend);
-    let z = u.cross(DVec3::new(b[0], 0.0, b[1])).normalize();
-    let d = direction(pose.heading);
-    let pts = foot.points([0.0, 0.0], pose.pitch, 0.0);
-    let world = |p: [f64; 2]| DVec3::new(p[0] * d[0], p[1], p[0] * d[1]);
-    let (heel, mtp) = (world(pts.heel), world(pts.meta));
-    let x = (mtp - heel).normalize();
-    let up = -heel - (-heel).dot(x) * x;
-    side.sign() * up.normalize().dot(z).clamp(-1.0, 1.0).asin()
-}
-
-/// [ours] The floor heading towards which the knee of the leg from `hip` to the foot `pose`
-/// bends: the foot's heading (the engine's rule: the foot turns with the shank) unless the
-/// ankle would then evert beyond `eversion_max`; then the heading turned by the least angle
-/// (up to 60°) that keeps the eversion at that bound. The leg's lateral lean over a foot turned
-/// out everts the ankle, tan b = (the hip's offset along the foot's lateral axis) / (its height
-/// above the ankle), whatever the knee (docs/nrs.md); turning the knee's plane towards the leg
-/// moves part of the hip's axial rotation into the foot's rotation on the shank. The search:
-/// the side that raises the inversion, 5° steps to bracket the bound, then bisection.
-pub(crate) fn knee_heading(
-    hip: DVec3,
-    pose: &FootPose,
-    foot: &Foot,
-    side: Side,
-    eversion_max: f64,
-) -> f64 {
-    let psi = pose.heading;
-    let inversion = |phi: f64| ankle_inversion(hip, pose, foot, psi + phi, side);
-    if inversion(0.0) >= -eversion_max {
-        return psi;
-    }
-    let sign = if inversion(1e-4) >= inversion(-1e-4) {
-        1.0
-    } else {
-        -1.0
-    };
-    let step = 5f64.to_radians();
-    let (mut lo, mut hi) = (0.0, None);
-    for k in 1..=12 {
-        let phi = k as f64 * step;
-        if inversion(sign * phi) >= -eversion_max {
-            hi = Some(phi);
-            break;
-        }
-        lo = phi;
-    }
-    let Some(mut hi) = hi else {
-        return psi + sign * lo;
-    };
-    for _ in 0..40 {
-        let mid = 0.5 * (lo + hi);
-        if inversion(sign * mid) >= -eversion_max {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    psi + sign * hi
 }
 
 /// The stance ankle's dorsiflexion (rad) in the leg's plane for the hip `hip` and the foot of
@@ -253,118 +178,6 @@ mod tests {
         let body = Body::standard(1.9, 95.0).unwrap();
         let hip = DVec3::new(0.0, 0.9, side.sign() * body.l0 / 2.0);
         (body, Foot::new(&body), hip)
-    }
-
-    /// The figure of one leg (the other standing under its hip) for the eversion bound `max`
-    /// ([`knee_heading`]), and its clinical ankle inversion.
-    fn clinical_inversion(side: Side, pose: &FootPose, max: f64) -> f64 {
-        use crate::nrs::pose::{Upper, figure};
-        let (body, foot, _) = leg(side);
-        let upper = Upper {
-            centre: [0.0, 0.9, 0.0],
-            ..Upper::default()
-        };
-        let other = FootPose {
-            ankle: [0.0, body.l9, -side.sign() * body.l0 / 2.0],
-            heading: 0.0,
-            pitch: 0.0,
-            theta6: 0.0,
-        };
-        let feet = match side {
-            Side::Right => [pose, &other],
-            Side::Left => [&other, pose],
-        };
-        let lm = figure(&upper, feet, (&body, &foot), max, 0.0, 0).unwrap();
-        let c = clinical(&lm, &body).unwrap();
-        match side {
-            Side::Right => c.right.ankle.adduction,
-            Side::Left => c.left.ankle.adduction,
-        }
-    }
-
-    /// The geometric inversion is the clinical one (the skeleton's frames and their Euler
-    /// decomposition) for feet turned in and out, pitched, ahead of and behind the hip, either
-    /// leg; a flat foot under a leg in its vertical plane has none; and tan b = offset / height
-    /// for a flat foot whose hip is offset along the foot's lateral axis.
-    #[test]
-    fn the_ankle_inversion_is_the_clinical_one() {
-        for side in [Side::Right, Side::Left] {
-            let (body, foot, hip) = leg(side);
-            for (x, heading, pitch) in [
-                (0.3, -0.5, 0.0),
-                (-0.35, 0.5, 0.25),
-                (0.2, 0.3, -0.2),
-                (0.0, 0.0, 0.0),
-            ] {
-                let ankle = [x, body.l9 + 0.05, hip.z + 0.03];
-                let pose = FootPose {
-                    ankle,
-                    heading,
-                    pitch,
-                    theta6: 0.0,
-                };
-                let b = ankle_inversion(hip, &pose, &foot, heading, side);
-                // no bound: the knee bends towards the foot's heading
-                let c = clinical_inversion(side, &pose, f64::INFINITY);
-                assert!((b - c).abs() < 1e-9, "{side:?} {x} {heading}: {b} vs {c}");
-            }
-            // the hip straight above the foot's sagittal plane, offset e along its lateral axis
-            let ankle = [0.0, body.l9, hip.z];
-            let pose = FootPose {
-                ankle,
-                heading: 0.4,
-                pitch: 0.0,
-                theta6: 0.0,
-            };
-            let r = crate::nrs::pose::right_of(0.4);
-            let h = hip.y - body.l9;
-            for e in [0.0, 0.1, -0.15] {
-                let o = DVec3::new(ankle[0] + e * r[0], hip.y, ankle[2] + e * r[1]);
-                let b = ankle_inversion(o, &pose, &foot, 0.4, side);
-                // the hip out to the foot's right leans the shank right: right foot everted
-                let expected = -side.sign() * (e / h).atan();
-                assert!(
-                    (b - expected).abs() < 1e-9,
-                    "{side:?} {e}: {b} vs {expected}"
-                );
-            }
-        }
-    }
-
-    /// Within the bound the knee bends towards the foot's heading; beyond it, the heading
-    /// found puts the clinical eversion on the bound, and half that turn would not.
-    #[test]
-    fn the_knee_turns_as_little_as_keeps_the_eversion() {
-        let max = 14f64.to_radians();
-        for side in [Side::Right, Side::Left] {
-            let (body, foot, hip) = leg(side);
-            // a long step's landing foot turned out 30°: the hip behind it leans over it
-            let out = -side.sign() * 30f64.to_radians();
-            let pose = FootPose {
-                ankle: [0.42, body.l9 + 0.04, hip.z],
-                heading: out,
-                pitch: 0.0,
-                theta6: 0.0,
-            };
-            let free = ankle_inversion(hip, &pose, &foot, out, side);
-            assert!(free < -max, "{side:?}: {}°", free.to_degrees());
-            let bend = knee_heading(hip, &pose, &foot, side, max);
-            let b = ankle_inversion(hip, &pose, &foot, bend, side);
-            assert!((b + max).abs() < 1e-9, "{side:?}: {}°", b.to_degrees());
-            let half = ankle_inversion(hip, &pose, &foot, out + 0.5 * (bend - out), side);
-            assert!(half < -max);
-            // the posed figure's clinical eversion is on the bound
-            let c = clinical_inversion(side, &pose, max);
-            assert!((c + max).abs() < 1e-9, "{side:?}: {}°", c.to_degrees());
-            // the knee turns back towards the pelvis's heading (0), less than the foot's out-turn
-            assert!(bend.abs() < out.abs() && bend * out > 0.0, "{bend}");
-            // straight ahead: no turn
-            let ahead = FootPose {
-                heading: 0.0,
-                ..pose
-            };
-            assert_eq!(knee_heading(hip, &ahead, &foot, side, max), 0.0);
-        }
     }
 
     /// The toes turned up by `toes_for` keep the toe tip on or above the floor at the pitch the

@@ -27,7 +27,7 @@ pub(crate) struct Segment {
     pub foot: Foot,
     pub body: crate::model::body::Body,
     pub theta6_max: f64,
-    /// The ankles' largest eversion ([`crate::nrs::range::knee_heading`]).
+    /// The ankles' largest eversion ([`crate::nrs::pose::knee_heading`]).
     pub eversion_max: f64,
 }
 
