@@ -4,6 +4,7 @@
 //! checked for a leg that cannot reach.
 use crate::kinematics::foot::Foot;
 use crate::kinematics::leg::reach;
+use crate::nrs::NrsError;
 use crate::nrs::curves::{
     Table, de_casteljau, interpolate_ends, interpolate_reversed, segment_distance, set_end_slopes,
     swing_rise,
@@ -14,7 +15,6 @@ use crate::nrs::segment::{K, Segment};
 use crate::nrs::specs::{FootAngles, Side, StepType};
 use crate::nrs::state::{WalkerState, hanging_arm};
 use crate::nrs::walking::WalkingStep;
-use crate::nrs::{GoalReason, NrsError};
 use crate::numerics::smooth::smoothstep;
 
 /// How the centre site's height goes over a step.
@@ -532,37 +532,16 @@ pub(crate) fn build(state: &WalkerState, plan: &Plan) -> Result<Segment, NrsErro
         foot: Foot::new(&body),
         body,
         theta6_max: state.attrs.metatarsal_limit,
+        eversion_max: state.params.ankle_eversion_max,
     };
     let seg = segment(&swing);
-    check_reach(&seg, plan, n)?;
+    seg.check_reach(plan.goal.flat, n)?;
     // the airborne swing foot plantarflexes where its ankle would leave its range (docs/nrs.md)
     let max = state.params.ankle_dorsiflexion_max;
     if plantarflex_in_air(&seg, &mut swing, pitches.toe_off, max) {
         return Ok(segment(&swing));
     }
     Ok(seg)
-}
-
-/// Every row of `seg` is reachable by both legs, or the error naming the leg and the instant.
-fn check_reach(seg: &Segment, plan: &Plan, n: usize) -> Result<(), NrsError> {
-    // the rows and the midpoints between them (a rolling foot's ankle moves on an arc, the
-    // table's centre on the chord)
-    for i in 0..=2 * n {
-        let t = i as f64 / (2 * n) as f64;
-        if let Err((side, distance)) = seg.pose(t) {
-            return Err(NrsError::Goal {
-                position: plan.goal.flat,
-                side: plan.stance.other().name(),
-                reason: GoalReason::Unreachable {
-                    leg: side.name(),
-                    distance,
-                    length: seg.body.l1,
-                    t,
-                },
-            });
-        }
-    }
-    Ok(())
 }
 
 #[cfg(test)]

@@ -32,6 +32,8 @@ pub struct NrsParameters {
     pub lateral_toe_off_swing: f64,
     /// The ankles' largest dorsiflexion in an NRS⁻ (the heel rises or the foot plantarflexes).
     pub ankle_dorsiflexion_max: f64,
+    /// The ankles' largest eversion in an NRS (a knee's plane turns from the foot's heading).
+    pub ankle_eversion_max: f64,
     /// The largest turn of one turnaround (§6).
     pub turn_max: f64,
     /// δ's default (s).
@@ -77,6 +79,7 @@ impl NrsParameters {
             &mut p.strike_stance,
             &mut p.lateral_toe_off_swing,
             &mut p.ankle_dorsiflexion_max,
+            &mut p.ankle_eversion_max,
             &mut p.turn_max,
             &mut p.stand_knee,
         ] {

@@ -150,16 +150,19 @@ pub fn knee(
 }
 
 /// One leg's points for its hip and foot: the foot's heel, metatarsal joint and toe tip in its
-/// sagittal plane, the knee by [`knee`]. Err: the hip–ankle distance beyond the leg's length.
+/// sagittal plane, the knee by [`knee`] bending towards the floor heading `bend` (the foot's
+/// heading, or that of `knee_heading`, docs/nrs.md). Err: the hip–ankle distance beyond
+/// the leg's length.
 pub fn leg_points(
     hip: DVec3,
     foot_pose: &FootPose,
+    bend: f64,
     foot: &Foot,
     body: &Body,
 ) -> Result<LegPoints, f64> {
     let ankle = DVec3::from_array(foot_pose.ankle);
     let d = direction(foot_pose.heading);
-    let (k, axis) = knee(hip, ankle, d, body.l3, body.l4)?;
+    let (k, axis) = knee(hip, ankle, direction(bend), body.l3, body.l4)?;
     let pts = foot.points([0.0, foot_pose.ankle[1]], foot_pose.pitch, foot_pose.theta6);
     let world = |p: [f64; 2]| [ankle.x + p[0] * d[0], p[1], ankle.z + p[0] * d[1]];
     Ok(LegPoints {
@@ -173,19 +176,97 @@ pub fn leg_points(
     })
 }
 
-/// The figure: the upper body, the right and the left foot, at `time` in step `step`.
+/// The clinical ankle inversion (rad, eversion −) of a leg from `hip` to the foot `pose` whose
+/// knee bends towards the floor heading `bend`, computed from the geometry: the shank's lateral
+/// axis is the knee axis, the unit u × f of the hip → ankle direction u and the bending
+/// direction f ([`knee`]), whatever the knee's flexion; the foot's frame has x heel → mtp and y
+/// towards the ankle ([`crate::figure::skeleton`]); and in the ZXY decomposition of the foot in
+/// the shank, R = R_z(a) R_x(b) R_y(c), the foot's y in the shank's frame is (−sin a cos b,
+/// cos a cos b, sin b), so sin b = y_foot · z_shank; inversion = ±b (right/left).
+pub(crate) fn ankle_inversion(
+    hip: DVec3,
+    pose: &FootPose,
+    foot: &Foot,
+    bend: f64,
+    side: Side,
+) -> f64 {
+    let u = (DVec3::from_array(pose.ankle) - hip).normalize();
+    let b = direction(bend);
+    let z = u.cross(DVec3::new(b[0], 0.0, b[1])).normalize();
+    let d = direction(pose.heading);
+    let pts = foot.points([0.0, 0.0], pose.pitch, 0.0);
+    let world = |p: [f64; 2]| DVec3::new(p[0] * d[0], p[1], p[0] * d[1]);
+    let (heel, mtp) = (world(pts.heel), world(pts.meta));
+    let x = (mtp - heel).normalize();
+    let up = -heel - (-heel).dot(x) * x;
+    side.sign() * up.normalize().dot(z).clamp(-1.0, 1.0).asin()
+}
+
+/// [ours] The floor heading towards which the knee of the leg from `hip` to the foot `pose`
+/// bends: the foot's heading (the engine's rule: the foot turns with the shank) unless the
+/// ankle would then evert beyond `eversion_max`; then the heading turned by the least angle
+/// (up to 60°) that keeps the eversion at that bound. The leg's lateral lean over a foot turned
+/// out everts the ankle, tan b = (the hip's offset along the foot's lateral axis) / (its height
+/// above the ankle), whatever the knee (docs/nrs.md); turning the knee's plane towards the leg
+/// moves part of the hip's axial rotation into the foot's rotation on the shank. The search:
+/// the side that raises the inversion, 5° steps to bracket the bound, then bisection.
+pub(crate) fn knee_heading(
+    hip: DVec3,
+    pose: &FootPose,
+    foot: &Foot,
+    side: Side,
+    eversion_max: f64,
+) -> f64 {
+    let psi = pose.heading;
+    let inversion = |phi: f64| ankle_inversion(hip, pose, foot, psi + phi, side);
+    if inversion(0.0) >= -eversion_max {
+        return psi;
+    }
+    let sign = if inversion(1e-4) >= inversion(-1e-4) {
+        1.0
+    } else {
+        -1.0
+    };
+    let step = 5f64.to_radians();
+    let (mut lo, mut hi) = (0.0, None);
+    for k in 1..=12 {
+        let phi = k as f64 * step;
+        if inversion(sign * phi) >= -eversion_max {
+            hi = Some(phi);
+            break;
+        }
+        lo = phi;
+    }
+    let Some(mut hi) = hi else {
+        return psi + sign * lo;
+    };
+    for _ in 0..40 {
+        let mid = 0.5 * (lo + hi);
+        if inversion(sign * mid) >= -eversion_max {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    psi + sign * hi
+}
+
+/// The figure: the upper body, the right and the left foot, at `time` in step `step`, each
+/// knee bending towards the heading of `knee_heading` for `eversion_max`.
 /// Err((side, distance)): a leg that cannot reach its foot.
 pub fn figure(
     upper: &Upper,
     feet: [&FootPose; 2],
-    body: &Body,
-    foot: &Foot,
+    (body, foot): (&Body, &Foot),
+    eversion_max: f64,
     time: f64,
     step: usize,
 ) -> Result<Landmarks, (Side, f64)> {
     let half = body.l0 / 2.0;
     let leg = |side: Side, f: &FootPose| {
-        leg_points(hip_joint(upper, side, half), f, foot, body).map_err(|d| (side, d))
+        let hip = hip_joint(upper, side, half);
+        let bend = knee_heading(hip, f, foot, side, eversion_max);
+        leg_points(hip, f, bend, foot, body).map_err(|d| (side, d))
     };
     Ok(Landmarks {
         time,
@@ -269,5 +350,124 @@ mod tests {
             assert!(axis.dot(k - hip).abs() < 1e-12 && axis.dot(ankle - k).abs() < 1e-12);
         }
         assert!(knee(hip, DVec3::new(0.0, -0.5, 0.0), [1.0, 0.0], b.l3, b.l4).is_err());
+    }
+
+    use crate::figure::clinical::clinical;
+
+    fn leg(side: Side) -> (Body, Foot, DVec3) {
+        let body = Body::standard(1.9, 95.0).unwrap();
+        let hip = DVec3::new(0.0, 0.9, side.sign() * body.l0 / 2.0);
+        (body, Foot::new(&body), hip)
+    }
+
+    /// The figure of one leg (the other standing under its hip) for the eversion bound `max`
+    /// ([`knee_heading`]), and its clinical ankle inversion.
+    fn clinical_inversion(side: Side, pose: &FootPose, max: f64) -> f64 {
+        let (body, foot, _) = leg(side);
+        let upper = Upper {
+            centre: [0.0, 0.9, 0.0],
+            ..Upper::default()
+        };
+        let other = FootPose {
+            ankle: [0.0, body.l9, -side.sign() * body.l0 / 2.0],
+            heading: 0.0,
+            pitch: 0.0,
+            theta6: 0.0,
+        };
+        let feet = match side {
+            Side::Right => [pose, &other],
+            Side::Left => [&other, pose],
+        };
+        let lm = figure(&upper, feet, (&body, &foot), max, 0.0, 0).unwrap();
+        let c = clinical(&lm, &body).unwrap();
+        match side {
+            Side::Right => c.right.ankle.adduction,
+            Side::Left => c.left.ankle.adduction,
+        }
+    }
+
+    /// The geometric inversion is the clinical one (the skeleton's frames and their Euler
+    /// decomposition) for feet turned in and out, pitched, ahead of and behind the hip, either
+    /// leg; a flat foot under a leg in its vertical plane has none; and tan b = offset / height
+    /// for a flat foot whose hip is offset along the foot's lateral axis.
+    #[test]
+    fn the_ankle_inversion_is_the_clinical_one() {
+        for side in [Side::Right, Side::Left] {
+            let (body, foot, hip) = leg(side);
+            for (x, heading, pitch) in [
+                (0.3, -0.5, 0.0),
+                (-0.35, 0.5, 0.25),
+                (0.2, 0.3, -0.2),
+                (0.0, 0.0, 0.0),
+            ] {
+                let ankle = [x, body.l9 + 0.05, hip.z + 0.03];
+                let pose = FootPose {
+                    ankle,
+                    heading,
+                    pitch,
+                    theta6: 0.0,
+                };
+                let b = ankle_inversion(hip, &pose, &foot, heading, side);
+                // no bound: the knee bends towards the foot's heading
+                let c = clinical_inversion(side, &pose, f64::INFINITY);
+                assert!((b - c).abs() < 1e-9, "{side:?} {x} {heading}: {b} vs {c}");
+            }
+            // the hip straight above the foot's sagittal plane, offset e along its lateral axis
+            let ankle = [0.0, body.l9, hip.z];
+            let pose = FootPose {
+                ankle,
+                heading: 0.4,
+                pitch: 0.0,
+                theta6: 0.0,
+            };
+            let r = crate::nrs::pose::right_of(0.4);
+            let h = hip.y - body.l9;
+            for e in [0.0, 0.1, -0.15] {
+                let o = DVec3::new(ankle[0] + e * r[0], hip.y, ankle[2] + e * r[1]);
+                let b = ankle_inversion(o, &pose, &foot, 0.4, side);
+                // the hip out to the foot's right leans the shank right: right foot everted
+                let expected = -side.sign() * (e / h).atan();
+                assert!(
+                    (b - expected).abs() < 1e-9,
+                    "{side:?} {e}: {b} vs {expected}"
+                );
+            }
+        }
+    }
+
+    /// Within the bound the knee bends towards the foot's heading; beyond it, the heading
+    /// found puts the clinical eversion on the bound, and half that turn would not.
+    #[test]
+    fn the_knee_turns_as_little_as_keeps_the_eversion() {
+        let max = 14f64.to_radians();
+        for side in [Side::Right, Side::Left] {
+            let (body, foot, hip) = leg(side);
+            // a long step's landing foot turned out 30°: the hip behind it leans over it
+            let out = -side.sign() * 30f64.to_radians();
+            let pose = FootPose {
+                ankle: [0.42, body.l9 + 0.04, hip.z],
+                heading: out,
+                pitch: 0.0,
+                theta6: 0.0,
+            };
+            let free = ankle_inversion(hip, &pose, &foot, out, side);
+            assert!(free < -max, "{side:?}: {}°", free.to_degrees());
+            let bend = knee_heading(hip, &pose, &foot, side, max);
+            let b = ankle_inversion(hip, &pose, &foot, bend, side);
+            assert!((b + max).abs() < 1e-9, "{side:?}: {}°", b.to_degrees());
+            let half = ankle_inversion(hip, &pose, &foot, out + 0.5 * (bend - out), side);
+            assert!(half < -max);
+            // the posed figure's clinical eversion is on the bound
+            let c = clinical_inversion(side, &pose, max);
+            assert!((c + max).abs() < 1e-9, "{side:?}: {}°", c.to_degrees());
+            // the knee turns back towards the pelvis's heading (0), less than the foot's out-turn
+            assert!(bend.abs() < out.abs() && bend * out > 0.0, "{bend}");
+            // straight ahead: no turn
+            let ahead = FootPose {
+                heading: 0.0,
+                ..pose
+            };
+            assert_eq!(knee_heading(hip, &ahead, &foot, side, max), 0.0);
+        }
     }
 }

@@ -2,10 +2,13 @@
 //! the foot angles θ_foot to the animator; with both feet flat at HSM⁺ and the pelvis above the
 //! ankles' midpoint, the hind ankle of a long step dorsiflexes beyond the normal 20° (AAOS 1965),
 //! and a swing foot held flat in the air below a flexed knee does too (docs/nrs.md). The clinical
-//! ankle dorsiflexion is measured on the posed figure ([`crate::figure::clinical`]).
+//! ankle dorsiflexion is measured on the posed figure ([`crate::figure::clinical`]). (A leg
+//! leaning sideways over a turned foot everts the ankle; its knee then bends towards a heading
+//! turned from the foot's: [`crate::nrs::pose::knee_heading`].)
 use glam::DVec3;
 
 use crate::figure::clinical::clinical;
+use crate::kinematics::foot::Foot;
 use crate::kinematics::leg::reach;
 use crate::model::body::Body;
 use crate::nrs::pose::{direction, knee};
@@ -38,8 +41,10 @@ pub(crate) fn largest_dorsiflexion(
 /// airborne row of `swing` (ankle, heading, pitch, θ6) whose dorsiflexion in `seg` exceeds
 /// `max` gets its pitch raised (heel up) by the excess, as far as the floor lets the toe go
 /// (`Foot::clear_pitch`). The ankle's path, and so the legs, are unchanged: the pitch turns the
-/// foot about the ankle, and the knee bends towards the foot's heading, not its pitch. The
-/// landing row (the last) is left to the step's end angles. Returns whether a row changed.
+/// foot about the ankle, and the knee bends towards the foot's heading, not its pitch. Where the
+/// toe tip has reached the floor (a backward step's foot landing toe first), the toes bend up
+/// ([`toes_for`]) so that the foot can still plantarflex. The landing row (the last) is left to
+/// the step's end angles. Returns whether a row changed.
 pub(crate) fn plantarflex_in_air(
     seg: &Segment,
     swing: &mut [[f64; 6]],
@@ -54,16 +59,37 @@ pub(crate) fn plantarflex_in_air(
             continue;
         };
         if d > max {
-            let (pitch, _) = seg
-                .foot
-                .clear_pitch(row[4] + (d - max), [0.0, row[1]], row[5], 0.0);
+            let want = row[4] + (d - max);
+            let theta6 = toes_for(&seg.foot, want, row[1], row[5], seg.theta6_max);
+            let (pitch, _) = seg.foot.clear_pitch(want, [0.0, row[1]], theta6, 0.0);
             if pitch > row[4] {
                 row[4] = pitch;
+                row[5] = theta6;
                 changed = true;
             }
         }
     }
     changed
+}
+
+/// The toe angle θ6 (rad) at which a foot of pitch `pitch` with its ankle at height `ankle_y`
+/// keeps its toe tip on or above the floor: `theta6` unless the tip would go below; then the
+/// toe turned up to lie on the floor, θ6 = p − asin(m / l13) for the metatarsal joint at height
+/// m = y − (h12 sin p + l9 cos p) (the tip at m − l13 sin(p − θ6)), at most `theta6_max`. The
+/// pitch p is `pitch` or, where that would put the metatarsal joint itself below the floor
+/// (no toe angle helps there), the pitch at which it touches, h12 sin p + l9 cos p =
+/// r sin(p + α) = y with r = |(h12, l9)|, α = atan2(l9, h12).
+pub(crate) fn toes_for(foot: &Foot, pitch: f64, ankle_y: f64, theta6: f64, theta6_max: f64) -> f64 {
+    let r = foot.h12.hypot(foot.l9);
+    let p = if ankle_y < r {
+        pitch.min((ankle_y / r).asin() - foot.l9.atan2(foot.h12))
+    } else {
+        pitch
+    };
+    let (s, c) = p.sin_cos();
+    let m = (ankle_y - (foot.h12 * s + foot.l9 * c)).max(0.0);
+    let needed = p - (m / foot.l13).min(1.0).asin();
+    theta6.max(needed.min(theta6_max))
 }
 
 /// The stance ankle's dorsiflexion (rad) in the leg's plane for the hip `hip` and the foot of
@@ -146,5 +172,46 @@ mod tests {
                 assert!((d - (theta - p)).abs() < 1e-5, "{theta} {p}: {d}");
             }
         }
+    }
+
+    fn leg(side: Side) -> (Body, Foot, DVec3) {
+        let body = Body::standard(1.9, 95.0).unwrap();
+        let hip = DVec3::new(0.0, 0.9, side.sign() * body.l0 / 2.0);
+        (body, Foot::new(&body), hip)
+    }
+
+    /// The toes turned up by `toes_for` keep the toe tip on or above the floor at the pitch the
+    /// floor then allows (`clear_pitch`): on the floor where it would have gone below, unless
+    /// the metatarsal joint or the limit stops the foot first; a toe that clears the floor is
+    /// left alone.
+    #[test]
+    fn the_toes_bend_up_onto_the_floor() {
+        let (_, foot, _) = leg(Side::Right);
+        let lim = 35f64.to_radians();
+        let mut raised = 0;
+        for (y, p) in [
+            (0.09, 0.5),
+            (0.1, 0.3),
+            (0.12, 0.45),
+            (0.2, 0.3),
+            (0.11, 0.2),
+        ] {
+            let t6 = toes_for(&foot, p, y, 0.05, lim);
+            let (q, pts) = foot.clear_pitch(p, [0.0, y], t6, 0.0);
+            assert!(
+                pts.toe[1] >= -1e-12 && pts.meta[1] >= -1e-12,
+                "{y} {p}: {pts:?}"
+            );
+            if foot.points([0.0, y], p, 0.05).toe[1] >= 0.0 {
+                assert_eq!(t6, 0.05);
+            } else if q == p && t6 < lim {
+                assert!(pts.toe[1].abs() < 1e-12, "{y} {p}: {pts:?}");
+                raised += 1;
+            } else {
+                // stopped by the metatarsal joint on the floor or by the limit
+                assert!(pts.meta[1].abs() < 1e-9 || t6 == lim, "{y} {p}: {pts:?}");
+            }
+        }
+        assert!(raised > 0);
     }
 }

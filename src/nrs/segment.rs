@@ -4,6 +4,7 @@ use crate::kinematics::foot::Foot;
 use crate::nrs::curves::Table;
 use crate::nrs::pose::{FootPose, Planted, Upper, figure};
 use crate::nrs::specs::Side;
+use crate::nrs::{GoalReason, NrsError};
 
 /// Channels of a step's table: centre (3), pelvis heading, tilt, list, lumbar extension,
 /// bending, rotation, neck rotation, the arms (6), stance pitch, swing ankle (3), swing
@@ -26,6 +27,8 @@ pub(crate) struct Segment {
     pub foot: Foot,
     pub body: crate::model::body::Body,
     pub theta6_max: f64,
+    /// The ankles' largest eversion ([`crate::nrs::pose::knee_heading`]).
+    pub eversion_max: f64,
 }
 
 impl Segment {
@@ -77,6 +80,29 @@ impl Segment {
             Side::Left => [&swing, &stance],
         };
         let time = self.t0 + t.clamp(0.0, 1.0) * self.duration;
-        figure(&upper, feet, &self.body, &self.foot, time, self.step)
+        let shape = (&self.body, &self.foot);
+        figure(&upper, feet, shape, self.eversion_max, time, self.step)
+    }
+
+    /// Every row of the table is reachable by both legs, or the error naming the leg and the
+    /// instant (the goal `goal` of the stepping leg): at the `n` rows and the midpoints between
+    /// them (a rolling foot's ankle moves on an arc, the table's centre on the chord).
+    pub(crate) fn check_reach(&self, goal: [f64; 2], n: usize) -> Result<(), NrsError> {
+        for i in 0..=2 * n {
+            let t = i as f64 / (2 * n) as f64;
+            if let Err((side, distance)) = self.pose(t) {
+                return Err(NrsError::Goal {
+                    position: goal,
+                    side: self.stance.other().name(),
+                    reason: GoalReason::Unreachable {
+                        leg: side.name(),
+                        distance,
+                        length: self.body.l1,
+                        t,
+                    },
+                });
+            }
+        }
+        Ok(())
     }
 }

@@ -104,8 +104,9 @@ impl WalkerState {
         let foot = Foot::new(&self.body);
         let lim = self.attrs.metatarsal_limit;
         let [r, l] = self.feet.map(|f| f.pose(&foot, lim));
-        figure(upper, [&r, &l], &self.body, &foot, time, self.step).map_err(|(side, distance)| {
-            NrsError::Goal {
+        let max = self.params.ankle_eversion_max;
+        figure(upper, [&r, &l], (&self.body, &foot), max, time, self.step).map_err(
+            |(side, distance)| NrsError::Goal {
                 position: self.foot(side).flat,
                 side: side.name(),
                 reason: crate::nrs::GoalReason::Unreachable {
@@ -114,8 +115,8 @@ impl WalkerState {
                     length: self.body.l1,
                     t: 0.0,
                 },
-            }
-        })
+            },
+        )
     }
 
     /// The feet's midpoint (flat ankles) and the direction ahead of the pelvis.
