@@ -83,7 +83,7 @@ impl SimulationError {
     /// under the ground: the list lowers the swing hip by (l0/2) sin L at mid-step), or the
     /// stance hip under its heel-strike height (the list raises the stance hip joint by the
     /// same above the pelvis centre at mid-stance, past the straight leg's reach in slow walks
-    /// of tall bodies: docs/engine.md, "Slow walks").
+    /// of tall bodies: docs/coverage.md).
     pub fn is_list_failure(&self) -> bool {
         match self {
             SimulationError::NotConverged { phase, .. }

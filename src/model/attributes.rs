@@ -243,6 +243,8 @@ attribute_struct! {
     velocity_min,
     /// v_max (m/s).
     velocity_max,
+    /// Fr_max: the largest Froude number v² / (g l1), the walk–run transition.
+    froude_max,
     /// v_pref (m/s): the speed walked when no gait is given.
     preferred_velocity,
     /// sl_min as a fraction of the leg length.
