@@ -646,3 +646,36 @@ fn styles_are_a_sweep_axis() {
     let e = klaw_fails(d, &["sweep", "--style", "normal,sprint", "--out", "x.csv"]);
     assert!(e.contains("sprint") && e.contains("long-stride"), "{e}");
 }
+
+/// A sweep point beyond its body's walk–run transition (2.0 m/s at H 1.5 m: limit
+/// √(0.5 · 9.81 · 0.723375) = 1.8836 m/s by hand) is a failed row with that reason; the sweep
+/// carries on and the same speed at H 1.8 m walks.
+#[test]
+fn a_point_beyond_the_walk_run_transition_is_a_failed_row() {
+    let dir = tempfile::tempdir().unwrap();
+    klaw(
+        dir.path(),
+        &[
+            "sweep",
+            "--velocity",
+            "2.0",
+            "--height",
+            "1.5,1.8",
+            "--steps",
+            "1",
+            "--out",
+            "s.csv",
+        ],
+        None,
+    );
+    let (header, rows) = rows(&dir.path().join("s.csv"));
+    let (c, e) = (col(&header, "converged"), col(&header, "error"));
+    assert_eq!(rows.len(), 2);
+    assert_eq!(rows[0][c], "false");
+    assert!(
+        rows[0][e].contains("beyond the walk–run transition") && rows[0][e].contains("1.8836"),
+        "{:?}",
+        rows[0]
+    );
+    assert_eq!(rows[1][c], "true", "{:?}", rows[1]);
+}
