@@ -191,7 +191,7 @@ fn out_of_range_flags_name_the_value_and_the_range() {
     bad_input(
         d,
         &["walk", "--velocity", "5"],
-        &["velocity", "5", "[0.4, 2.5]"],
+        &["velocity", "5", "[0.4, 2.0634]"],
     );
     bad_input(
         d,
@@ -301,7 +301,7 @@ fn malformed_schedules_are_rejected_naming_the_row() {
         (
             "d.csv",
             "velocity\n1.4\n9\n",
-            &["d.csv", "step 2", "velocity", "[0.4, 2.5]"],
+            &["d.csv", "step 2", "velocity", "[0.4, 2.0634]"],
         ),
         (
             "e.csv",
@@ -341,7 +341,7 @@ fn malformed_attribute_files_are_rejected() {
         (
             "d.toml",
             "bounciness = 5\n",
-            &["bounciness", "5", "[0.05, 0.88]"],
+            &["bounciness", "5", "[0.6, 0.88]"],
         ),
         ("e.toml", "bounciness = nan\n", &["bounciness", "finite"]),
     ];

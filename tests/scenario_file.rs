@@ -40,7 +40,7 @@ fn a_full_scenario_parses_with_degrees_as_radians() {
         mass = 70
         style = "brisk"
         [attributes]
-        bounciness = 0.5
+        bounciness = 0.7
         [[action]]
         type = "stand"
         seconds = 1
@@ -81,7 +81,7 @@ fn a_full_scenario_parses_with_degrees_as_radians() {
     .unwrap();
     assert_eq!(s.body.height, 1.7);
     assert_eq!(s.body.mass, 70.0);
-    assert_eq!(s.attrs.bounciness, 0.5);
+    assert_eq!(s.attrs.bounciness, 0.7);
     assert_eq!(s.actions.len(), 7);
     assert_eq!(
         s.actions[0],
@@ -293,7 +293,7 @@ fn out_of_range_numbers_name_the_range() {
         (
             "type = \"walk\"\nsteps = 3\nvelocity = 3\n",
             "velocity",
-            "[0.4, 2.5] m/s",
+            "[0.4, 2.0634] m/s",
         ),
         (
             "type = \"walk\"\ngaits = [{velocity = 1}, {step_frequency = 300}]\n",

@@ -24,16 +24,23 @@ fn walk_with(name: &str, v: f64, h: f64) -> (Attributes, walk::Walk) {
     (w.attributes().clone(), w.into_engine())
 }
 
-/// Each style over its own speed range [velocity_min, min(velocity_max, 2)] (5 speeds) and
-/// H = 1.65, 1.8 m: every step converges.
+/// Each style over its own speed range [velocity_min, min(v_max, 2)] (5 speeds; v_max the
+/// body's limit, velocity_max or the walk–run transition) and H = 1.65, 1.8 m: every step
+/// converges.
 #[test]
 fn every_style_converges_over_its_speed_range() {
     for (name, _) in STYLES {
         let a = attrs_of(name);
-        let (lo, hi) = (a.velocity_min.max(0.6), a.velocity_max.min(2.0));
-        for k in 0..5 {
-            let v = lo + (hi - lo) * k as f64 / 4.0;
-            for h in [1.65, 1.8] {
+        for h in [1.65, 1.8] {
+            let limit = klaw::plan::gait::velocity_limit(&body_of_height(h), &a);
+            let (lo, hi) = (a.velocity_min.max(0.6), limit.min(2.0));
+            for k in 0..5 {
+                // (the last is the limit itself, not lo + (hi − lo) rounded above it)
+                let v = if k == 4 {
+                    hi
+                } else {
+                    lo + (hi - lo) * k as f64 / 4.0
+                };
                 let (_, w) = walk_with(name, v, h);
                 assert_eq!(w.steps.len(), 8);
             }

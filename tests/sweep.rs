@@ -138,7 +138,7 @@ fn thread_count_does_not_change_the_output() {
             "--velocity",
             "0.8,1.2,2.9",
             "--attr",
-            "bounciness=0.2,0.8",
+            "bounciness=0.6,0.8",
             "--steps",
             "2",
             "--out",
@@ -165,7 +165,7 @@ const SMALL: [&str; 8] = [
     "--height",
     "1.6,1.8",
     "--attr",
-    "bounciness=0.4,0.6",
+    "bounciness=0.6,0.7",
     "--steps",
     "1",
 ];
@@ -194,7 +194,7 @@ fn rows_are_numbered_in_product_order() {
         // row-major: velocity slowest, bounciness fastest
         assert_eq!(r[v], ["0.9", "1.4", "2.9"][k / 4], "{r:?}");
         assert_eq!(r[h], ["1.6", "1.8"][(k / 2) % 2], "{r:?}");
-        assert_eq!(r[b], ["0.4", "0.6"][k % 2], "{r:?}");
+        assert_eq!(r[b], ["0.6", "0.7"][k % 2], "{r:?}");
         let converged = r[col(&header, "converged")] == "true";
         assert_eq!(converged, k < 8, "{r:?}");
         if converged {
@@ -292,7 +292,7 @@ fn merge_reports_missing_duplicate_and_conflicting_rows() {
             "--height",
             "1.6,1.8",
             "--attr",
-            "bounciness=0.4,0.6",
+            "bounciness=0.6,0.7",
             "--steps",
             "1",
             "--shard",
@@ -395,7 +395,7 @@ fn resume_refuses_another_sweeps_rows() {
             "--height",
             "1.6,1.8",
             "--attr",
-            "bounciness=0.2,0.6",
+            "bounciness=0.6,0.8",
             "--steps",
             "1",
             "--out",
@@ -492,7 +492,7 @@ fn sweep_file_with_flags_overriding_it() {
     let d = dir.path();
     fs::write(
         d.join("grid.toml"),
-        "velocity = \"1.0:1.4:0.2\"\nheight = [1.6, 1.8]\nsteps = 1\nbounciness = 0.5\n",
+        "velocity = \"1.0:1.4:0.2\"\nheight = [1.6, 1.8]\nsteps = 1\nbounciness = 0.7\n",
     )
     .unwrap();
     // the flag replaces the file's velocity; the rest comes from the file
@@ -524,7 +524,7 @@ fn sweep_file_with_flags_overriding_it() {
         .collect();
     assert_eq!(
         got,
-        [("0.9", "1.6", "1", "0.5"), ("0.9", "1.8", "1", "0.5")]
+        [("0.9", "1.6", "1", "0.7"), ("0.9", "1.8", "1", "0.7")]
     );
     // the same sweep from flags alone is the same file
     klaw(
@@ -538,7 +538,7 @@ fn sweep_file_with_flags_overriding_it() {
             "--steps",
             "1",
             "--attr",
-            "bounciness=0.5",
+            "bounciness=0.7",
             "--out",
             "g.csv",
         ],
@@ -645,4 +645,37 @@ fn styles_are_a_sweep_axis() {
     );
     let e = klaw_fails(d, &["sweep", "--style", "normal,sprint", "--out", "x.csv"]);
     assert!(e.contains("sprint") && e.contains("long-stride"), "{e}");
+}
+
+/// A sweep point beyond its body's walk–run transition (2.0 m/s at H 1.5 m: limit
+/// √(0.5 · 9.81 · 0.723375) = 1.8836 m/s by hand) is a failed row with that reason; the sweep
+/// carries on and the same speed at H 1.8 m walks.
+#[test]
+fn a_point_beyond_the_walk_run_transition_is_a_failed_row() {
+    let dir = tempfile::tempdir().unwrap();
+    klaw(
+        dir.path(),
+        &[
+            "sweep",
+            "--velocity",
+            "2.0",
+            "--height",
+            "1.5,1.8",
+            "--steps",
+            "1",
+            "--out",
+            "s.csv",
+        ],
+        None,
+    );
+    let (header, rows) = rows(&dir.path().join("s.csv"));
+    let (c, e) = (col(&header, "converged"), col(&header, "error"));
+    assert_eq!(rows.len(), 2);
+    assert_eq!(rows[0][c], "false");
+    assert!(
+        rows[0][e].contains("beyond the walk–run transition") && rows[0][e].contains("1.8836"),
+        "{:?}",
+        rows[0]
+    );
+    assert_eq!(rows[1][c], "true", "{:?}", rows[1]);
 }

@@ -1,7 +1,7 @@
 //! The walking engine's bounds (issue: walking engine), checked on whole walks.
 mod common;
 
-use common::{body_of_height, default_attributes, default_body, gait, grid, walk};
+use common::{body_of_height, default_attributes, default_body, fine_grid, gait, grid, walk};
 use klaw::engine::report::StepReport;
 use klaw::{GaitRequest, Simulation};
 
@@ -131,13 +131,26 @@ fn default_walk_meets_every_bound() {
     }
 }
 
-/// Grid v ∈ {0.6, …, 2.0} × H ∈ {1.5, 1.65, 1.8, 1.95}, M = 23 H², 10 steps each: every walk
-/// converges and meets every bound.
+/// The grid over the whole valid range (`common::grid`: v from 0.4 m/s to the walk–run
+/// transition, H 1.2–2.2 m), M = 23 H², 10 steps each: every walk converges and meets every
+/// bound.
 #[test]
 fn grid_meets_every_bound() {
+    grid_bounds(&grid());
+}
+
+/// The same over the 0.1 m/s × 0.1 m box (192 walks; `cargo test --release --test walk --
+/// --ignored`): what the README's convergence map shows.
+#[test]
+#[ignore]
+fn fine_grid_meets_every_bound() {
+    grid_bounds(&fine_grid());
+}
+
+fn grid_bounds(grid: &[(f64, f64)]) {
     let mut late = Vec::new();
-    for (v, h) in grid() {
-        let label = format!("v {v:.1} H {h:.2}");
+    for &(v, h) in grid {
+        let label = format!("v {v:.4} H {h:.2}");
         let w = walk(body_of_height(h), v, 10).unwrap_or_else(|e| panic!("{label}: {e}"));
         for s in &w.report().steps {
             check_step(s, &label);
@@ -208,13 +221,19 @@ fn hip_path_interpolates_the_stance_hip() {
 /// `Step::measure` samples and refines around the sampled minima and maxima: every extreme it
 /// reports is at least as extreme as dense sampling finds (4 000 samples per phase; to 1e-12 m:
 /// where the foot rests on its floor the heights are rounding noise of 1e-16 m), on the default
-/// walk and at the grid's corners; the mid-swing clearance as well (its least is at an end of
+/// walk and at the grid's corners (v 0.4 m/s and the walk–run limit at H 1.2 and 2.2 m); the mid-swing clearance as well (its least is at an end of
 /// mid swing or at a refined local minimum: 400 samples alone missed a 50 nm touch at 0.6 m/s,
 /// H 1.8 m, that the refined search finds).
 #[test]
 fn measured_extremes_are_at_least_those_of_dense_sampling() {
     use klaw::kinematics::foot::Foot;
-    for (v, h) in [(1.4, 1.8), (0.6, 1.5), (2.0, 1.5), (0.6, 1.95), (2.0, 1.95)] {
+    for (v, h) in [
+        (1.4, 1.8),
+        (0.4, 1.2),
+        (1.6847, 1.2),
+        (0.4, 2.2),
+        (2.2812, 2.2),
+    ] {
         let body = if h == 1.8 {
             default_body()
         } else {

@@ -79,12 +79,18 @@ pub enum Invariant {
 }
 
 impl SimulationError {
-    /// A failure of the swing: its shooting, or its foot under the ground.
-    pub fn is_swing_failure(&self) -> bool {
+    /// A failure that less pelvic list can mend \[ours\]: the swing's (its shooting, or its foot
+    /// under the ground: the list lowers the swing hip by (l0/2) sin L at mid-step), or the
+    /// stance hip under its heel-strike height (the list raises the stance hip joint by the
+    /// same above the pelvis centre at mid-stance, past the straight leg's reach in slow walks
+    /// of tall bodies: docs/coverage.md).
+    pub fn is_list_failure(&self) -> bool {
         match self {
             SimulationError::NotConverged { phase, .. }
             | SimulationError::Integration { phase, .. } => phase.starts_with("swing"),
-            SimulationError::Invariant { phase, .. } => *phase == "swing",
+            SimulationError::Invariant { phase, source, .. } => {
+                *phase == "swing" || matches!(source, Invariant::HipDrops { .. })
+            }
             SimulationError::Plan(_) => false,
         }
     }

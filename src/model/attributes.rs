@@ -250,6 +250,8 @@ attribute_struct! {
     velocity_min,
     /// v_max (m/s).
     velocity_max,
+    /// Fr_max: the largest Froude number v² / (g l1), the walk–run transition.
+    froude_max,
     /// v_pref (m/s): the speed walked when no gait is given.
     preferred_velocity,
     /// sl_min as a fraction of the leg length.
@@ -302,7 +304,7 @@ mod tests {
         o.insert("heel_strike_knee".to_string(), 90.0);
         o.insert("toe_off_knee".to_string(), 30.0);
         let a = t.resolve(&o, "test").unwrap_err();
-        assert!(a.to_string().contains("[0, 15]"), "{a}");
+        assert!(a.to_string().contains("[3, 15]"), "{a}");
         o.insert("heel_strike_knee".to_string(), 6.0);
         let a = t.resolve(&o, "test").unwrap();
         assert!((a.heel_strike_knee - 6.0_f64.to_radians()).abs() < 1e-15);

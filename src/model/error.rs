@@ -31,6 +31,27 @@ pub enum InputError {
         /// normalizing formula, or a default; empty for a value given as it is.
         note: String,
     },
+    /// A speed beyond the body's walk–run transition: a Froude number v² / (g l) above the
+    /// attribute `froude_max` (l the leg length l1).
+    #[error(
+        "velocity = {} m/s{note} is beyond the walk–run transition for this body: valid range is \
+         [{}, {}] m/s (Froude number v²/(g·l) ≤ {}, leg length l = {} m)",
+        Shown(*value), Shown(*min), Shown(*max), Shown(*froude_max), Shown(*leg)
+    )]
+    BeyondWalkRun {
+        /// The velocity (in m/s).
+        value: f64,
+        /// The valid range's lower end (in m/s).
+        min: f64,
+        /// The body's limit √(Fr_max g l), rounded down to 0.1 mm/s (in m/s).
+        max: f64,
+        /// The largest Froude number Fr_max.
+        froude_max: f64,
+        /// The leg length l (in m).
+        leg: f64,
+        /// Where the value came from, as in [`InputError::OutOfRange`].
+        note: String,
+    },
     /// NaN or infinity where a number was expected.
     #[error("{name} is {value}: a finite number is required")]
     NotFinite {
@@ -158,9 +179,12 @@ impl InputError {
     }
 
     /// `self` with the origin of its value (`derived from …`, `the default …`) added to its
-    /// note, when it is an [`InputError::OutOfRange`]; any other error unchanged.
+    /// note, when it is an [`InputError::OutOfRange`] or [`InputError::BeyondWalkRun`]; any
+    /// other error unchanged.
     pub fn with_note(mut self, origin: &str) -> Self {
-        if let InputError::OutOfRange { note, .. } = &mut self {
+        if let InputError::OutOfRange { note, .. } | InputError::BeyondWalkRun { note, .. } =
+            &mut self
+        {
             *note = match note.strip_suffix(')') {
                 Some(inner) => format!("{inner}; {origin})"),
                 None => format!(" ({origin})"),

@@ -21,14 +21,16 @@ pub use crate::nrs::region::classify;
 /// [ours] The step frequency (steps/min) of the walking step a step of `length` m borrows when
 /// no duration is given: the normalizing formula's, sf = sl / (0.004 k H) (KLAW 1989 eq. 1,
 /// k the attribute `stride_factor`), moved into the engine's ranges — the speed sl · sf / 60
-/// within [velocity_min, velocity_max] and sf within [step_frequency_min, step_frequency_max].
+/// within [velocity_min, velocity_limit] (velocity_max or the body's walk–run transition,
+/// [`crate::plan::gait::velocity_limit`]) and sf within [step_frequency_min, step_frequency_max].
 /// Short steps thus borrow the engine's slowest walk of their length rather than one it refuses
 /// (docs/nrs.md); where the ranges do not meet, the formula's and the engine's error.
 fn walking_frequency(state: &WalkerState, length: f64) -> f64 {
     let a = &state.attrs;
     let formula = length / (NORMALIZING_CONSTANT * a.stride_factor * state.body.height);
     let lo = a.step_frequency_min.max(60.0 * a.velocity_min / length);
-    let hi = a.step_frequency_max.min(60.0 * a.velocity_max / length);
+    let v_max = crate::plan::gait::velocity_limit(&state.body, a);
+    let hi = a.step_frequency_max.min(60.0 * v_max / length);
     if lo <= hi {
         formula.clamp(lo, hi)
     } else {

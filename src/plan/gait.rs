@@ -5,7 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::model::attributes::Attributes;
 use crate::model::body::Body;
-use crate::model::{InputError, Shown};
+use crate::model::{GRAVITY, InputError, Shown};
 
 /// Normalizing constant of eq. 1: metres of step per (step/min · m of body height).
 pub(crate) const NORMALIZING_CONSTANT: f64 = 0.004;
@@ -35,6 +35,33 @@ pub struct Gait {
     pub step_frequency: f64,
 }
 
+/// The fastest walk of `body` (m/s): the attributes' `velocity_max`, or below it the
+/// walk–run transition √(Fr_max g l1) (Fr_max the attribute `froude_max`, l1 the leg length;
+/// Alexander 1989), rounded down to 0.1 mm/s so that the limit shown is the one checked.
+pub fn velocity_limit(body: &Body, attrs: &Attributes) -> f64 {
+    let transition = (attrs.froude_max * GRAVITY * body.l1).sqrt();
+    attrs.velocity_max.min((transition * 1e4).floor() / 1e4)
+}
+
+/// Check the velocity `v` against [velocity_min, [`velocity_limit`]]: beyond the walk–run
+/// transition but not beyond `velocity_max` (a walking speed too fast for this body) an
+/// [`InputError::BeyondWalkRun`] naming the body's limit, else [`InputError::check_range`]'s
+/// errors with that range.
+fn check_velocity(v: f64, body: &Body, attrs: &Attributes) -> Result<f64, InputError> {
+    let max = velocity_limit(body, attrs);
+    if v.is_finite() && v > max && v <= attrs.velocity_max {
+        return Err(InputError::BeyondWalkRun {
+            value: v,
+            min: attrs.velocity_min,
+            max,
+            froude_max: attrs.froude_max,
+            leg: round4(body.l1),
+            note: String::new(),
+        });
+    }
+    InputError::check_range("velocity", v, attrs.velocity_min, max, "m/s")
+}
+
 /// The duration (s) of a walk of one step per gait, known before it is simulated: Σ 60 / sf.
 pub fn walk_duration(gaits: &[Gait]) -> f64 {
     gaits.iter().map(|g| 60.0 / g.step_frequency).sum()
@@ -58,7 +85,8 @@ impl GaitRequest {
     }
 
     /// Complete the request by the normalizing formula and check it against the anatomical
-    /// limits of `attrs` (KLAW 1989 §3.1): only v → sf = √(15000 v / (k H)), sl = 60 v / sf;
+    /// limits of `attrs` (KLAW 1989 §3.1) and the body's walk–run transition
+    /// ([`velocity_limit`]): only v → sf = √(15000 v / (k H)), sl = 60 v / sf;
     /// only sf → sl = 0.004 k sf H; only sl → sf = sl / (0.004 k H) (k the `stride_factor`
     /// attribute, 1 for the paper's formula); two given → the third from
     /// v = sl sf / 60; all three → they must agree within `CONSISTENCY_TOLERANCE`.
@@ -134,8 +162,15 @@ impl GaitRequest {
             ),
         ];
         // what the user gave is named first, what was derived from it after
+        let check = |name: &str, value: f64, min: f64, max: f64, unit: &str| {
+            if name == "velocity" {
+                check_velocity(value, body, attrs)
+            } else {
+                InputError::check_range(name, value, min, max, unit)
+            }
+        };
         for (name, value, min, max, unit, _) in checks.iter().filter(|c| c.5.is_some()) {
-            InputError::check_range(name, *value, *min, *max, unit)?;
+            check(name, *value, *min, *max, unit)?;
         }
         let given: Vec<String> = checks
             .iter()
@@ -154,8 +189,7 @@ impl GaitRequest {
             format!("derived from {} by v = sl · sf / 60", given.join(" and "))
         };
         for (name, value, min, max, unit, _) in checks.iter().filter(|c| c.5.is_none()) {
-            InputError::check_range(name, *value, *min, *max, unit)
-                .map_err(|e| e.with_note(&origin))?;
+            check(name, *value, *min, *max, unit).map_err(|e| e.with_note(&origin))?;
         }
         Ok(Gait {
             velocity: v,
@@ -239,12 +273,14 @@ mod tests {
             e.contains("step_frequency = 190") && e.contains("182"),
             "{e}"
         );
+        // above velocity_max and the walk–run transition, the tighter limit is named:
+        // √(0.5 · 9.81 · 0.86805) = 2.06344 m/s
         let e = req(Some(3.5), None, None)
             .complete(&b, &a)
             .unwrap_err()
             .to_string();
         assert!(
-            e.contains("velocity = 3.5") && e.contains("[0.4, 2.5]"),
+            e.contains("velocity = 3.5") && e.contains("[0.4, 2.0634]"),
             "{e}"
         );
         let e = req(Some(1.0), Some(1.5), None)
@@ -269,8 +305,9 @@ mod tests {
     }
 
     /// The issue's example: sf = 181.9 steps/min alone for H = 1.8 m gives, by hand,
-    /// v = 0.004 · 181.9² · 1.8 / 60 = 238.230792 / 60 = 3.9705132 m/s, over v_max: the message
-    /// shows it without float noise and says it was derived, and from what.
+    /// v = 0.004 · 181.9² · 1.8 / 60 = 238.230792 / 60 = 3.9705132 m/s, over the body's
+    /// walk–run transition (l1 = 0.48225 · 1.8 = 0.86805 m, √(0.5 · 9.81 · l1) = 2.063440 m/s):
+    /// the message shows it without float noise and says it was derived, and from what.
     #[test]
     fn a_derived_value_out_of_range_says_it_was_derived() {
         let (b, a) = setup();
@@ -279,13 +316,70 @@ mod tests {
             e.to_string(),
             "velocity = 3.9705132 m/s (derived from step_frequency = 181.9 steps/min and H = 1.8 m \
              by the normalizing formula sl = 0.004 · sf · H, v = sl · sf / 60) is out of range: \
-             valid range is [0.4, 2.5] m/s"
+             valid range is [0.4, 2.0634] m/s"
         );
-        // a given value out of range has no note
+        // a given value out of range has no note; over velocity_max or under velocity_min the
+        // body's range is shown, between the transition and velocity_max the transition named
         let e = req(Some(3.0), None, None).complete(&b, &a).unwrap_err();
         assert_eq!(
             e.to_string(),
-            "velocity = 3 m/s is out of range: valid range is [0.4, 2.5] m/s"
+            "velocity = 3 m/s is out of range: valid range is [0.4, 2.0634] m/s"
         );
+        let e = req(Some(2.2), None, None).complete(&b, &a).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "velocity = 2.2 m/s is beyond the walk–run transition for this body: valid range is \
+             [0.4, 2.0634] m/s (Froude number v²/(g·l) ≤ 0.5, leg length l = 0.8681 m)"
+        );
+        let e = req(None, None, Some(160.0)).complete(&b, &a).unwrap_err();
+        // v = 0.004 · 160² · 1.8 / 60 = 3.072 m/s: over velocity_max; sf = 140: 2.352 m/s, between
+        assert!(e.to_string().contains("3.072 m/s (derived"), "{e}");
+        let e = req(None, None, Some(140.0)).complete(&b, &a).unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("velocity = 2.352 m/s (derived from step_frequency = 140")
+                && e.to_string().contains("beyond the walk–run transition"),
+            "{e}"
+        );
+        let e = req(Some(0.3), None, None).complete(&b, &a).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "velocity = 0.3 m/s is out of range: valid range is [0.4, 2.0634] m/s"
+        );
+    }
+
+    /// The walk–run transition scales with the leg (Fr = v² / (g l1) ≤ 0.5, Alexander 1989): by
+    /// hand, H = 1.2 m: l1 = 0.5787 m, √(0.5 · 9.81 · 0.5787) = 1.684792 m/s; H = 2.2 m:
+    /// l1 = 1.06095 m, 2.281219 m/s; a speed just under the limit is accepted, just over it
+    /// refused; velocity_max below the transition is the limit (and its error the plain one).
+    #[test]
+    fn the_walk_run_transition_limits_the_speed_by_the_leg() {
+        let a = Attributes::default();
+        for (h, limit) in [(1.2, 1.6847), (2.2, 2.2812)] {
+            let b = Body::standard(h, 23.0 * h * h).unwrap();
+            assert_eq!(velocity_limit(&b, &a), limit, "H {h}");
+            assert!(req(Some(limit), None, None).complete(&b, &a).is_ok());
+            let e = req(Some(limit + 0.01), None, None)
+                .complete(&b, &a)
+                .unwrap_err();
+            assert!(matches!(e, InputError::BeyondWalkRun { .. }), "{e}");
+        }
+        let (b, _) = setup();
+        let slow = Attributes {
+            velocity_max: 1.5,
+            ..a.clone()
+        };
+        assert_eq!(velocity_limit(&b, &slow), 1.5);
+        let e = req(Some(1.8), None, None).complete(&b, &slow).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "velocity = 1.8 m/s is out of range: valid range is [0.4, 1.5] m/s"
+        );
+        let fr = Attributes {
+            froude_max: 0.3,
+            ..a.clone()
+        };
+        // √(0.3 · 9.81 · 0.86805) = 1.598334 m/s
+        assert_eq!(velocity_limit(&b, &fr), 1.5983);
     }
 }

@@ -100,7 +100,7 @@ mod tests {
             let good = match &axis {
                 Axis::Mass => 80.0,
                 Axis::Steps => 2.0,
-                Axis::Attribute(_) => 0.5,
+                Axis::Attribute(_) => 0.7,
                 _ => 1.5,
             };
             check_values(&sweep(axis, vec![good, x]), &table)
@@ -117,7 +117,7 @@ mod tests {
         assert!(bad(Axis::Steps, 0.0).contains("steps = 0"));
         let m = bad(Axis::Attribute("bounciness".into()), 5.0);
         assert!(
-            m.contains("bounciness = 5") && m.contains("[0.05, 0.88]"),
+            m.contains("bounciness = 5") && m.contains("[0.6, 0.88]"),
             "{m}"
         );
         // the body table's limits are those of Body::standard

@@ -46,13 +46,41 @@ pub fn default_walk(steps: usize) -> Walk {
     walk(default_body(), 1.4, steps).unwrap()
 }
 
-/// The grid of the whole-walk bounds, as (v, H): H = 1.5, 1.65, 1.8, 1.95 m (outer) ×
-/// v = 0.6, 0.7, …, 2.0 m/s (inner), each computed as 1.5 + 0.15 i and 0.6 + 0.1 j.
+/// The grid of the whole-walk bounds, as (v, H), over the whole valid range of the default
+/// attributes: H = 1.2, 1.45, 1.7, 1.95, 2.2 m (outer, 1.2 + 0.25 i) × v = 0.4, 0.6, … m/s
+/// (inner, 0.4 + 0.2 j) up to the body's walk–run transition (`velocity_limit`, Froude number
+/// 0.5), and that limit itself: 48 walks. [`fine_grid`] is the 0.1 × 0.1 box.
 pub fn grid() -> Vec<(f64, f64)> {
-    (0..4)
-        .flat_map(|hi| {
-            let h = 1.5 + 0.15 * hi as f64;
-            (0..15).map(move |vi| (0.6 + 0.1 * vi as f64, h))
+    grid_of(
+        0.2,
+        &(0..5).map(|i| 1.2 + 0.25 * i as f64).collect::<Vec<_>>(),
+    )
+}
+
+/// The valid box in steps of 0.1 m/s and 0.1 m (H 1.2–2.2 m), each height's walk–run limit
+/// included: 192 walks.
+pub fn fine_grid() -> Vec<(f64, f64)> {
+    grid_of(
+        0.1,
+        &(0..11).map(|i| 1.2 + 0.1 * i as f64).collect::<Vec<_>>(),
+    )
+}
+
+/// v = 0.4 + dv j up to each height's limit (by 1e-9), then the limit, for each of `heights`.
+fn grid_of(dv: f64, heights: &[f64]) -> Vec<(f64, f64)> {
+    let attrs = default_attributes();
+    heights
+        .iter()
+        .flat_map(|&h| {
+            let limit = klaw::plan::gait::velocity_limit(&body_of_height(h), &attrs);
+            let n = ((limit - attrs.velocity_min) / dv + 1e-9).floor() as usize;
+            let mut vs: Vec<f64> = (0..=n)
+                .map(|j| attrs.velocity_min + dv * j as f64)
+                .collect();
+            if limit - vs[n] > 1e-9 {
+                vs.push(limit);
+            }
+            vs.into_iter().map(move |v| (v, h))
         })
         .collect()
 }

@@ -11,12 +11,15 @@ use crate::{DEFAULT_HEIGHT, DEFAULT_MASS, DEFAULT_STEPS, MAX_STEPS, check_count}
 /// The gait, body and attribute flags of `klaw walk`, `klaw plot` and `klaw animate`.
 #[derive(Args)]
 pub(crate) struct GaitArgs {
-    /// Walking speed v in m/s, range [0.4, 2.5] [default: the style's speed, 1.4 if no gait flag is given]
+    /// Walking speed v in m/s, range [0.4, √(0.5 g l1)]: 2.06 m/s for H = 1.8 m [default: the style's speed, 1.4 if no gait flag is given]
     #[arg(
         long,
         value_name = "M/S",
         allow_negative_numbers = true,
-        long_help = "Walking speed v in m/s; valid range [0.4, 2.5] m/s (attributes velocity_min/max). Given\n\
+        long_help = "Walking speed v in m/s; valid range [0.4, v_max] m/s, v_max the body's walk–run\n\
+            transition: Froude number v² / (g · l1) ≤ 0.5, l1 the leg length (0.48225 H), so\n\
+            v_max = √(0.5 · 9.81 · l1) = 1.68 m/s for H = 1.2 m, 2.06 m/s for H = 1.8 m, 2.28 m/s\n\
+            for H = 2.2 m (attributes velocity_min, froude_max; velocity_max = 2.5 caps it). Given\n\
             alone, step frequency and step length follow from the normalizing formula:\n\
             sf = √(15000 · v / H) steps/min, sl = 60 · v / sf. [default when none of --velocity,\n\
             --step-length, --step-frequency is given: the attribute preferred_velocity, 1.4 m/s;\n\

@@ -63,8 +63,10 @@ enum Command {
             sf → sl = 0.004 · sf · H; only sl → sf = sl / (0.004 · H); two given → the third from\n\
             v = sl · sf / 60; all three → they must agree (v = sl · sf / 60 within 1 %). With none,\n\
             v = the style's speed (attribute preferred_velocity, 1.4 m/s). The completed gait is checked against the\n\
-            anatomical limits of the attributes (by default v in [0.4, 2.5] m/s, sf in [50, 182] steps/min,\n\
-            sl in [0.2, 1.3] leg lengths, i.e. [0.1736, 1.1285] m for H = 1.8 m).\n\
+            anatomical limits of the attributes (by default v from 0.4 m/s up to the body's walk–run\n\
+            transition, Froude number v² / (g · l1) ≤ 0.5 with l1 the leg length: 2.0634 m/s for\n\
+            H = 1.8 m; sf in [50, 182] steps/min; sl in [0.2, 1.3] leg lengths, i.e. [0.1736, 1.1285] m\n\
+            for H = 1.8 m). A faster request exits with status 2 naming the body's limit.\n\
             \n\
             Example: klaw walk --velocity 1.2 --steps 6 --out slow.csv --plot slow.svg --report slow.json"
     )]
@@ -94,7 +96,8 @@ enum Command {
             walks complete (memory does not grow with the sweep) to .NAME.partial next to --out,\n\
             renamed to --out at the end (see --resume). Every value is checked against its range\n\
             before any walk (out of it: exit 2). A point whose values do not go together (a\n\
-            derived value outside the point's limits) or whose walk does not converge gets\n\
+            derived value outside the point's limits, a speed beyond the point's walk–run\n\
+            transition, Froude number v² / (g · l1) > 0.5) or whose walk does not converge gets\n\
             converged = false and the reason in the error column, and the sweep carries on; when\n\
             every walk failed, the rows are written and the exit status is 1. Columns after the inputs: converged, error, mean_iterations and\n\
             max_iterations (shooting trials per solve), achieved_velocity (m/s),\n\

@@ -191,18 +191,22 @@ impl Walker {
         )
     }
 
-    /// Simulate the next step with gait `gait`. When the swing fails with the attributes'
-    /// pelvic list (the foot under the ground, or no convergence), the step is tried again with
-    /// half the list, then none \[ours\]: the list lowers the swing hip by (l0/2) sin L at mid
-    /// step, ≈ 5 mm, which the fastest walks of short bodies (v = 2 m/s at H = 1.5 m) cannot
-    /// spare. The list used is in the step's `determinants`.
+    /// Simulate the next step with gait `gait`. When the step fails with the attributes'
+    /// pelvic list in a way less list can mend ([`SimulationError::is_list_failure`]: the swing
+    /// foot under the ground, no convergence of the swing, the stance hip under its heel-strike
+    /// height), the step is tried again with half the list, then none \[ours\]: the list lowers
+    /// the swing hip by (l0/2) sin L at mid step, ≈ 5 mm, which the fastest walks of short
+    /// bodies (v = 2 m/s at H = 1.5 m) cannot spare, and raises the stance hip joint by as much
+    /// above the pelvis centre at mid-stance, which the slowest walks of tall ones (0.4 m/s at
+    /// H ≥ 1.7 m, height budget E ≈ 14 mm) cannot. The list used is in the step's
+    /// `determinants`.
     pub fn step(&mut self, gait: Gait) -> Result<Step, SimulationError> {
         let saved = self.memories();
         let mut list = self.attrs.pelvic_list;
         self.evaluations = 0;
         loop {
             match self.step_with_list(gait, list) {
-                Err(e) if list > 0.0 && e.is_swing_failure() => {
+                Err(e) if list > 0.0 && e.is_list_failure() => {
                     (
                         self.stance_memory,
                         self.swing1_memory,
