@@ -6,11 +6,12 @@
 //! - knee peak swing flexion 63–67° (norm 55–65°): the swing1 knee damper (the shank pendulum
 //!   damped at ζ) brakes the knee's flexion from toe-off; at 1.35–1.5 m/s the knee, handed over
 //!   at toe-off flexing faster, still ends 0.2–2° over;
-//! - ankle peak stance dorsiflexion 17.7–19.8° (norm 8–15°): the plan's heel strike with the
-//!   hip's lead admits 11–13° with a human knee
-//!   ([`the_hip_lead_brings_the_trailing_ankle_into_its_norm`], docs/realism.md), but the
-//!   figure's trailing knee flexes to 16–19° by 50 % of the cycle; push-off plantarflexion
-//!   −14.4° at 1.2 m/s for H 1.85 (norm −15…−25°).
+//! - ankle peak stance dorsiflexion 20.5–23.4° (norm 8–15°) and a weak push-off plantarflexion
+//!   (−8.7…−9.0°, norm −15…−25°): the default plan puts the hip midway between the ankles at
+//!   heel strike (the paper's step symmetry), which leaves the trailing ankle at ≥ 17–19° for
+//!   any human knee; the measured hip lead (`hip_lead_slope` 0.595, opt-in until it walks the
+//!   whole valid range) admits 11–13°
+//!   ([`the_hip_lead_brings_the_trailing_ankle_into_its_norm`], docs/realism.md).
 mod common;
 
 use common::{body_of_height, default_attributes, gait};
@@ -122,22 +123,26 @@ fn default_walks_against_the_published_ranges() {
             within("knee swing peak at %", ksw_at as f64, 68.0, 77.0, &at);
             // deviation: 63° at 1.2 m/s, up to 67° at 1.5 m/s (norm 55–65°, for free walking)
             within("knee swing peak (partly a deviation)", ksw, 55.0, 68.0, &at);
-            // ankle: −5…+3° at heel strike; deviation: the stance dorsiflexion peak, 17.7–19.8°
-            // (norm 8–15°), although the plan now admits 11–13° at the other leg's heel strike
-            // (the test below): the knee flexes to 16–19° by 50 % instead of 5–10°
+            // ankle: −5…+3° at heel strike; stance dorsiflexion peak (deviation, with its
+            // geometric floor in the test below)
             within("ankle at HS", ankle[0], -5.0, 3.0, &at);
             let (dmax, _) = peak(&ankle, 10..60, true);
             within(
                 "ankle stance dorsiflexion peak (deviation)",
                 dmax,
                 16.0,
-                21.0,
+                24.0,
                 &at,
             );
-            // the push-off plantarflexion around toe-off: norm −15…−25° at 60–65 %; deviation:
-            // −14.4° at 1.2 m/s for H 1.85
+            // deviation: the push-off plantarflexion around toe-off (norm −15…−25° at 60–65 %)
             let (pmin, _) = peak(&ankle, 55..75, false);
-            within("ankle plantarflexion at push-off", pmin, -25.0, -14.0, &at);
+            within(
+                "ankle plantarflexion at push-off (deviation)",
+                pmin,
+                -11.0,
+                -6.0,
+                &at,
+            );
             // pelvis: list ±4–5°, rotation ±3–5°, vertical excursion 4–5 cm (± 1 cm)
             let list = c.col("pelvis_list");
             let rot = c.col("pelvis_rotation");
@@ -208,7 +213,15 @@ fn trailing_ankle(
     (least, most)
 }
 
-/// The geometric cause of the old ankle deviation, and its cure (docs/realism.md): with the
+/// The default attributes with the measured hip lead at heel strike (docs/realism.md).
+fn measured_lead() -> Attributes {
+    Attributes {
+        hip_lead_slope: 0.595,
+        ..default_attributes()
+    }
+}
+
+/// The geometric cause of the ankle deviation, and its cure (docs/realism.md): with the
 /// hip midway between the ankles at heel strike (the paper's step symmetry, `hip_lead_slope`
 /// 0) the chain closes only with the trailing ankle dorsiflexed by more than the norm's 15°
 /// for every human knee of 5–30°; with the hip's lead φ (fitted to Schwartz et al. 2008 by
@@ -224,11 +237,8 @@ fn the_hip_lead_brings_the_trailing_ankle_into_its_norm() {
         (1.5, 1.75),
         (1.5, 1.85),
     ] {
-        let (body, attrs, g) = default_gait(v, h);
-        let midway = Attributes {
-            hip_lead_slope: 0.0,
-            ..attrs.clone()
-        };
+        let (body, midway, g) = default_gait(v, h);
+        let attrs = measured_lead();
         let (least, _) = trailing_ankle(&body, &midway, g, 5..=30);
         assert!(least > 15.0, "v {v} H {h}: midway {least:.1}°");
         let (lo, hi) = trailing_ankle(&body, &attrs, g, 5..=10);

@@ -264,6 +264,7 @@ mod tests {
             let c = constraints(
                 &body,
                 &Attributes {
+                    hip_lead_slope: 0.595,
                     hip_lead_max: max,
                     ..Default::default()
                 },

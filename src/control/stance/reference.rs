@@ -172,8 +172,9 @@ impl TerminalStance {
             let dips = (1..HEEL_RISE_CHECKS).any(|k| {
                 let x = k as f64 / HEEL_RISE_CHECKS as f64;
                 let s1 = t.sin_heel_off + (sin_end - t.sin_heel_off) * x;
+                let arrival = END_RISE * (theta1_end - s1.asin());
                 t.exact_length_at(s1).0 * (1.0 - s1 * s1).sqrt()
-                    < y_end + END_MARGIN * (1.0 - x).powi(2)
+                    < y_end + END_MARGIN * (1.0 - x).powi(2) - arrival
             });
             if !dips {
                 break;
@@ -359,8 +360,8 @@ mod tests {
     }
 
     /// W(θ1*) = w*, and the hip arrives nearly level (dy/dθ1 = W' cos θ1* − W sin θ1* =
-    /// END_RISE cos θ1*, c inside [−4, 1]) from 0.6 to 2.0 m/s; heel-off between mid-stance and
-    /// heel strike.
+    /// END_RISE cos θ1*, c inside [−4, 1], or rising less with c = 1) from 0.6 to 2.0 m/s;
+    /// heel-off between mid-stance and heel strike.
     #[test]
     fn terminal_reference_meets_the_plan_end_and_arrives_level() {
         for v in [0.6, 1.0, 1.4, 2.0] {
@@ -371,12 +372,18 @@ mod tests {
             let th = s.theta1_end;
             let (w, dw) = t.length(th.sin(), th.cos());
             let slope = dw * th.cos() - w * th.sin();
+            // at 2 m/s the fastest monotone pitch (c = 1) arrives short of the rise, not falling
+            let target = END_RISE * th.cos();
             assert!(
-                t.end_rate > -4.0 && t.end_rate < 1.0,
+                t.end_rate > -4.0 && t.end_rate <= 1.0,
                 "v {v}: c = {}",
                 t.end_rate
             );
-            assert!((slope - END_RISE * th.cos()).abs() < 1e-5, "v {v}: {slope}");
+            if t.end_rate < 1.0 {
+                assert!((slope - target).abs() < 1e-5, "v {v}: {slope}");
+            } else {
+                assert!((0.0..target).contains(&slope), "v {v}: {slope}");
+            }
             // (at 2 m/s the ankle is past θ5_max at mid-stance already: heel-off is there,
             // sin θ_ho = 0)
             assert!(t.sin_heel_off >= 0.0 && t.sin_heel_off < se && t.pitch_end > 0.0);
@@ -502,7 +509,10 @@ mod tests {
             let th = -s.theta1_start + (s.theta1_start + s.theta1_end) * k as f64 / n as f64;
             let y = hip_reference(&s, th).0;
             let arrival = END_RISE * (s.theta1_end - th).max(0.0);
-            assert!(y >= s.y_start.min(s.y_end) - arrival - 1e-12, "θ1 {th}: {y}");
+            assert!(
+                y >= s.y_start.min(s.y_end) - arrival - 1e-12,
+                "θ1 {th}: {y}"
+            );
         }
     }
 }
