@@ -56,12 +56,12 @@ pub struct StepConstraints {
 impl StepConstraints {
     /// The heel-strike posture, spec §3 steps 1–4 with the hip's lead \[ours\]: at heel strike
     /// the hip is φ sl ahead of the stance ankle (0, l9), φ = min(1/2 + k_φ (sl/H − s_φ), φ_max)
-    /// (the attributes `hip_lead_slope`, `hip_lead_neutral`, `hip_lead_max`; φ = 1/2 is the paper's step symmetry,
-    /// eq. 3, the hip midway to the flat-foot position (sl, l9) of the swing ankle). Real gait
-    /// puts the hip further ahead the longer the step, the trailing heel raised about its
-    /// metatarsal joint (docs/realism.md). The swing leg
-    /// (hip–ankle distance a1 for knee flexion κ_hs) reaches the heel at (sl − l8, 0) with ankle
-    /// dorsiflexion δ_hs. Cosine law: r² = a1² + l11² + 2 a1 l11 cos(ω8 − δ_hs + α), cos ω8 = l9/l11,
+    /// (the attributes `hip_lead_slope`, `hip_lead_neutral`, `hip_lead_max`; φ = 1/2 is the
+    /// paper's step symmetry, eq. 3, the hip midway to the flat-foot position (sl, l9) of the
+    /// swing ankle). Real gait puts the hip further ahead the longer the step, the trailing heel
+    /// raised about its metatarsal joint (docs/realism.md). The swing leg (hip–ankle distance
+    /// a1 for knee flexion κ_hs) reaches the heel at (sl − l8, 0) with ankle dorsiflexion δ_hs.
+    /// Cosine law: r² = a1² + l11² + 2 a1 l11 cos(ω8 − δ_hs + α), cos ω8 = l9/l11,
     /// where α = κ − β is the angle between shank and hip–ankle line (0 for a straight knee, the
     /// paper's case; the spec's formula omits it and misses the ground by 0.75 mm at κ = 4°).
     ///

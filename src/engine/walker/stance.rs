@@ -58,7 +58,8 @@ impl Walker {
         let c = plan.c;
         // pre-impact posture and rates about the new pivot
         let (prev_c, q, hip_v, trunk_rate) = match &self.prev {
-            // first step [ours]: the mirrored heel-strike posture, hip moving horizontally at v
+            // first step [ours]: the heel-strike posture of the step's own lead, hip moving
+            // horizontally at v
             None => (
                 c,
                 Vector3::new(c.lead.1, c.lead.0, self.attrs.trunk_lean),
