@@ -1,7 +1,10 @@
 //! The walking engine's bounds (issue: walking engine), checked on whole walks.
 mod common;
 
-use common::{body_of_height, default_attributes, default_body, fine_grid, gait, grid, walk};
+use common::{
+    body_of_height, body_of_height_in, default_attributes, default_body, fine_grid, gait, grid,
+    grid_of, walk,
+};
 use klaw::engine::report::StepReport;
 use klaw::{GaitRequest, Simulation};
 
@@ -147,11 +150,26 @@ fn fine_grid_meets_every_bound() {
     grid_bounds(&fine_grid());
 }
 
+/// The bodies of de Leva's tables (other proportions than Winter's: docs/bodies.md) walk their
+/// own valid range with every bound held: H 1.2, 1.7, 2.2 m × v 0.4, 0.8, 1.2, 1.6 m/s and each
+/// body's walk–run limit (its own leg length), 14 walks a table.
+#[test]
+fn de_leva_bodies_meet_every_bound() {
+    for table in ["deleva-male", "deleva-female"] {
+        grid_bounds_in(table, &grid_of(table, 0.4, &[1.2, 1.7, 2.2]));
+    }
+}
+
 fn grid_bounds(grid: &[(f64, f64)]) {
+    grid_bounds_in("winter", grid)
+}
+
+fn grid_bounds_in(table: &str, grid: &[(f64, f64)]) {
     let mut late = Vec::new();
     for &(v, h) in grid {
-        let label = format!("v {v:.4} H {h:.2}");
-        let w = walk(body_of_height(h), v, 10).unwrap_or_else(|e| panic!("{label}: {e}"));
+        let label = format!("{table} v {v:.4} H {h:.2}");
+        let body = body_of_height_in(table, h);
+        let w = walk(body, v, 10).unwrap_or_else(|e| panic!("{label}: {e}"));
         for s in &w.report().steps {
             check_step(s, &label);
             if (1.2..=1.4 + 1e-9).contains(&v) && h >= 1.65 {
