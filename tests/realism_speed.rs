@@ -22,7 +22,7 @@ const HEIGHTS: [f64; 2] = [1.75, 1.85];
 
 /// Known misses of today's engine (branch `norms` from main f996cae, before the realism
 /// helper's engine changes): (v, H, norm, value measured when listed). The ankle (stance
-/// dorsiflexion 19–27° against ≈ 7–17°, push-off −8.6…−9.3° against ≈ −11…−30°) at every
+/// dorsiflexion 19–27° against ≈ 6–17°, push-off −8.6…−9.3° against ≈ −11.5…−30°) at every
 /// speed; the pelvic rotation (the attribute's ±4°, 8° peak to peak) from 1.4 m/s and the list
 /// (±4°) at 1.8 m/s, which the speed leaves unchanged while the children's grow; the knee
 /// (swing peak 67–72°, no stance extension: 6–20°) from 1.6 m/s. Remove an entry when it
