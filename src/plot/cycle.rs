@@ -16,7 +16,9 @@ use plotters::prelude::*;
 
 use crate::analysis::cycle::{Curve, GaitCycle, Panel};
 use crate::analysis::extent;
-use crate::analysis::norms::{Measure, Norm, NormCheck, NormTable, Range, WalkSpeed, check};
+use crate::analysis::norms::{
+    BySpeed, Measure, Norm, NormCheck, NormTable, Range, WalkSpeed, check,
+};
 use crate::error::Result;
 use crate::figure::skeleton::Side;
 use crate::plot::{
@@ -141,31 +143,27 @@ impl CycleDrawing<'_> {
     /// The legend's line on the speed-dependent norms, if the table has any: the speed they are
     /// taken at and their sources (`cite`).
     fn speed_legend(&self) -> Option<String> {
-        let mut sources: Vec<&str> = Vec::new();
-        let mut multiples: Vec<f64> = Vec::new();
-        for n in &self.norms.norms {
-            if let Range::BySpeed(b) = &n.range {
-                let source = b.cite.as_str();
-                if !sources.contains(&source) {
-                    sources.push(source);
-                }
-                if !multiples.contains(&b.sd_multiple) {
-                    multiples.push(b.sd_multiple);
-                }
-            }
-        }
-        if sources.is_empty() {
-            return None;
-        }
-        let band = match multiples.as_slice() {
-            [k] => format!("mean ± {k} SD"),
-            _ => "mean ± k SD".to_string(),
+        let rows: Vec<&BySpeed> = self
+            .norms
+            .norms
+            .iter()
+            .filter_map(|n| match &n.range {
+                Range::BySpeed(b) => Some(b),
+                Range::Fixed { .. } => None,
+            })
+            .collect();
+        let first = rows.first()?;
+        let mut cites: Vec<&str> = rows.iter().map(|b| b.cite.as_str()).collect();
+        cites.dedup();
+        let k = match rows.iter().all(|b| b.sd_multiple == first.sd_multiple) {
+            true => first.sd_multiple.to_string(),
+            false => "k".to_string(),
         };
         Some(format!(
-            "normal range at this walk's speed, v/√(g·l1) = {:.3} ({:.2} m/s): {band} of {}",
+            "normal range at this walk's speed, v/√(g·l1) = {:.3} ({:.2} m/s): mean ± {k} SD of {}",
             self.speed.dimensionless(),
             self.speed.velocity,
-            sources.join("; ")
+            cites.join("; ")
         ))
     }
 }
