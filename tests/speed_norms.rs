@@ -306,14 +306,7 @@ fn the_bundled_speed_rows_are_schwartz_2008() {
         close(&b.sd, &sd, name);
         close(&b.span, &[0.090, 0.844], name);
     }
-    let speed_rows: Vec<&BySpeed> = t
-        .norms
-        .iter()
-        .filter_map(|n| match &n.range {
-            Range::BySpeed(b) => Some(b),
-            Range::Fixed { .. } => None,
-        })
-        .collect();
+    let speed_rows: Vec<&BySpeed> = t.norms.iter().filter_map(|n| n.range.by_speed()).collect();
     assert_eq!(speed_rows.len(), 12);
     for b in speed_rows {
         assert_eq!(b.sd_multiple, 1.0);

@@ -197,6 +197,14 @@ pub enum Range {
 }
 
 impl Range {
+    /// The speed table of a speed-dependent range.
+    pub fn by_speed(&self) -> Option<&BySpeed> {
+        match self {
+            Range::BySpeed(b) => Some(b),
+            Range::Fixed { .. } => None,
+        }
+    }
+
     /// [low, high] for a walk at `speed`; `None` for a speed-dependent range outside its span.
     pub fn at(&self, speed: WalkSpeed) -> Option<(f64, f64)> {
         match self {

@@ -143,21 +143,15 @@ impl CycleDrawing<'_> {
     /// The legend's line on the speed-dependent norms, if the table has any: the speed they are
     /// taken at and their sources (`cite`).
     fn speed_legend(&self) -> Option<String> {
-        let rows: Vec<&BySpeed> = self
-            .norms
-            .norms
-            .iter()
-            .filter_map(|n| match &n.range {
-                Range::BySpeed(b) => Some(b),
-                Range::Fixed { .. } => None,
-            })
-            .collect();
+        let norms = &self.norms.norms;
+        let rows: Vec<&BySpeed> = norms.iter().filter_map(|n| n.range.by_speed()).collect();
         let first = rows.first()?;
         let mut cites: Vec<&str> = rows.iter().map(|b| b.cite.as_str()).collect();
         cites.dedup();
-        let k = match rows.iter().all(|b| b.sd_multiple == first.sd_multiple) {
-            true => first.sd_multiple.to_string(),
-            false => "k".to_string(),
+        let k = if rows.iter().all(|b| b.sd_multiple == first.sd_multiple) {
+            first.sd_multiple.to_string()
+        } else {
+            "k".to_string()
         };
         Some(format!(
             "normal range at this walk's speed, v/√(g·l1) = {:.3} ({:.2} m/s): mean ± {k} SD of {}",
@@ -312,7 +306,7 @@ fn bands(norm: &Norm, (low, high): (f64, f64), curves: &[&Curve]) -> Vec<Band> {
         }
         _ => 0.0,
     };
-    let speed = matches!(norm.range, Range::BySpeed(_));
+    let speed = norm.range.by_speed().is_some();
     let fill = match (speed, norm.measure) {
         (true, _) => SPEED_BAND_COLOR,
         (false, Measure::PeakToPeak) => EXCURSION_BAND_COLOR,
