@@ -152,7 +152,8 @@ enum Command {
             left; the walk is sampled at 200 frames/s). The right leg\n\
             and the pelvis run from right heel strike, the left leg (dashed) from left heel strike.\n\
             The published normal ranges of models/gait-norms.toml are shaded over their cycle\n\
-            windows, and each is checked: the values are printed, outside ranges flagged.\n\
+            windows (those that change with speed at the walk's v/sqrt(g l1), light blue), and\n\
+            each is checked: the values are printed, outside ranges flagged.\n\
             1500 x 1000 px, PNG or SVG by the extension of --out, written whole or not at all.\n\
             \n\
             Example: klaw plot --velocity 1.2 --out slow-cycle.svg"
