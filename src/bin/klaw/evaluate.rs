@@ -76,10 +76,16 @@ pub(crate) fn run(args: &EvaluateArgs) -> Result<()> {
     if let (Some(w), Some(path)) = (&work, &args.report) {
         same_walk(w, path, &file, &args.file, &body)?;
     }
-    let criteria = evaluate(&file.motion, &body, &params)?;
+    // a walk the criteria cannot use is a bad input file, named
+    let criteria_of = |m: &MotionFile, path: &Path| {
+        evaluate(&m.motion, &body, &params)
+            .map_err(|e| InputError::malformed("motion file", path, e))
+    };
+    let criteria = criteria_of(&file, &args.file)?;
     let other = against
         .as_ref()
-        .map(|a| evaluate(&a.motion, &body, &params))
+        .zip(args.against.as_deref())
+        .map(|(a, p)| criteria_of(a, p))
         .transpose()?;
     let rms = against.as_ref().map(|a| {
         // both walks' cycles start at the same kind of event: the ankle's foremost position
