@@ -17,11 +17,21 @@ fn walk_files(dir: &Path) {
     let out = klaw(
         dir,
         &[
-            "walk", "--steps", "6", "--out", "w.csv", "--report", "w.json", "--no-plot",
+            "walk",
+            "--steps",
+            "6",
+            "--out",
+            "w.csv",
+            "--report",
+            "w.json",
+            "--no-plot",
         ],
     );
     assert_eq!(out.status.code(), Some(0));
-    let out = klaw(dir, &["walk", "--steps", "6", "--out", "w.mot", "--no-plot"]);
+    let out = klaw(
+        dir,
+        &["walk", "--steps", "6", "--out", "w.mot", "--no-plot"],
+    );
     assert_eq!(out.status.code(), Some(0));
 }
 
@@ -92,7 +102,9 @@ fn evaluate_prints_and_writes_the_criteria() {
     walk_files(d);
     let out = klaw(
         d,
-        &["evaluate", "w.csv", "--report", "w.json", "--json", "c.json"],
+        &[
+            "evaluate", "w.csv", "--report", "w.json", "--json", "c.json",
+        ],
     );
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert_eq!(out.status.code(), Some(0), "{stdout}");
@@ -227,7 +239,10 @@ fn bad_files_and_flags_are_refused() {
         (
             "x.txt",
             csv.clone(),
-            vec!["x.txt", "a motion file is klaw's frame CSV (.csv) or OpenSim storage"],
+            vec![
+                "x.txt",
+                "a motion file is klaw's frame CSV (.csv) or OpenSim storage",
+            ],
         ),
         (
             "deg.mot",
@@ -270,7 +285,11 @@ fn bad_files_and_flags_are_refused() {
             vec!["tiny.csv", "no complete gait cycle"],
         ),
     ];
-    assert!(mot.contains("nRows=334") && mot.contains("nColumns=24"), "{}", &mot[..200]);
+    assert!(
+        mot.contains("nRows=334") && mot.contains("nColumns=24"),
+        "{}",
+        &mot[..200]
+    );
     for (name, text, needles) in &cases {
         fs::write(d.join(name), text).unwrap();
         refused_in(d, &["evaluate", name, "--json", "out.json"], needles);
@@ -280,21 +299,39 @@ fn bad_files_and_flags_are_refused() {
     let flags: Vec<(Vec<&str>, Vec<&str>)> = vec![
         (vec!["none.csv"], vec!["reading none.csv"]),
         (vec!["binary.csv"], vec!["binary.csv", "UTF-8"]),
-        (vec!["w.csv", "--json", "c.txt"], vec!["--json: c.txt: the extension must be .json"]),
+        (
+            vec!["w.csv", "--json", "c.txt"],
+            vec!["--json: c.txt: the extension must be .json"],
+        ),
         (
             vec!["w.csv", "--json", "no-such-dir/c.json"],
             vec!["directory no-such-dir does not exist"],
         ),
-        (vec!["w.csv", "--height", "3"], vec!["height = 3 m", "[1.2, 2.2]"]),
+        (
+            vec!["w.csv", "--height", "3"],
+            vec!["height = 3 m", "[1.2, 2.2]"],
+        ),
         (vec!["w.csv", "--mass", "-1"], vec!["mass = -1 kg"]),
-        (vec!["w.csv", "--skip-cycles", "-1"], vec!["skip-cycles = -1"]),
-        (vec!["w.csv", "--report", "bad.json"], vec!["malformed walk report bad.json"]),
-        (vec!["w.mot", "--report", "w.json"], vec!["--report: w.json: w.mot has no step column"]),
+        (
+            vec!["w.csv", "--skip-cycles", "-1"],
+            vec!["skip-cycles = -1"],
+        ),
+        (
+            vec!["w.csv", "--report", "bad.json"],
+            vec!["malformed walk report bad.json"],
+        ),
+        (
+            vec!["w.mot", "--report", "w.json"],
+            vec!["--report: w.json: w.mot has no step column"],
+        ),
         (
             vec!["w.csv", "--report", "w.json", "--height", "1.7"],
             vec!["the walk's body is H 1.8 m, M 80 kg"],
         ),
-        (vec!["w.csv", "--against", "rows.mot"], vec!["rows.mot", "nRows=600"]),
+        (
+            vec!["w.csv", "--against", "rows.mot"],
+            vec!["rows.mot", "nRows=600"],
+        ),
     ];
     for (args, needles) in flags {
         let mut a = vec!["evaluate"];
@@ -304,12 +341,23 @@ fn bad_files_and_flags_are_refused() {
     // a report of another walk
     let out = klaw(
         d,
-        &["walk", "--steps", "8", "--report", "eight.json", "--no-plot"],
+        &[
+            "walk",
+            "--steps",
+            "8",
+            "--report",
+            "eight.json",
+            "--no-plot",
+        ],
     );
     assert_eq!(out.status.code(), Some(0));
     refused_in(
         d,
         &["evaluate", "w.csv", "--report", "eight.json"],
-        &["a walk of 8 steps", "w.csv holds 6 steps", "not the same walk"],
+        &[
+            "a walk of 8 steps",
+            "w.csv holds 6 steps",
+            "not the same walk",
+        ],
     );
 }

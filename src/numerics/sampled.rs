@@ -47,7 +47,7 @@ const THIRD: [[f64; 5]; 5] = [
 
 /// The third derivative of samples spaced `h` apart, at every sample: the central difference
 /// (f₊₂ − 2f₊₁ + 2f₋₁ − f₋₂) / (2h³) where two samples lie on each side, the second-order
-/// one-sided stencils of [`THIRD`] within two samples of an end. Fewer than 5 samples: NaN.
+/// one-sided stencils (Fornberg 1988, second order) within two samples of an end. Fewer than 5 samples: NaN.
 pub fn third_derivative(samples: &[f64], h: f64) -> Vec<f64> {
     let n = samples.len();
     if n < 5 {

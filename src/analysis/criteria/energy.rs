@@ -47,7 +47,7 @@ pub struct Energies {
     pub kinetic: f64,
     /// The segments' potential energy, M g h_G.
     pub potential: f64,
-    /// Kinetic energy relative to the centre of mass, per group of [`GROUPS`].
+    /// Kinetic energy relative to the centre of mass, per group: the upper body, the right leg, the left leg.
     pub internal: [f64; 3],
     /// The centre of mass's kinetic and potential energy.
     pub external: f64,
@@ -69,43 +69,43 @@ pub fn energies(poses: &[[f64; POSE]], h: f64, segments: &Segments) -> Vec<Energ
     let placed: Vec<[Placed; 5]> = poses.iter().map(|p| segments.place(p)).collect();
     let n = placed.len();
     // velocities: finite differences of every coordinate of every segment's centre and axes
-    let derivative = |get: &dyn Fn(&[Placed; 5]) -> f64| {
-        first_derivative(&placed.iter().map(get).collect::<Vec<_>>(), h)
+    let differences = |xs: Vec<DVec3>| -> Vec<DVec3> {
+        let d: [Vec<f64>; 3] = std::array::from_fn(|i| {
+            first_derivative(&xs.iter().map(|x| x[i]).collect::<Vec<_>>(), h)
+        });
+        (0..n)
+            .map(|k| DVec3::new(d[0][k], d[1][k], d[2][k]))
+            .collect()
     };
-    let mut v = vec![[DVec3::ZERO; 5]; n];
-    let mut rates = vec![[DMat3::ZERO; 5]; n];
-    for s in 0..5 {
-        for i in 0..3 {
-            for (k, d) in derivative(&|p| p[s].com[i]).into_iter().enumerate() {
-                v[k][s][i] = d;
-            }
-            for j in 0..3 {
-                for (k, d) in derivative(&|p| p[s].axes.col(j)[i]).into_iter().enumerate() {
-                    rates[k][s].col_mut(j)[i] = d;
-                }
-            }
-        }
-    }
+    let v: [Vec<DVec3>; 5] =
+        std::array::from_fn(|s| differences(placed.iter().map(|p| p[s].com).collect()));
+    let rates: [Vec<DMat3>; 5] = std::array::from_fn(|s| {
+        let cols: [Vec<DVec3>; 3] =
+            std::array::from_fn(|j| differences(placed.iter().map(|p| p[s].axes.col(j)).collect()));
+        (0..n)
+            .map(|k| DMat3::from_cols(cols[0][k], cols[1][k], cols[2][k]))
+            .collect()
+    });
     let total: f64 = segments.mass.iter().sum();
     (0..n)
         .map(|k| {
             let p = &placed[k];
             let rotation: [f64; 5] = std::array::from_fn(|s| {
-                let w = angular_velocity(&p[s].axes, &rates[k][s]);
+                let w = angular_velocity(&p[s].axes, &rates[s][k]);
                 let along = w.dot(p[s].axes.y_axis);
                 0.5 * segments.inertia[s] * (w.length_squared() - along * along)
             });
-            let momentum: DVec3 = (0..5).map(|s| segments.mass[s] * v[k][s]).sum();
+            let momentum: DVec3 = (0..5).map(|s| segments.mass[s] * v[s][k]).sum();
             let v_g = momentum / total;
             let height: f64 = (0..5).map(|s| segments.mass[s] * p[s].com.y).sum::<f64>() / total;
             let kinetic = (0..5)
-                .map(|s| 0.5 * segments.mass[s] * v[k][s].length_squared() + rotation[s])
+                .map(|s| 0.5 * segments.mass[s] * v[s][k].length_squared() + rotation[s])
                 .sum();
             let potential = total * GRAVITY * height;
             let internal = GROUPS.map(|g| {
                 g.iter()
                     .map(|&s| {
-                        0.5 * segments.mass[s] * (v[k][s] - v_g).length_squared() + rotation[s]
+                        0.5 * segments.mass[s] * (v[s][k] - v_g).length_squared() + rotation[s]
                     })
                     .sum()
             });
@@ -138,5 +138,64 @@ pub fn power(e: &[Energies], h: f64, mass: f64) -> Power {
         mechanical: sum.mechanical * scale,
         internal: sum.internal * scale,
         external: sum.external * scale,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::segments::pose;
+    use super::*;
+    use crate::figure::clinical::Clinical;
+    use crate::model::body::Body;
+
+    /// A frame turning about a fixed unit axis a at rate ω has angular velocity ω a, whatever
+    /// its starting orientation (finite differences of the axes, to O(h²)).
+    #[test]
+    fn angular_velocity_of_a_steady_turn() {
+        let a = DVec3::new(0.3, -0.5, 0.8).normalize();
+        let (w, h) = (2.5, 1e-4);
+        let start = DMat3::from_euler(glam::EulerRot::ZXY, 0.4, -0.2, 1.1);
+        let at = |t: f64| DMat3::from_axis_angle(a, w * t) * start;
+        let rate = (at(0.3 + h) - at(0.3 - h)) * (0.5 / h);
+        let got = angular_velocity(&at(0.3), &rate);
+        assert!((got - w * a).length() < 1e-6, "{got}");
+    }
+
+    /// A straight leg turning about its own long axis (hip rotation at 2 rad/s, everything else
+    /// still) has no kinetic energy: the segments have no inertia about their long axes.
+    #[test]
+    fn a_leg_spinning_about_its_axis_has_no_energy() {
+        let body = Body::standard(1.8, 80.0).unwrap();
+        let h = 0.01;
+        let poses: Vec<_> = (0..20)
+            .map(|k| {
+                let mut c = Clinical {
+                    pelvis: [0.0, 1.0, 0.0],
+                    ..Default::default()
+                };
+                c.right.hip.rotation = 2.0 * k as f64 * h;
+                pose(&c)
+            })
+            .collect();
+        for e in energies(&poses, h, &Segments::new(&body)) {
+            assert!(e.kinetic.abs() < 1e-20, "{e:?}");
+        }
+        // turned about a transverse axis instead (hip flexion), it has ½ I ω² and more
+        let poses: Vec<_> = (0..20)
+            .map(|k| {
+                let mut c = Clinical {
+                    pelvis: [0.0, 1.0, 0.0],
+                    ..Default::default()
+                };
+                c.right.hip.adduction = 2.0 * k as f64 * h;
+                pose(&c)
+            })
+            .collect();
+        let e = energies(&poses, h, &Segments::new(&body));
+        assert!(
+            e[10].kinetic > 0.5 * (body.i3 + body.i4) * 4.0,
+            "{:?}",
+            e[10]
+        );
     }
 }
