@@ -97,7 +97,11 @@ pub(crate) fn run(args: &EvaluateArgs) -> Result<()> {
                 ..m.motion.clone()
             },
         };
-        compare(&alike(&file), &alike(a), skip)
+        let events = match (file.steps, a.steps) {
+            (Some(_), Some(_)) => "the step columns' heel strikes",
+            _ => "the ankle's foremost positions in both files",
+        };
+        (compare(&alike(&file), &alike(a), skip), events)
     });
     let h = &file.motion.heel_strikes;
     let checks: Vec<NormCheck> =
@@ -107,25 +111,55 @@ pub(crate) fn run(args: &EvaluateArgs) -> Result<()> {
             .into_iter()
             .filter(|c| c.value.is_finite())
             .collect();
+    let e = Evaluation {
+        args,
+        body,
+        params,
+        file,
+        criteria,
+        against: against.zip(other),
+        rms,
+        work,
+        checks,
+    };
+    print(&e);
+    if let Some(path) = &args.json {
+        klaw::export::write_report_json(path, &to_json(&e))?;
+        println!("json: {}", path.display());
+    }
+    Ok(())
+}
 
+/// Everything `klaw evaluate` found.
+struct Evaluation<'a> {
+    args: &'a EvaluateArgs,
+    body: Body,
+    params: CriteriaParameters,
+    file: MotionFile,
+    criteria: Criteria,
+    against: Option<(MotionFile, Criteria)>,
+    /// Eq. 7 per angle, and the events the cycles were cut at.
+    rms: Option<(Vec<AngleRms>, &'static str)>,
+    work: Option<WalkWork>,
+    checks: Vec<NormCheck>,
+}
+
+/// The evaluation for people, on stdout.
+fn print(e: &Evaluation) {
     let mut out = std::io::stdout().lock();
-    let _ = writeln!(out, "{}", describe(&args.file, &file));
+    let _ = writeln!(out, "{}", describe(&e.args.file, &e.file));
     let _ = writeln!(
         out,
         "body: H {} m, M {} kg; criteria at {} frames/s over each gait cycle (heel strike to the \
-         next of the same foot), the first {skip} of each foot left out",
-        body.height, body.mass, params.rate
+         next of the same foot), the first {} of each foot left out",
+        e.body.height, e.body.mass, e.params.rate, e.params.skip
     );
-    let _ = writeln!(out, "{}", table(&criteria));
-    if let (Some(a), Some(path), Some(c)) = (&against, &args.against, &other) {
+    let _ = writeln!(out, "{}", table(&e.criteria));
+    if let (Some((a, c)), Some(path)) = (&e.against, &e.args.against) {
         let _ = writeln!(out, "{}", describe(path, a));
         let _ = writeln!(out, "{}", table(c));
     }
-    if let (Some(rms), Some(path)) = (&rms, &args.against) {
-        let events = match (file.steps, against.as_ref().and_then(|a| a.steps)) {
-            (Some(_), Some(_)) => "the step columns' heel strikes",
-            _ => "the ankle's foremost positions in both files",
-        };
+    if let (Some((rms, events)), Some(path)) = (&e.rms, &e.args.against) {
         let _ = writeln!(
             out,
             "mean-shifted RMS against {} (eq. 7, over the gait cycle averaged between {events}):",
@@ -138,7 +172,7 @@ pub(crate) fn run(args: &EvaluateArgs) -> Result<()> {
             let _ = writeln!(out, "  {:<22} {v}", a.angle);
         }
     }
-    let _ = match &work {
+    let _ = match &e.work {
         Some(w) => writeln!(
             out,
             "actuator work: {:.1} J/m ({:.3} J/(kg m)), positive work over {} steps, {:.2} m",
@@ -152,33 +186,46 @@ pub(crate) fn run(args: &EvaluateArgs) -> Result<()> {
             "actuator work: not available (the file holds no forces; give the walk's klaw walk --report)"
         ),
     };
-    let inside = checks.iter().filter(|c| c.inside()).count();
+    let inside = e.checks.iter().filter(|c| c.inside()).count();
     let _ = writeln!(
         out,
         "published ranges (models/gait-norms.toml): {inside} of {} met",
-        checks.len()
+        e.checks.len()
     );
-    for c in &checks {
+    for c in &e.checks {
         let _ = writeln!(out, "  {}", c.describe());
     }
-    if let Some(path) = &args.json {
-        let value = json!({
-            "file": args.file,
-            "format": file.format,
-            "heel_strikes_from": file.heel_strikes_from,
-            "absent": file.absent,
-            "heel_strikes": file.motion.heel_strikes,
-            "body": {"height": body.height, "mass": body.mass},
-            "criteria": criteria,
-            "paper_table_1": {"total_jerk": PAPER_TABLE_1[0], "cyclicity": PAPER_TABLE_1[1], "internal_power_literal": PAPER_TABLE_1[2]},
-            "against": args.against.as_ref().map(|p| json!({"file": p, "criteria": other, "rms": rms.as_deref().map(rms_json)})),
-            "actuator_work": work.map(|w| json!({"per_metre": w.per_metre(), "per_kg_metre": w.per_metre() / w.mass, "report": w})),
-            "norms": checks.iter().map(norm_json).collect::<Vec<_>>(),
-        });
-        klaw::export::write_report_json(path, &value)?;
-        let _ = writeln!(out, "json: {}", path.display());
-    }
-    Ok(())
+}
+
+/// The evaluation as JSON.
+fn to_json(e: &Evaluation) -> serde_json::Value {
+    let f = &e.file;
+    json!({
+        "file": e.args.file,
+        "format": f.format,
+        "heel_strikes_from": f.heel_strikes_from,
+        "absent": f.absent,
+        "heel_strikes": f.motion.heel_strikes,
+        "body": {"height": e.body.height, "mass": e.body.mass},
+        "criteria": e.criteria,
+        "paper_table_1": {
+            "total_jerk": PAPER_TABLE_1[0],
+            "cyclicity": PAPER_TABLE_1[1],
+            "internal_power_literal": PAPER_TABLE_1[2],
+        },
+        "against": e.args.against.as_ref().map(|p| json!({
+            "file": p,
+            "criteria": e.against.as_ref().map(|(_, c)| c),
+            "rms": e.rms.as_ref().map(|(r, _)| rms_json(r)),
+            "cycles_between": e.rms.as_ref().map(|(_, events)| events),
+        })),
+        "actuator_work": e.work.map(|w| json!({
+            "per_metre": w.per_metre(),
+            "per_kg_metre": w.per_metre() / w.mass,
+            "report": w,
+        })),
+        "norms": e.checks.iter().map(norm_json).collect::<Vec<_>>(),
+    })
 }
 
 /// The report must be the same walk as the file: the same step count (by the file's `step`

@@ -2,7 +2,7 @@
 //! a header line, then one row per frame: `time_s` (s), `step`, `pelvis_tx_m`, `pelvis_ty_m`,
 //! `pelvis_tz_m` (m, y up from the ground), the angles `*_deg` in degrees with klaw's clinical
 //! signs. Needed, optional and ignored columns: the parent module's doc.
-use super::{Frames, MotionFileError, NO_ANKLES, NO_LUMBAR, NO_POSITION, Table, set_angle};
+use super::{Frames, MotionFileError, Table, absent, set_angle};
 use crate::analysis::criteria::segments::{DOFS, POSE_NAMES};
 use crate::figure::clinical::Clinical;
 use crate::model::body::Body;
@@ -71,16 +71,11 @@ pub(crate) fn parse(text: &str, _body: &Body) -> Result<Frames, MotionFileError>
         }
         frames.push(c);
     }
-    let mut absent = Vec::new();
-    if position.is_none() {
-        absent.push(NO_POSITION);
-    }
-    if lumbar.is_none() {
-        absent.push(NO_LUMBAR);
-    }
-    if ankles.iter().any(Option::is_none) {
-        absent.push(NO_ANKLES);
-    }
+    let absent = absent(
+        position.is_some(),
+        lumbar.is_some(),
+        ankles.iter().all(Option::is_some),
+    );
     Ok(Frames {
         frames,
         format: "klaw frame CSV".to_string(),

@@ -299,7 +299,24 @@ pub(crate) fn set_angle(c: &mut Clinical, name: &str, v: f64) {
     }
 }
 
-/// What the file lacks: the pelvis position, the lumbar angles, the ankles.
-pub(crate) const NO_POSITION: &str = "the pelvis position: no C3 (power) and no pelvis-height norm";
-pub(crate) const NO_LUMBAR: &str = "the lumbar angles: taken as 0 (the trunk follows the pelvis)";
-pub(crate) const NO_ANKLES: &str = "the ankle dorsiflexion: no ankle norm, no ankle RMS";
+/// What a file without the pelvis position, the lumbar angles or the ankles lacks, in words.
+pub(crate) fn absent(position: bool, lumbar: bool, ankles: bool) -> Vec<&'static str> {
+    [
+        (
+            position,
+            "the pelvis position: no C3 (power) and no pelvis-height norm",
+        ),
+        (
+            lumbar,
+            "the lumbar angles: taken as 0 (the trunk follows the pelvis)",
+        ),
+        (
+            ankles,
+            "the ankle dorsiflexion: no ankle norm, no ankle RMS",
+        ),
+    ]
+    .into_iter()
+    .filter(|(has, _)| !has)
+    .map(|(_, what)| what)
+    .collect()
+}

@@ -10,7 +10,7 @@
 //! `ankle_angle`.
 use glam::DVec3;
 
-use super::{Frames, MotionFileError, NO_ANKLES, NO_LUMBAR, NO_POSITION, Table, set_angle};
+use super::{Frames, MotionFileError, Table, absent, set_angle};
 use crate::export::opensim::OpenSimModel;
 use crate::figure::clinical::Clinical;
 use crate::figure::euler::{nearest_turn, yxz_angles, zxy_matrix};
@@ -193,16 +193,11 @@ pub(crate) fn parse(text: &str, body: &Body) -> Result<Frames, MotionFileError> 
             c
         })
         .collect();
-    let mut absent = Vec::new();
-    if position.is_none() {
-        absent.push(NO_POSITION);
-    }
-    if lumbar.is_none() {
-        absent.push(NO_LUMBAR);
-    }
-    if ankles.iter().any(Option::is_none) {
-        absent.push(NO_ANKLES);
-    }
+    let absent = absent(
+        position.is_some(),
+        lumbar.is_some(),
+        ankles.iter().all(Option::is_some),
+    );
     Ok(Frames {
         frames,
         format: format!("OpenSim storage ({model:?})"),
