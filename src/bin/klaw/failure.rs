@@ -37,6 +37,7 @@ pub(crate) fn exit_code(e: &Error) -> u8 {
         ) => FAILED,
         Error::Figure(f) | Error::Cycle(CycleError::Frame(f)) => figure(f),
         Error::Cycle(_) => BAD_INPUT,
+        Error::Criteria(_) => BAD_INPUT,
         Error::Io { action, .. } if *action == "writing" => FAILED,
         Error::Io { .. } => BAD_INPUT,
         Error::Draw { .. } => FAILED,

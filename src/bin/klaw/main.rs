@@ -5,6 +5,7 @@
 mod animate;
 mod args;
 mod bench;
+mod evaluate;
 mod failure;
 mod merge;
 mod one_action;
@@ -209,6 +210,22 @@ enum Command {
             Example: klaw turn --angle 180 --side right --kind stationary --out turn.csv --events turn-events.csv"
     )]
     Turn(one_action::TurnArgs),
+    /// Biomechanical quality criteria of a walk in a file: jerk, cyclicity, power (Pronost et al. 2006)
+    #[command(
+        long_about = "Read a walk (klaw's frame CSV from klaw walk --out, a measured walk in its columns, or\n\
+            OpenSim storage .mot/.sto with gait2392's coordinates) and print, over each gait cycle\n\
+            (heel strike to the next of the same foot; from the step column, else the ankle's\n\
+            foremost position), Pronost et al. 2006's criteria at 60 frames/s: C1 the total jerk\n\
+            (rad²/s⁶) and the mean squared jerk, C2 the cyclicity (rad), C3 the power per kg as\n\
+            printed (eqs. 10-11) with Willems et al. 1995's internal and external power; with\n\
+            --against the mean-shifted RMS of each angle (eq. 7); with --report the actuators'\n\
+            work per metre; and the published ranges of models/gait-norms.toml met or missed.\n\
+            docs/criteria.md defines each and compares klaw's walks with the paper's Table 1.\n\
+            A malformed file exits 2 naming the file and line; nothing is written.\n\
+            \n\
+            Example: klaw walk --out w.csv --report w.json --no-plot && klaw evaluate w.csv --report w.json --json c.json"
+    )]
+    Evaluate(evaluate::EvaluateArgs),
 }
 
 fn main() -> ExitCode {
@@ -229,6 +246,7 @@ fn main() -> ExitCode {
         Command::Scenario(args) => scenario::run(&args),
         Command::Step(args) => one_action::step(&args),
         Command::Turn(args) => one_action::turn(&args),
+        Command::Evaluate(args) => evaluate::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
