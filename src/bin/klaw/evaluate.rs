@@ -9,7 +9,7 @@ use klaw::analysis::criteria::compare::{AngleRms, compare};
 use klaw::analysis::criteria::heel_strikes::from_kinematics;
 use klaw::analysis::criteria::{Criteria, CriteriaParameters, Motion, PAPER_TABLE_1, evaluate};
 use klaw::analysis::cycle::GaitCycle;
-use klaw::analysis::norms::{self, NormCheck, NormTable};
+use klaw::analysis::norms::{self, NormCheck, NormTable, WalkSpeed};
 use klaw::export::read::report::{WalkWork, read_walk_work};
 use klaw::export::read::{MotionFile, read_motion};
 use klaw::model::InputError;
@@ -104,9 +104,13 @@ pub(crate) fn run(args: &EvaluateArgs) -> Result<()> {
         (compare(&alike(&file), &alike(a), skip), events)
     });
     let h = &file.motion.heel_strikes;
+    let speed = WalkSpeed {
+        velocity: pelvis_speed(&file.motion.frames),
+        leg_length: body.l1,
+    };
     let checks: Vec<NormCheck> =
         GaitCycle::from_clinical(&file.motion.frames, &h.right, &h.left, skip)
-            .map(|cycle| norms::check(&cycle, &NormTable::builtin()))
+            .map(|cycle| norms::check(&cycle, &NormTable::builtin(), speed))
             .unwrap_or_default()
             .into_iter()
             .filter(|c| c.value.is_finite())
@@ -354,4 +358,17 @@ fn norm_json(c: &NormCheck) -> serde_json::Value {
         "unit": c.unit,
         "inside": c.inside(),
     })
+}
+
+/// The walk's mean horizontal speed from its pelvis centre, first frame to last (m/s): the speed
+/// the speed-dependent norms are read at; NaN when the file has no pelvis position (those norms
+/// are then not checked).
+fn pelvis_speed(frames: &[klaw::Clinical]) -> f64 {
+    match (frames.first(), frames.last()) {
+        (Some(a), Some(b)) if b.time > a.time => {
+            let (dx, dz) = (b.pelvis[0] - a.pelvis[0], b.pelvis[2] - a.pelvis[2]);
+            dx.hypot(dz) / (b.time - a.time)
+        }
+        _ => f64::NAN,
+    }
 }
