@@ -125,6 +125,17 @@ fn evaluate_prints_and_writes_the_criteria() {
     assert_eq!(literal, c.mean.power.unwrap().literal);
     assert!(json["actuator_work"]["per_metre"].as_f64().unwrap() > 0.0);
     assert!(!json["norms"].as_array().unwrap().is_empty());
+    // the speed-dependent norms are read at the file's own speed: the pelvis advances at the
+    // walk's 1.4 m/s (to the start-up's transient), v / √(g l1) = 1.4 / √(9.81 · 0.868) = 0.480
+    let speeds: Vec<f64> = json["norms"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|n| n["speed"].as_f64())
+        .collect();
+    assert!(!speeds.is_empty());
+    let want = 1.4 / (9.81 * body.l1).sqrt();
+    assert!(speeds.iter().all(|v| (v - want).abs() < 0.01), "{speeds:?}");
     // the same walk in two formats compares to zero
     let out = klaw(d, &["evaluate", "w.mot", "--against", "w.csv"]);
     let stdout = String::from_utf8_lossy(&out.stdout);

@@ -353,6 +353,7 @@ fn norm_json(c: &NormCheck) -> serde_json::Value {
         "side": c.side.map(|s| format!("{s:?}").to_lowercase()),
         "value": c.value,
         "at_pct": c.at_pct,
+        "speed": c.speed,
         "low": c.low,
         "high": c.high,
         "unit": c.unit,
