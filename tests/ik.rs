@@ -1,0 +1,83 @@
+//! The inverse kinematics of Pronost et al. (src/ik/) on klaw's own walks: the chain's angles
+//! are klaw's clinical angles (its forward kinematics reproduces a walk's ankles from them), and
+//! the closed loop follows a walk's ankle trajectories within its tolerance at every frame, every
+//! angle inside its joint limits.
+mod common;
+
+use klaw::figure::clinical::clinical;
+use klaw::ik::{Angles, Ik};
+use klaw::poulaine::Trajectory;
+
+/// The chain's 11 angles of a frame's clinical angles.
+fn angles(c: &klaw::Clinical) -> Angles {
+    Angles::from_row_slice(&[
+        c.pelvis_tilt,
+        c.pelvis_list,
+        c.pelvis_rotation,
+        c.right.hip.flexion,
+        c.right.hip.adduction,
+        c.right.hip.rotation,
+        c.right.knee.flexion,
+        c.left.hip.flexion,
+        c.left.hip.adduction,
+        c.left.hip.rotation,
+        c.left.knee.flexion,
+    ])
+}
+
+/// The forward kinematics at a walk's clinical angles puts the ankles where the walk has them
+/// relative to its pelvis (an independent check of the chain's axes, signs and Euler orders
+/// against src/figure/clinical.rs), over a whole gait cycle.
+#[test]
+fn the_chain_at_a_walks_clinical_angles_reproduces_its_ankles() {
+    let body = common::default_body();
+    let walk = klaw::Simulation::new(body)
+        .velocity(1.3)
+        .steps(4)
+        .run()
+        .unwrap();
+    let (poulaine, frames) = Trajectory::from_walk(&walk, 100.0).unwrap();
+    let ik = Ik::new(&body);
+    for (f, x) in frames.iter().zip(poulaine.targets()) {
+        let theta = angles(&clinical(f, &body).unwrap());
+        let e = (ik.chain.ankles(&theta) - x).amax();
+        assert!(e < 1e-12, "t {}: {e} m", f.time);
+    }
+}
+
+/// The closed loop on a walk's own ankle trajectories (60 Hz, the paper's rate): at every frame
+/// the ankles are within the tolerance (10 µm, far inside the 1 mm), every angle within
+/// its limits, and the cycle closes: the first frame follows from the last like any other.
+#[test]
+fn the_closed_loop_follows_a_walks_ankles_within_the_limits() {
+    let body = common::default_body();
+    let walk = klaw::Simulation::new(body)
+        .velocity(1.4)
+        .steps(6)
+        .run()
+        .unwrap();
+    let (poulaine, _) = Trajectory::from_walk(&walk, 60.0).unwrap();
+    let dt = poulaine.uniform_step().unwrap();
+    let ik = Ik::new(&body);
+    let sol = ik.solve(&poulaine.targets(), dt, true).unwrap();
+    assert_eq!(sol.frames.len(), poulaine.time.len());
+    for (i, f) in sol.frames.iter().enumerate() {
+        assert!(
+            f.residual <= ik.params.tolerance,
+            "frame {i}: {} m",
+            f.residual
+        );
+        let x = ik.chain.ankles(&f.theta);
+        assert!((x - poulaine.targets()[i]).amax() <= 1e-3);
+        assert!(ik.model.within_limits(&f.theta), "frame {i}: {:?}", f.theta);
+    }
+    // cyclic: the step from the last frame to the first is no larger than the largest step
+    let steps: Vec<f64> = sol
+        .frames
+        .windows(2)
+        .map(|w| (w[1].theta - w[0].theta).amax())
+        .collect();
+    let wrap = (sol.frames[0].theta - sol.frames.last().unwrap().theta).amax();
+    let largest = steps.iter().cloned().fold(0.0, f64::max);
+    assert!(wrap <= largest, "{wrap} vs {largest}");
+}
