@@ -9,7 +9,7 @@ use klaw::ik::{Angles, Ik};
 use klaw::poulaine::Trajectory;
 
 /// The chain's 11 angles of a frame's clinical angles.
-fn angles(c: &klaw::Clinical) -> Angles {
+fn chain_angles(c: &klaw::Clinical) -> Angles {
     Angles::from_row_slice(&[
         c.pelvis_tilt,
         c.pelvis_list,
@@ -39,7 +39,7 @@ fn the_chain_at_a_walks_clinical_angles_reproduces_its_ankles() {
     let (poulaine, frames) = Trajectory::from_walk(&walk, 100.0).unwrap();
     let ik = Ik::new(&body);
     for (f, x) in frames.iter().zip(poulaine.targets()) {
-        let theta = angles(&clinical(f, &body).unwrap());
+        let theta = chain_angles(&clinical(f, &body).unwrap());
         let e = (ik.chain.ankles(&theta) - x).amax();
         assert!(e < 1e-12, "t {}: {e} m", f.time);
     }
@@ -80,4 +80,57 @@ fn the_closed_loop_follows_a_walks_ankles_within_the_limits() {
     let wrap = (sol.frames[0].theta - sol.frames.last().unwrap().theta).amax();
     let largest = steps.iter().cloned().fold(0.0, f64::max);
     assert!(wrap <= largest, "{wrap} vs {largest}");
+}
+
+/// The figure posed from the solution: its clinical angles are the chain's (hips, knees,
+/// pelvis), no foot goes through the floor and one touches it at every frame, the pelvis
+/// advances at the walk's speed, and the exporters take it (CSV, .mot, BVH).
+#[test]
+fn the_posed_figure_carries_the_angles_and_stands_on_the_floor() {
+    let body = common::default_body();
+    let walk = klaw::Simulation::new(body)
+        .velocity(1.2)
+        .steps(4)
+        .run()
+        .unwrap();
+    let (poulaine, _) = Trajectory::from_walk(&walk, 60.0).unwrap();
+    let dt = poulaine.uniform_step().unwrap();
+    let ik = Ik::new(&body);
+    let sol = ik.solve(&poulaine.targets(), dt, true).unwrap();
+    let angles: Vec<Angles> = sol.frames.iter().map(|f| f.theta).collect();
+    let attrs = common::default_attributes();
+    let frames = klaw::ik::figure::frames((&body, &attrs), &angles, dt, 1.2, 2);
+    assert_eq!(frames.len(), 2 * angles.len());
+    for (k, f) in frames.iter().enumerate() {
+        let c = clinical(f, &body).unwrap();
+        let e = (chain_angles(&c) - angles_at(&angles, k)).amax();
+        assert!(e < 1e-9, "frame {k}: {e}");
+        let lowest = [f.right, f.left]
+            .iter()
+            .flat_map(|l| [l.heel[1], l.mtp[1], l.toe[1]])
+            .fold(f64::INFINITY, f64::min);
+        assert!(lowest.abs() < 1e-9, "frame {k}: lowest foot point {lowest}");
+        assert!((f.pelvis[0] - 1.2 * f.time).abs() < 1e-12);
+    }
+    let dir = std::env::temp_dir().join(format!("klaw-ik-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for name in ["ik.csv", "ik.mot", "ik.bvh"] {
+        let path = dir.join(name);
+        let format = klaw::Format::from_path(&path).unwrap();
+        klaw::export::write(
+            &path,
+            format,
+            &body,
+            1.0 / dt,
+            frames.clone(),
+            &Default::default(),
+        )
+        .unwrap();
+        assert!(std::fs::metadata(&path).unwrap().len() > 1000);
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+fn angles_at(a: &[Angles], k: usize) -> Angles {
+    a[k % a.len()]
 }

@@ -7,6 +7,7 @@
 //! measurements.
 pub mod chain;
 pub mod error;
+pub mod figure;
 pub mod mds;
 pub mod model;
 pub mod parameters;
