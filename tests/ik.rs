@@ -7,23 +7,7 @@ mod common;
 use klaw::figure::clinical::clinical;
 use klaw::ik::{Angles, Ik};
 use klaw::poulaine::Trajectory;
-
-/// The chain's 11 angles of a frame's clinical angles.
-fn chain_angles(c: &klaw::Clinical) -> Angles {
-    Angles::from_row_slice(&[
-        c.pelvis_tilt,
-        c.pelvis_list,
-        c.pelvis_rotation,
-        c.right.hip.flexion,
-        c.right.hip.adduction,
-        c.right.hip.rotation,
-        c.right.knee.flexion,
-        c.left.hip.flexion,
-        c.left.hip.adduction,
-        c.left.hip.rotation,
-        c.left.knee.flexion,
-    ])
-}
+use klaw::poulaine::validate::chain_angles;
 
 /// The forward kinematics at a walk's clinical angles puts the ankles where the walk has them
 /// relative to its pelvis (an independent check of the chain's axes, signs and Euler orders

@@ -32,6 +32,11 @@ pub struct IkParameters {
     pub max_iterations: u64,
     /// Δt_ref (s) of the postural terms' scale Δt_ref / Δt ([`crate::ik::tasks`]).
     pub reference_step: f64,
+    /// The farthest an ankle target may lie from its hip, as a fraction of the leg's length
+    /// l3 + l4: a database's poulaine is clamped to it (Pronost et al. §4's "the ankle can
+    /// follow the reconstructed curve"); 0.999 keeps the knee ≥ 5° bent, off the chain's
+    /// singular straight leg.
+    pub reach: f64,
     /// A periodic trajectory is solved once through before the kept pass (the warm-up), so that
     /// its first frame follows from its last.
     pub warm_up: bool,
@@ -49,6 +54,7 @@ impl Default for IkParameters {
             simplex_tolerance: 1e-6,
             max_iterations: 400,
             reference_step: 1.0 / 60.0,
+            reach: 0.999,
             warm_up: true,
         }
     }

@@ -120,13 +120,22 @@ impl Ik {
     }
 
     /// The first frame: from the rest posture, rounds of primary and secondary steps without
-    /// the kinetic term.
+    /// the kinetic term, the targets moved from the rest posture's ankles to `target` over the
+    /// first half of the rounds (a large first step could land the chain on a wrong branch).
     pub fn start(&self, target: &Ankles) -> Result<FrameResult, IkError> {
-        let mut f = self.step(&self.model.rest, target, None, 0, 0.0)?;
-        for _ in 1..self.params.start_rounds {
-            f = self.step(&f.theta, target, None, 0, 0.0)?;
+        let from = self.chain.ankles(&self.model.rest);
+        let rounds = self.params.start_rounds.max(2);
+        let ramp = (rounds / 2).max(1);
+        let mut theta = self.model.rest;
+        let mut last = None;
+        for k in 1..=rounds {
+            let w = (k as f64 / ramp as f64).min(1.0);
+            let t = from + (target - from) * w;
+            let f = self.step(&theta, &t, None, 0, 0.0)?;
+            theta = f.theta;
+            last = Some(f);
         }
-        Ok(f)
+        Ok(last.expect("at least one round"))
     }
 
     /// One frame from θ_t = `previous` towards `target` (module doc); `dt` None: no kinetic term
