@@ -211,7 +211,7 @@ impl Ik {
             Optimizer::MultiDirectional => {
                 let solver = MultiDirectional::new(start, p.simplex, p.simplex_tolerance)?;
                 let r = Executor::new(problem, solver)
-                    .configure(|s| s.max_iters(p.max_iterations))
+                    .configure(|s| s.max_iters(p.max_iterations).counting(true))
                     .timer(false)
                     .run()?;
                 summary(r.state())
@@ -225,7 +225,7 @@ impl Ik {
                 }
                 let solver = NelderMead::new(simplex).with_sd_tolerance(p.simplex_tolerance)?;
                 let r = Executor::new(problem, solver)
-                    .configure(|s| s.max_iters(p.max_iterations))
+                    .configure(|s| s.max_iters(p.max_iterations).counting(true))
                     .timer(false)
                     .run()?;
                 summary(r.state())

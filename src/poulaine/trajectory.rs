@@ -91,6 +91,135 @@ impl Trajectory {
         Ok(t)
     }
 
+    /// Read a poulaine CSV file (`docs/ik.md`): the header [`CSV_HEADER`], one row per sample
+    /// of one cycle, uniform in time from 0; the period is the number of rows × the step.
+    pub fn read_csv(path: &Path) -> crate::Result<Self> {
+        let text = std::fs::read_to_string(path).map_err(|source| crate::Error::Io {
+            action: "reading",
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Ok(Self::parse_csv(&text, path)?)
+    }
+
+    /// [`Self::read_csv`] of the text of `path`.
+    pub fn parse_csv(text: &str, path: &Path) -> Result<Self, PoulaineError> {
+        let bad = |reason: String| PoulaineError::Malformed {
+            path: path.to_path_buf(),
+            reason,
+        };
+        let mut reader = csv::ReaderBuilder::new().from_reader(text.as_bytes());
+        let header = reader
+            .headers()
+            .map_err(|e| bad(format!("not a CSV file: {e}")))?
+            .clone();
+        if header.iter().ne(CSV_HEADER.iter().copied()) {
+            return Err(bad(format!("the header must be {}", CSV_HEADER.join(","))));
+        }
+        let mut rows: Vec<[f64; 7]> = Vec::new();
+        for (i, record) in reader.records().enumerate() {
+            let record = record.map_err(|e| bad(format!("row {}: {e}", i + 2)))?;
+            let mut row = [0.0; 7];
+            for (k, field) in record.iter().enumerate() {
+                row[k] = field.trim().parse().map_err(|_| {
+                    bad(format!(
+                        "row {}, column {}: `{field}` is not a number",
+                        i + 2,
+                        CSV_HEADER[k]
+                    ))
+                })?;
+            }
+            rows.push(row);
+        }
+        if rows.len() < 2 {
+            return Err(PoulaineError::TooFewSamples {
+                samples: rows.len(),
+                min: 8,
+            });
+        }
+        let step = rows[1][0] - rows[0][0];
+        let t = Trajectory {
+            time: rows.iter().map(|r| r[0]).collect(),
+            period: step * rows.len() as f64,
+            right: rows.iter().map(|r| [r[1], r[2], r[3]]).collect(),
+            left: rows.iter().map(|r| [r[4], r[5], r[6]]).collect(),
+        };
+        t.check(path)?;
+        if t.uniform_step().is_none() {
+            return Err(bad(
+                "the samples must be uniform in time (one step between every two rows)".into(),
+            ));
+        }
+        Ok(t)
+    }
+
+    /// Write the poulaine as CSV ([`Self::read_csv`]'s layout), whole or not at all.
+    pub fn write_csv(&self, path: &Path) -> crate::Result<()> {
+        // the fields name the columns: CSV_HEADER
+        #[derive(serde::Serialize)]
+        struct Row {
+            time_s: f64,
+            right_x_m: f64,
+            right_y_m: f64,
+            right_z_m: f64,
+            left_x_m: f64,
+            left_y_m: f64,
+            left_z_m: f64,
+        }
+        let rows: Vec<Row> = (0..self.time.len())
+            .map(|i| {
+                let (r, l) = (self.right[i], self.left[i]);
+                Row {
+                    time_s: self.time[i],
+                    right_x_m: r[0],
+                    right_y_m: r[1],
+                    right_z_m: r[2],
+                    left_x_m: l[0],
+                    left_y_m: l[1],
+                    left_z_m: l[2],
+                }
+            })
+            .collect();
+        crate::export::write_rows_csv(path, &CSV_HEADER, &rows)
+    }
+
+    /// The walking speed the poulaine implies: the supporting foot stands still, so its ankle
+    /// moves back relative to the pelvis at the body's speed; v is the slope of x against time
+    /// (least squares) over the middle half of each ankle's support (most forward to most
+    /// backward sample), the mean of both ankles.
+    pub fn speed(&self) -> f64 {
+        let one = |leg: &[[f64; 3]]| {
+            let n = leg.len();
+            let arg = |sign: f64| {
+                (0..n).fold(0, |b, i| {
+                    if sign * leg[i][0] > sign * leg[b][0] {
+                        i
+                    } else {
+                        b
+                    }
+                })
+            };
+            let (f, b) = (arg(1.0), arg(-1.0));
+            let span = (b + n - f) % n;
+            let pts: Vec<(f64, f64)> = (span / 4..=3 * span / 4)
+                .map(|k| {
+                    let i = f + k;
+                    let t = self.time[i % n] + if i >= n { self.period } else { 0.0 };
+                    (t, leg[i % n][0])
+                })
+                .collect();
+            let m = pts.len() as f64;
+            let (mt, mx) = pts
+                .iter()
+                .fold((0.0, 0.0), |(a, b), p| (a + p.0 / m, b + p.1 / m));
+            let (sxy, sxx) = pts.iter().fold((0.0, 0.0), |(a, b), p| {
+                (a + (p.0 - mt) * (p.1 - mx), b + (p.0 - mt) * (p.0 - mt))
+            });
+            -sxy / sxx
+        };
+        0.5 * (one(&self.right) + one(&self.left))
+    }
+
     /// The ankle targets of the inverse kinematics, one per sample.
     pub fn targets(&self) -> Vec<Ankles> {
         self.right
