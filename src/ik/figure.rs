@@ -20,7 +20,7 @@
 use glam::DVec3;
 
 use crate::figure::{ArmAngles, Landmarks, LegPoints};
-use crate::ik::chain::{Angles, Chain, LegPose};
+use crate::ik::chain::{Angles, Chain, LegPose, Pose};
 use crate::kinematics::foot::Foot;
 use crate::kinematics::pelvis::Side;
 use crate::model::attributes::Attributes;
@@ -72,9 +72,64 @@ fn swing_pitch(foot: &Foot, leg: &LegPose, ankle_world: [f64; 2]) -> f64 {
     foot.clear_pitch(y.x.atan2(y.y), ankle_world, 0.0, 0.0).0
 }
 
+/// One cycle of the chain posed, with each leg's support phases.
+struct Cycle<'a> {
+    angles: &'a [Angles],
+    poses: Vec<Pose>,
+    supports: [Vec<bool>; 2],
+    dt: f64,
+    speed: f64,
+}
+
+const SIDES: [Side; 2] = [Side::Right, Side::Left];
+
+impl Cycle<'_> {
+    fn len(&self) -> usize {
+        self.angles.len()
+    }
+
+    /// Leg `s`'s ankle x in the world at unrolled frame k.
+    fn world_x(&self, k: usize, s: usize) -> f64 {
+        self.speed * k as f64 * self.dt + self.poses[k % self.len()].leg(SIDES[s]).ankle.x
+    }
+
+    /// For each unrolled frame and leg in support, where its foot lies flat: the world x of its
+    /// ankle at the run's frame nearest under the pelvis (point 3); NaN out of support.
+    fn flat_places(&self, total: usize) -> Vec<[f64; 2]> {
+        let n = self.len();
+        let mut flat = vec![[f64::NAN; 2]; total];
+        for s in 0..2 {
+            let mut k = 0;
+            while k < total {
+                if !self.supports[s][k % n] {
+                    k += 1;
+                    continue;
+                }
+                let start = k;
+                while k < total && self.supports[s][k % n] {
+                    k += 1;
+                }
+                let under = |i: usize| self.poses[i % n].leg(SIDES[s]).ankle.x.abs();
+                let mid = (start..k)
+                    .min_by(|&a, &b| under(a).total_cmp(&under(b)))
+                    .expect("a run has frames");
+                let x_flat = self.world_x(mid, s);
+                for f in flat.iter_mut().take(k).skip(start) {
+                    f[s] = x_flat;
+                }
+            }
+        }
+        flat
+    }
+}
+
+/// A thigh's sagittal angle, knee forward + (klaw's arm rule, [`crate::figure::landmarks`]).
+fn thigh(l: &LegPose) -> f64 {
+    (l.knee.x - l.hip.x).atan2(l.hip.y - l.knee.y)
+}
+
 /// The figure's frames for `cycles` repetitions of one periodic cycle of the chain's `angles`
-/// (frame period `dt`), the pelvis moving forward at `speed` (m/s). `ankles_x`: each leg's
-/// ankle x relative to the pelvis over the cycle (right, left), for the support phases.
+/// (frame period `dt`), the pelvis moving forward at `speed` (m/s).
 pub fn frames(
     (body, attrs): (&Body, &Attributes),
     angles: &[Angles],
@@ -83,123 +138,113 @@ pub fn frames(
     cycles: usize,
 ) -> Vec<Landmarks> {
     let chain = Chain::new(body);
-    let foot = Foot::new(body);
-    let theta6_max = attrs.metatarsal_limit;
-    let n = angles.len();
-    let poses: Vec<_> = angles.iter().map(|a| chain.pose(a)).collect();
-    let sides = [Side::Right, Side::Left];
-    let supports: Vec<Vec<bool>> = sides
-        .iter()
-        .map(|&s| support(&poses.iter().map(|p| p.leg(s).ankle.x).collect::<Vec<_>>()))
-        .collect();
+    let poses: Vec<Pose> = angles.iter().map(|a| chain.pose(a)).collect();
+    let support_of = |s: Side| support(&poses.iter().map(|p| p.leg(s).ankle.x).collect::<Vec<_>>());
+    let cycle = Cycle {
+        angles,
+        supports: [support_of(Side::Right), support_of(Side::Left)],
+        poses,
+        dt,
+        speed,
+    };
+    let n = cycle.len();
     let total = n * cycles;
-    let world_x = |k: usize, s: usize| speed * k as f64 * dt + poses[k % n].leg(sides[s]).ankle.x;
-    // each support run of the unrolled frames: where its foot lies flat (point 3: the frame of
-    // the run whose ankle is nearest under the pelvis)
-    let mut flat = vec![[f64::NAN; 2]; total];
-    for s in 0..2 {
-        let mut k = 0;
-        while k < total {
-            if !supports[s][k % n] {
-                k += 1;
-                continue;
-            }
-            let start = k;
-            while k < total && supports[s][k % n] {
-                k += 1;
-            }
-            let mid = (start..k)
-                .min_by(|&a, &b| {
-                    let xa = poses[a % n].leg(sides[s]).ankle.x.abs();
-                    xa.total_cmp(&poses[b % n].leg(sides[s]).ankle.x.abs())
-                })
-                .expect("a run has frames");
-            let x_flat = world_x(mid, s);
-            for f in flat.iter_mut().take(k).skip(start) {
-                f[s] = x_flat;
-            }
-        }
-    }
+    let flat = cycle.flat_places(total);
     // the steps: a new one at each support's first frame
     let starts: Vec<usize> = (0..total)
-        .filter(|&k| (0..2).any(|s| supports[s][k % n] && !supports[s][(k + n - 1) % n]))
+        .filter(|&k| {
+            (0..2).any(|s| cycle.supports[s][k % n] && !cycle.supports[s][(k + n - 1) % n])
+        })
         .collect();
     // the thighs' largest forward angle, the arms' reference
-    let thigh = |l: &LegPose| (l.hip.x - l.knee.x).atan2(l.hip.y - l.knee.y);
-    let reference = poses
+    let reference = cycle
+        .poses
         .iter()
         .flat_map(|p| [thigh(&p.right), thigh(&p.left)])
-        .fold(1e-3, |a: f64, b| a.max(-b));
+        .fold(1e-3, f64::max);
+    let foot = Foot::new(body);
     (0..total)
         .map(|k| {
-            let pose = &poses[k % n];
-            let theta = &angles[k % n];
-            let x_pelvis = speed * k as f64 * dt;
-            // the supporting ankles' grounded heights and pitches
-            let grounded: Vec<Option<(f64, f64, f64)>> = (0..2)
-                .map(|s| {
-                    let x_flat = flat[k][s];
-                    (!x_flat.is_nan()).then(|| {
-                        let p = pitch_for(&foot, world_x(k, s) - x_flat, theta6_max);
-                        let (a, t6) = grounded_ankle(&foot, p, theta6_max);
-                        (p, a[1], t6)
-                    })
-                })
-                .collect();
-            let y_pelvis = (0..2)
-                .filter_map(|s| grounded[s].map(|g| g.1 - pose.leg(sides[s]).ankle.y))
-                .fold(f64::NEG_INFINITY, f64::max);
-            let y_pelvis = if y_pelvis.is_finite() {
-                y_pelvis
-            } else {
-                body.l1 + body.l9
-            };
-            let origin = DVec3::new(x_pelvis, y_pelvis, 0.0);
-            let leg = |s: usize| {
-                let l = pose.leg(sides[s]);
-                let ankle = origin + l.ankle;
-                let (p, t6) = match grounded[s] {
-                    Some((p, _, t6)) => (p, t6),
-                    None => (swing_pitch(&foot, l, [ankle.x, ankle.y]), 0.0),
-                };
-                let pts = foot.points([ankle.x, ankle.y], p, t6);
-                let at = |q: [f64; 2]| [q[0], q[1], ankle.z];
-                LegPoints {
-                    hip: (origin + l.hip).to_array(),
-                    knee: (origin + l.knee).to_array(),
-                    ankle: ankle.to_array(),
-                    heel: at(pts.heel),
-                    mtp: at(pts.meta),
-                    toe: at(pts.toe),
-                    knee_axis: l.thigh.z_axis.to_array(),
-                }
-            };
-            let arm = |opposite: &LegPose| {
-                let flexion = 0.5 * attrs.arm_swing * thigh(opposite) / reference;
-                ArmAngles {
-                    shoulder_flexion: flexion,
-                    shoulder_abduction: 5f64.to_radians(),
-                    elbow_flexion: 20f64.to_radians() + 0.5 * flexion.max(0.0),
-                }
-            };
-            Landmarks {
-                time: k as f64 * dt,
-                step: starts.partition_point(|&s| s <= k).saturating_sub(1),
-                pelvis: origin.to_array(),
-                pelvis_tilt: theta[0],
-                pelvis_list: theta[1],
-                pelvis_rotation: theta[2],
-                lumbar_extension: theta[0] - attrs.trunk_lean,
-                lumbar_bending: -theta[1],
-                lumbar_rotation: -1.8 * theta[2],
-                neck_rotation: 0.0,
-                right: leg(0),
-                left: leg(1),
-                right_arm: arm(&pose.left),
-                left_arm: arm(&pose.right),
-            }
+            let mut f = pose_frame(&cycle, k, flat[k], (body, attrs, &foot), reference);
+            f.step = starts.partition_point(|&s| s <= k).saturating_sub(1);
+            f
         })
         .collect()
+}
+
+/// Unrolled frame k of the cycle: the supporting feet planted at `flat`, the pelvis's height
+/// from them (module doc).
+fn pose_frame(
+    cycle: &Cycle,
+    k: usize,
+    flat: [f64; 2],
+    (body, attrs, foot): (&Body, &Attributes, &Foot),
+    reference: f64,
+) -> Landmarks {
+    let n = cycle.len();
+    let pose = &cycle.poses[k % n];
+    let theta = &cycle.angles[k % n];
+    let theta6_max = attrs.metatarsal_limit;
+    // the supporting ankles' pitches, grounded heights and toe angles
+    let grounded: [Option<(f64, f64, f64)>; 2] = [0, 1].map(|s| {
+        (!flat[s].is_nan()).then(|| {
+            let p = pitch_for(foot, cycle.world_x(k, s) - flat[s], theta6_max);
+            let (a, t6) = grounded_ankle(foot, p, theta6_max);
+            (p, a[1], t6)
+        })
+    });
+    let y_pelvis = (0..2)
+        .filter_map(|s| grounded[s].map(|g| g.1 - pose.leg(SIDES[s]).ankle.y))
+        .fold(f64::NEG_INFINITY, f64::max);
+    let y_pelvis = if y_pelvis.is_finite() {
+        y_pelvis
+    } else {
+        body.l1 + body.l9
+    };
+    let origin = DVec3::new(cycle.speed * k as f64 * cycle.dt, y_pelvis, 0.0);
+    let leg = |s: usize| {
+        let l = pose.leg(SIDES[s]);
+        let ankle = origin + l.ankle;
+        let (p, t6) = match grounded[s] {
+            Some((p, _, t6)) => (p, t6),
+            None => (swing_pitch(foot, l, [ankle.x, ankle.y]), 0.0),
+        };
+        let pts = foot.points([ankle.x, ankle.y], p, t6);
+        let at = |q: [f64; 2]| [q[0], q[1], ankle.z];
+        LegPoints {
+            hip: (origin + l.hip).to_array(),
+            knee: (origin + l.knee).to_array(),
+            ankle: ankle.to_array(),
+            heel: at(pts.heel),
+            mtp: at(pts.meta),
+            toe: at(pts.toe),
+            knee_axis: l.thigh.z_axis.to_array(),
+        }
+    };
+    let arm = |opposite: &LegPose| {
+        let flexion = 0.5 * attrs.arm_swing * thigh(opposite) / reference;
+        ArmAngles {
+            shoulder_flexion: flexion,
+            shoulder_abduction: 5f64.to_radians(),
+            elbow_flexion: 20f64.to_radians() + 0.5 * flexion.max(0.0),
+        }
+    };
+    Landmarks {
+        time: k as f64 * cycle.dt,
+        step: 0,
+        pelvis: origin.to_array(),
+        pelvis_tilt: theta[0],
+        pelvis_list: theta[1],
+        pelvis_rotation: theta[2],
+        lumbar_extension: theta[0] - attrs.trunk_lean,
+        lumbar_bending: -theta[1],
+        lumbar_rotation: -1.8 * theta[2],
+        neck_rotation: 0.0,
+        right: leg(0),
+        left: leg(1),
+        right_arm: arm(&pose.left),
+        left_arm: arm(&pose.right),
+    }
 }
 
 #[cfg(test)]

@@ -102,6 +102,56 @@ struct Report {
     within_limits: bool,
 }
 
+/// The poulaine, speed, source, selection and query of `klaw ik`.
+type Source = (Trajectory, f64, String, Option<[String; 3]>, Option<Query>);
+
+/// The database's poulaine for the walker of `a` (docs/ik.md, "Selection").
+fn db_poulaine(a: &IkArgs, db_path: &std::path::Path, body: &Body) -> Result<Source> {
+    InputError::check_range("fps", a.fps, 20.0, 500.0, "frames/s")?;
+    if let Some(w) = a.step_width {
+        InputError::check_range("step-width", w, 0.0, 0.4, "m")?;
+    }
+    if let Some(s) = a.stance {
+        InputError::check_range("stance", s, 0.7, 1.0, "")?;
+    }
+    let db = Database::read(db_path)?;
+    let attrs = AttributeTable::builtin().defaults();
+    let velocity = match (a.velocity, a.step_length) {
+        (None, None) => Some(1.4),
+        (v, _) => v,
+    };
+    let gait = GaitRequest {
+        velocity,
+        step_length: a.step_length,
+        step_frequency: None,
+    }
+    .complete(body, &attrs)?;
+    let period = 120.0 / gait.step_frequency;
+    let trace = db.trace_for_step(gait.step_length, body.l1);
+    let nearest = db.select(&Query {
+        trace,
+        spacing: 0.0,
+        stance: 0.0,
+    });
+    let axes = db.entries[nearest.x].axes;
+    let q = Query {
+        trace,
+        spacing: a.step_width.map_or(axes.spacing, |w| w / 2.0 / body.l1),
+        stance: a.stance.unwrap_or(axes.stance),
+    };
+    let (model, s) = db.poulaine(&q, body.l1, period);
+    let n = (period * a.fps).round() as usize;
+    let labels = [s.x, s.y, s.z].map(|i| db.entries[i].label.clone());
+    let source = db_path.display().to_string();
+    Ok((
+        model.sample(n),
+        gait.velocity,
+        source,
+        Some(labels),
+        Some(q),
+    ))
+}
+
 pub(crate) fn run(a: &IkArgs) -> Result<()> {
     let body = Body::standard(a.height, a.mass)?;
     let cycles = check_count("cycles", a.cycles, 1, 1000, "cycles")?;
@@ -125,56 +175,7 @@ pub(crate) fn run(a: &IkArgs) -> Result<()> {
             let v = a.velocity.unwrap_or_else(|| t.speed());
             (t, v, p.display().to_string(), None, None)
         }
-        (None, Some(db_path)) => {
-            InputError::check_range("fps", a.fps, 20.0, 500.0, "frames/s")?;
-            if let Some(w) = a.step_width {
-                InputError::check_range("step-width", w, 0.0, 0.4, "m")?;
-            }
-            if let Some(s) = a.stance {
-                InputError::check_range("stance", s, 0.7, 1.0, "")?;
-            }
-            let db = Database::read(db_path)?;
-            let attrs = AttributeTable::builtin().defaults();
-            let gait = GaitRequest {
-                velocity: a.velocity,
-                step_length: a.step_length,
-                step_frequency: None,
-            };
-            let gait = if gait.velocity.is_none() && gait.step_length.is_none() {
-                GaitRequest {
-                    velocity: Some(1.4),
-                    ..gait
-                }
-            } else {
-                gait
-            }
-            .complete(&body, &attrs)?;
-            let period = 120.0 / gait.step_frequency;
-            let trace = db.trace_for_step(gait.step_length, body.l1);
-            let nearest = db
-                .select(&Query {
-                    trace,
-                    spacing: 0.0,
-                    stance: 0.0,
-                })
-                .x;
-            let axes = db.entries[nearest].axes;
-            let q = Query {
-                trace,
-                spacing: a.step_width.map_or(axes.spacing, |w| w / 2.0 / body.l1),
-                stance: a.stance.unwrap_or(axes.stance),
-            };
-            let (model, s) = db.poulaine(&q, body.l1, period);
-            let n = (period * a.fps).round() as usize;
-            let labels = [s.x, s.y, s.z].map(|i| db.entries[i].label.clone());
-            (
-                model.sample(n),
-                gait.velocity,
-                db_path.display().to_string(),
-                Some(labels),
-                Some(q),
-            )
-        }
+        (None, Some(db_path)) => db_poulaine(a, db_path, &body)?,
         (None, None) => unreachable!("clap requires --poulaine or --db"),
     };
     let clamped = clamp_to_reach(&mut poulaine, body.l0 / 2.0, ik.params.reach * body.l1);
