@@ -34,16 +34,7 @@ fn the_chain_at_a_walks_clinical_angles_reproduces_its_ankles() {
 /// its limits, and the cycle closes: the first frame follows from the last like any other.
 #[test]
 fn the_closed_loop_follows_a_walks_ankles_within_the_limits() {
-    let body = common::default_body();
-    let walk = klaw::Simulation::new(body)
-        .velocity(1.4)
-        .steps(6)
-        .run()
-        .unwrap();
-    let (poulaine, _) = Trajectory::from_walk(&walk, 60.0).unwrap();
-    let dt = poulaine.uniform_step().unwrap();
-    let ik = Ik::new(&body);
-    let sol = ik.solve(&poulaine.targets(), dt, true).unwrap();
+    let (_, poulaine, ik, sol) = solved(1.4, 6);
     assert_eq!(sol.frames.len(), poulaine.time.len());
     for (i, f) in sol.frames.iter().enumerate() {
         assert!(
@@ -71,16 +62,8 @@ fn the_closed_loop_follows_a_walks_ankles_within_the_limits() {
 /// advances at the walk's speed, and the exporters take it (CSV, .mot, BVH).
 #[test]
 fn the_posed_figure_carries_the_angles_and_stands_on_the_floor() {
-    let body = common::default_body();
-    let walk = klaw::Simulation::new(body)
-        .velocity(1.2)
-        .steps(4)
-        .run()
-        .unwrap();
-    let (poulaine, _) = Trajectory::from_walk(&walk, 60.0).unwrap();
+    let (body, poulaine, _, sol) = solved(1.2, 4);
     let dt = poulaine.uniform_step().unwrap();
-    let ik = Ik::new(&body);
-    let sol = ik.solve(&poulaine.targets(), dt, true).unwrap();
     let angles: Vec<Angles> = sol.frames.iter().map(|f| f.theta).collect();
     let attrs = common::default_attributes();
     let frames = klaw::ik::figure::frames((&body, &attrs), &angles, dt, 1.2, 2);
@@ -113,6 +96,22 @@ fn the_posed_figure_carries_the_angles_and_stands_on_the_floor() {
         assert!(std::fs::metadata(&path).unwrap().len() > 1000);
     }
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A walk at `v` m/s of the default body (`steps` steps), its poulaine at 60 Hz, the IK and its
+/// solution.
+fn solved(v: f64, steps: usize) -> (klaw::Body, Trajectory, Ik, klaw::ik::Solution) {
+    let body = common::default_body();
+    let walk = klaw::Simulation::new(body)
+        .velocity(v)
+        .steps(steps)
+        .run()
+        .unwrap();
+    let (poulaine, _) = Trajectory::from_walk(&walk, 60.0).unwrap();
+    let dt = poulaine.uniform_step().unwrap();
+    let ik = Ik::new(&body);
+    let sol = ik.solve(&poulaine.targets(), dt, true).unwrap();
+    (body, poulaine, ik, sol)
 }
 
 fn angles_at(a: &[Angles], k: usize) -> Angles {

@@ -2,7 +2,7 @@
 //! [`crate::nrs::pose`] poses a non-rhythmic step): the legs by the chain's forward kinematics
 //! about the pelvis centre, the pelvis carried forward at the walk's speed, its height set by the
 //! stance ankle on the ground, the feet by klaw's foot rules, the trunk and arms by klaw's walk
-//! rules ([`crate::figure::landmarks`]).
+//! rules ([`crate::figure::landmarks()`]).
 //!
 //! - A leg is in support from its ankle's most forward point to its most backward (relative to
 //!   the pelvis: heel strike to toe-off, Pronost et al.'s characteristic points 2 to 4).
@@ -13,13 +13,14 @@
 //!   height that pitch gives it (the higher of the two in double support: no foot goes
 //!   through the floor).
 //! - A swinging foot stays square to its shank (the ankle at 0° of dorsiflexion), clamped to
-//!   keep the heel and the toe above the floor ([`Foot::clear_pitch`]).
+//!   keep the heel and the toe above the floor (`Foot::clear_pitch`).
 //! - The trunk keeps its lean (attribute `trunk_lean`): lumbar extension = tilt − lean, bending
 //!   = −list, rotation = −1.8 × pelvic rotation; each arm swings with the opposite thigh, half
 //!   the attribute `arm_swing` at that thigh's largest forward angle.
 use glam::DVec3;
 
-use crate::figure::{ArmAngles, Landmarks, LegPoints};
+use crate::figure::landmarks::arm_swing;
+use crate::figure::{Landmarks, LegPoints};
 use crate::ik::chain::{Angles, Chain, LegPose, Pose};
 use crate::kinematics::foot::Foot;
 use crate::kinematics::pelvis::Side;
@@ -123,7 +124,7 @@ impl Cycle<'_> {
     }
 }
 
-/// A thigh's sagittal angle, knee forward + (klaw's arm rule, [`crate::figure::landmarks`]).
+/// A thigh's sagittal angle, knee forward + (klaw's arm rule, [`crate::figure::landmarks()`]).
 fn thigh(l: &LegPose) -> f64 {
     (l.knee.x - l.hip.x).atan2(l.hip.y - l.knee.y)
 }
@@ -221,14 +222,7 @@ fn pose_frame(
             knee_axis: l.thigh.z_axis.to_array(),
         }
     };
-    let arm = |opposite: &LegPose| {
-        let flexion = 0.5 * attrs.arm_swing * thigh(opposite) / reference;
-        ArmAngles {
-            shoulder_flexion: flexion,
-            shoulder_abduction: 5f64.to_radians(),
-            elbow_flexion: 20f64.to_radians() + 0.5 * flexion.max(0.0),
-        }
-    };
+    let arm = |opposite: &LegPose| arm_swing(thigh(opposite), reference, attrs);
     Landmarks {
         time: k as f64 * cycle.dt,
         step: 0,
@@ -279,7 +273,11 @@ mod tests {
             let p = pitch_for(&foot, d, lim);
             let a = grounded_ankle(&foot, p, lim).0;
             assert!((a[0] - d).abs() < 1e-12, "{d}: {}", a[0]);
-            assert_eq!(p < 0.0, d < 0.0, "{d}: {p}");
+            if d == 0.0 {
+                assert!(p.abs() < 1e-12, "flat: {p}");
+            } else {
+                assert_eq!(p < 0.0, d < 0.0, "{d}: {p}");
+            }
         }
     }
 }

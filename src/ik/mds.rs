@@ -35,7 +35,8 @@ impl MultiDirectional {
     /// The search from `start` with the initial simplex `start + h eᵢ` (i = 1…n), stopping at a
     /// simplex of size `tolerance`. Err: an empty start, or h or the tolerance not positive.
     pub fn new(start: Vec<f64>, h: f64, tolerance: f64) -> Result<Self, ArgminError> {
-        if start.is_empty() || !(h > 0.0 && h.is_finite()) || !(tolerance > 0.0) {
+        if start.is_empty() || !(h > 0.0 && h.is_finite()) || tolerance.is_nan() || tolerance <= 0.0
+        {
             return Err(ArgminError::msg(
                 "multi-directional search: the start must have a coordinate, h and the tolerance \
                  must be positive",

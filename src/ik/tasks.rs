@@ -2,7 +2,7 @@
 //!
 //! Primary: the ankles follow their targets, Δθ_m = J⁺ ΔX (eq. 2) with the damped
 //! pseudo-inverse J⁺ = Jᵀ (J Jᵀ + λ² I)⁻¹, and the step Δθ = Δθ_m + (I − J⁺J) δ (eq. 3) whose
-//! second term leaves the ankles still to first order. [ours] δ is searched in an orthonormal
+//! second term leaves the ankles still to first order. \[ours\] δ is searched in an orthonormal
 //! basis V of J's null space, Δθ = Δθ_m + V c: the same set of steps as (I − J⁺J) δ over all δ
 //! (the undamped projector's range is that null space), in its 5 dimensions rather than 11.
 //!
@@ -14,7 +14,7 @@
 //! - f3 (eq. 6), the distance to the rest posture: ‖α − θ_r‖²;
 //!
 //! and z = w_limits f1 + w_energy f2 + w_rest f3 with the weights of `models/ik.toml`.
-//! [ours] f1 and f3 are scaled by Δt_ref / Δt (Δt_ref = 1/60 s, the paper's capture rate): the
+//! \[ours\] f1 and f3 are scaled by Δt_ref / Δt (Δt_ref = 1/60 s, the paper's capture rate): the
 //! per-frame trade-off between kinetic energy (∝ 1/Δt²) and the postural terms then moves the
 //! posture in the null space at a rate that does not depend on the frame rate (`docs/ik.md`).
 use argmin::core::{CostFunction, Error as ArgminError};

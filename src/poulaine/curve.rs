@@ -12,7 +12,7 @@
 //! derivative dp/dφ at knot k (m per cycle), shared by the segments on either side: the curve
 //! passes through the points and its velocity is continuous.
 //!
-//! [ours] Each coordinate is its own closed curve with its own four knots ([`Component`]): a
+//! \[ours\] Each coordinate is its own closed curve with its own four knots ([`Component`]): a
 //! fitted poulaine has the same knots on its three coordinates, and the database's selection
 //! (§4) takes each coordinate from a different poulaine, knots and all.
 use serde::{Deserialize, Serialize};

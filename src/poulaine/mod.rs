@@ -1,6 +1,6 @@
 //! Poulaines (Pronost et al. §3–4): the ankles' trajectories relative to the pelvis over a gait
 //! cycle, as sampled ([`trajectory`]), their curve model ([`curve`]) fitted to the samples
-//! ([`fit`]), the database of modelled poulaines, its selection and corrections ([`database`]),
+//! ([`mod@fit`]), the database of modelled poulaines, its selection and corrections ([`database`]),
 //! the synthetic database of klaw's walks ([`build`]), and how well the inverse kinematics
 //! recovers a walk's angles from its poulaine ([`validate`]).
 pub mod build;

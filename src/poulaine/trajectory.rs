@@ -262,18 +262,21 @@ impl Trajectory {
                 self.period
             )));
         }
+        if let Some(i) = self.time.iter().position(|t| !t.is_finite()) {
+            return Err(bad(format!("row {}: the time is not finite", i + 1)));
+        }
         if self.time[0].abs() > 1e-9 {
             return Err(bad(format!("the first time is {} s, not 0", self.time[0])));
         }
         for (i, w) in self.time.windows(2).enumerate() {
-            if !(w[1] > w[0]) {
+            if w[1].is_nan() || w[1] <= w[0] {
                 return Err(bad(format!(
                     "row {}: the times must increase strictly",
                     i + 2
                 )));
             }
         }
-        if !(self.time[n - 1] < self.period) {
+        if self.time[n - 1].is_nan() || self.time[n - 1] >= self.period {
             return Err(bad(format!(
                 "the last time {} s is not below the period {} s",
                 self.time[n - 1],
