@@ -50,6 +50,12 @@ pub enum Error {
     /// Frames the quality criteria cannot be computed from.
     #[error(transparent)]
     Criteria(#[from] CriteriaError),
+    /// An inverse kinematics that cannot follow its targets.
+    #[error(transparent)]
+    Ik(#[from] crate::ik::IkError),
+    /// A poulaine, its model or its database that cannot be made or used.
+    #[error(transparent)]
+    Poulaine(#[from] crate::poulaine::PoulaineError),
     /// A figure (`what`) that cannot be drawn, so `path` is not written.
     #[error("writing {path}: drawing {what}: {source}")]
     Draw {

@@ -7,11 +7,13 @@ mod args;
 mod bench;
 mod evaluate;
 mod failure;
+mod ik;
 mod merge;
 mod one_action;
 mod outputs;
 mod plot;
 mod plot_sweep;
+mod poulaine;
 mod progress;
 mod scenario;
 mod signals;
@@ -226,6 +228,44 @@ enum Command {
             Example: klaw walk --out w.csv --report w.json --no-plot && klaw evaluate w.csv --report w.json --json c.json"
     )]
     Evaluate(evaluate::EvaluateArgs),
+    /// Poulaines (ankles relative to the pelvis over a gait cycle): extract one from a walk, model it
+    #[command(
+        subcommand,
+        long_about = "Poulaines (Pronost et al.): the ankles relative to the pelvis centre over one gait\n\
+            cycle, in the walking direction's frame (x forward, y up, z right).\n\
+            `extract` simulates a walk (the flags of `klaw walk`) and writes its last gait cycle's\n\
+            poulaine as CSV; `fit` models a poulaine by its four characteristic points and four C¹\n\
+            cubic Hermite curves, prints the fit error and writes the model (JSON; a database entry\n\
+            with --leg-length and --step-length). Layouts in docs/ik.md.\n\
+            \n\
+            Example: klaw poulaine extract --velocity 1.2 --out p.csv && klaw poulaine fit p.csv --out m.json"
+    )]
+    Poulaine(poulaine::PoulaineCommand),
+    /// Build a database of poulaines from klaw walks over a grid, and measured entries
+    #[command(
+        subcommand,
+        name = "poulaine-db",
+        long_about = "Build a database of modelled poulaines (Pronost et al. §3): one klaw walk per point of\n\
+            the grid of --height, --step-length and --attr NAME=A,B values (labelled synthetic), and\n\
+            the entries of `klaw poulaine fit --leg-length … --step-length …` (measured). JSON,\n\
+            written whole or not at all; its layout is in docs/ik.md.\n\
+            \n\
+            Example: klaw poulaine-db build --height 1.6,1.8,2.0 --step-length 0.6,0.75,0.9 --attr step_width=0.05,0.1 --out db.json"
+    )]
+    PoulaineDb(poulaine::DbCommand),
+    /// Lower-limb angles from a poulaine by inverse kinematics; the whole figure (CSV/.mot/.sto/.bvh)
+    #[command(
+        long_about = "Recover the lower limbs' angles from a poulaine by inverse kinematics whose null space\n\
+            serves biomechanical secondary tasks (joint limits, rotational kinetic energy, the rest\n\
+            posture; Pronost et al., docs/ik.md), and write the whole figure like `klaw walk`: the\n\
+            pelvis carried at the walk's speed, its height from the supporting ankle on the floor.\n\
+            The poulaine is a file (--poulaine) or the database's for the walker (--db with --height,\n\
+            --step-length or --velocity, --step-width, --stance). A target beyond the leg's reach is\n\
+            clamped to it; a frame the closed loop cannot bring within 1e-5 m exits 1.\n\
+            \n\
+            Example: klaw ik --db db.json --height 1.75 --step-length 0.7 --out ik.bvh"
+    )]
+    Ik(ik::IkArgs),
 }
 
 fn main() -> ExitCode {
@@ -247,6 +287,9 @@ fn main() -> ExitCode {
         Command::Step(args) => one_action::step(&args),
         Command::Turn(args) => one_action::turn(&args),
         Command::Evaluate(args) => evaluate::run(&args),
+        Command::Poulaine(command) => poulaine::run(&command),
+        Command::PoulaineDb(command) => poulaine::run_db(&command),
+        Command::Ik(args) => ik::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
