@@ -4,6 +4,7 @@
 //! binary's business (`src/bin/klaw/`).
 use std::path::PathBuf;
 
+use crate::analysis::criteria::CriteriaError;
 use crate::analysis::cycle::CycleError;
 use crate::engine::SimulationError;
 use crate::export::error::ExportError;
@@ -46,6 +47,15 @@ pub enum Error {
         /// The I/O error.
         source: std::io::Error,
     },
+    /// Frames the quality criteria cannot be computed from.
+    #[error(transparent)]
+    Criteria(#[from] CriteriaError),
+    /// An inverse kinematics that cannot follow its targets.
+    #[error(transparent)]
+    Ik(#[from] crate::ik::IkError),
+    /// A poulaine, its model or its database that cannot be made or used.
+    #[error(transparent)]
+    Poulaine(#[from] crate::poulaine::PoulaineError),
     /// A figure (`what`) that cannot be drawn, so `path` is not written.
     #[error("writing {path}: drawing {what}: {source}")]
     Draw {

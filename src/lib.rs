@@ -66,6 +66,10 @@ pub mod input;
 pub mod scenario;
 // 9, beside the binary: the library API, the `Simulation` builder and the `Walk` it returns.
 pub mod simulation;
+// 9, inverse kinematics of the lower limbs from ankle trajectories (Pronost et al.).
+pub mod ik;
+// 11, poulaines: ankle trajectories relative to the pelvis, their model and database.
+pub mod poulaine;
 
 // Beside the levels: the crate's error type; the memory policy of long-running callers.
 pub mod error;

@@ -21,9 +21,9 @@ const LEVELS: &[&[&str]] = &[
     &["figure"],
     &["analysis"],
     &["nrs"],
-    &["export", "input"],
+    &["export", "input", "ik"],
     &["simulation", "sweep", "scenario"],
-    &["plot"],
+    &["plot", "poulaine"],
 ];
 
 /// The union of the levels' errors, and the lowest level that returns it (the levels below

@@ -10,11 +10,14 @@ mod common;
 use common::default_walk;
 use klaw::Error;
 use klaw::analysis::cycle::{Curve, CycleError, GaitCycle, Panel, min_steps};
-use klaw::analysis::norms::{Measure, NormTable, check};
+use klaw::analysis::norms::{Measure, NormTable, Range, WalkSpeed, check};
 use klaw::figure::clinical::Clinical;
 use klaw::figure::skeleton::Side;
 use klaw::model::InputError;
-use klaw::plot::cycle::{BAND_COLOR, CYCLE_FIGURE_SIZE, EXCURSION_BAND_COLOR, write_cycle_figure};
+use klaw::plot::cycle::{
+    BAND_COLOR, CYCLE_FIGURE_SIZE, EXCURSION_BAND_COLOR, SPEED_BAND_COLOR, SPEED_EDGE_COLOR,
+    write_cycle_figure,
+};
 
 /// A cycle whose curves are given functions of the cycle % (101 samples).
 fn synthetic(f: impl Fn(Panel, Option<Side>, f64) -> f64) -> GaitCycle {
@@ -51,6 +54,19 @@ fn flat() -> GaitCycle {
     })
 }
 
+/// The speed the synthetic figures' speed-dependent norms are taken at: 1.4 m/s, l1 0.9 m.
+const SPEED: WalkSpeed = WalkSpeed {
+    velocity: 1.4,
+    leg_length: 0.9,
+};
+
+/// The bundled table's fixed rows only (gait-norms.md's).
+fn fixed_norms() -> NormTable {
+    let mut t = NormTable::builtin();
+    t.norms.retain(|n| matches!(n.range, Range::Fixed { .. }));
+    t
+}
+
 fn norm<'a>(t: &'a NormTable, name: &str) -> &'a klaw::analysis::norms::Norm {
     t.norms
         .iter()
@@ -58,11 +74,11 @@ fn norm<'a>(t: &'a NormTable, name: &str) -> &'a klaw::analysis::norms::Norm {
         .unwrap_or_else(|| panic!("no norm {name}"))
 }
 
-/// The bundled table holds the published ranges (typed here from gait-norms.md) with windows
-/// covering the timing the table gives.
+/// The bundled table's fixed rows hold the published ranges (typed here from gait-norms.md) with
+/// windows covering the timing the table gives (its rows by speed: tests/speed_norms.rs).
 #[test]
 fn bundled_norms_are_the_published_ranges() {
-    let t = NormTable::builtin();
+    let t = fixed_norms();
     let expect = [
         ("hip flexion at heel strike", 25.0, 35.0, Some(0.0)),
         ("hip peak extension", -15.0, -5.0, Some(52.5)),
@@ -87,7 +103,7 @@ fn bundled_norms_are_the_published_ranges() {
     assert_eq!(t.norms.len(), expect.len());
     for (name, low, high, timing) in expect {
         let n = norm(&t, name);
-        assert_eq!((n.low, n.high), (low, high), "{name}");
+        assert_eq!(n.range, Range::Fixed { low, high }, "{name}");
         if let Some(p) = timing {
             assert!(
                 n.windows.iter().any(|w| w[0] <= p && p <= w[1]),
@@ -124,7 +140,7 @@ fn checks_measure_the_curves() {
         Panel::PelvisHeight => 90.0 + 3.0 * (4.0 * PI * p / 100.0).cos(),
         _ => 0.0,
     });
-    let checks = check(&cycle, &NormTable::builtin());
+    let checks = check(&cycle, &fixed_norms(), SPEED);
     let get = |name: &str, side: Option<Side>| {
         checks
             .iter()
@@ -243,7 +259,7 @@ fn run(img: &image::RgbImage, x: i32, y: i32, color: [u8; 3]) -> (i32, i32) {
 fn norm_bands_are_drawn_over_their_windows_only() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("cycle.png");
-    let fig = write_cycle_figure(&flat(), &NormTable::builtin(), "synthetic", &path).unwrap();
+    let fig = write_cycle_figure(&flat(), &fixed_norms(), SPEED, "synthetic", &path).unwrap();
     let img = image::open(&path).unwrap().to_rgb8();
     assert_eq!(img.dimensions(), CYCLE_FIGURE_SIZE);
     let panel = |p: Panel| *fig.panels.iter().find(|x| x.panel == p).unwrap();
@@ -307,11 +323,11 @@ fn norm_bands_are_drawn_over_their_windows_only() {
         Panel::PelvisHeight => 90.0 + 3.0 * (4.0 * PI * p / 100.0).cos(),
         _ => 0.0,
     });
-    write_cycle_figure(&cycle, &table, "synthetic", &path).unwrap();
+    write_cycle_figure(&cycle, &table, SPEED, "synthetic", &path).unwrap();
     let svg = fs::read_to_string(&path).unwrap();
     assert!(svg.starts_with("<svg") && svg.contains("width=\"1500\""));
     let path = dir.path().join("custom.png");
-    let fig = write_cycle_figure(&cycle, &table, "synthetic", &path).unwrap();
+    let fig = write_cycle_figure(&cycle, &table, SPEED, "synthetic", &path).unwrap();
     let img = image::open(&path).unwrap().to_rgb8();
     let panel = |p: Panel| *fig.panels.iter().find(|x| x.panel == p).unwrap();
     let px = |p: Panel, pct: f64, v: f64| {
@@ -349,6 +365,79 @@ fn norm_bands_are_drawn_over_their_windows_only() {
     assert_ne!(img.get_pixel(x as u32, y as u32).0, exc);
 }
 
+/// The pixel of (cycle %, value) on `panel` of a written figure, from the panel's corners,
+/// linear on both axes.
+fn pixel(fig: &klaw::plot::cycle::CycleFigure, panel: Panel, pct: f64, v: f64) -> (u32, u32) {
+    let m = fig.panels.iter().find(|x| x.panel == panel).unwrap();
+    let ((l, t), (r, b)) = (m.left_top, m.right_bottom);
+    let (lo, hi) = m.y_range;
+    (
+        (l as f64 + (r - l) as f64 * pct / 100.0).round() as u32,
+        (b as f64 - (b - t) as f64 * (v - lo) / (hi - lo)).round() as u32,
+    )
+}
+
+/// A speed-dependent band is drawn at the walk's speed: a hand-written row of mean 40…60° ± 5°
+/// over v̂ 0.25…0.75 on the hip panel (20–30 %) and a fixed row of 45–55° over 25–35 %. At
+/// v̂ 0.5 the speed band is 45–55°, light blue where it is alone, under the fixed band's green
+/// where they overlap, its edge over both; at v̂ 0.25 it is 35–45°; outside its span it is not
+/// drawn.
+#[test]
+fn speed_bands_are_drawn_at_the_walks_speed() {
+    let table = NormTable::parse(
+        "[[norm]]\npanel = \"hip_flexion\"\nname = \"speed\"\nlabel = \"speed\"\n\
+         measure = \"max\"\nunit = \"deg\"\nwindows = [[20.0, 30.0]]\n\
+         window_source = \"test\"\nsource = \"test\"\n[norm.by_speed]\ncite = \"test\"\n\
+         speed = [0.25, 0.75]\nspan = [0.25, 0.75]\nmean = [40.0, 60.0]\nsd = [5.0, 5.0]\n\
+         sd_multiple = 1.0\n\
+         [[norm]]\npanel = \"hip_flexion\"\nname = \"fixed\"\nlabel = \"fixed\"\n\
+         measure = \"max\"\nlow = 45.0\nhigh = 55.0\nunit = \"deg\"\nwindows = [[25.0, 35.0]]\n\
+         window_source = \"test\"\nsource = \"test\"\n",
+        Path::new("test.toml"),
+    )
+    .unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("speed.png");
+    // v̂ = v / √(g l) with g l = 4
+    let at = |v_hat: f64| WalkSpeed {
+        velocity: 2.0 * v_hat,
+        leg_length: 4.0 / klaw::model::GRAVITY,
+    };
+    let draw = |v_hat: f64| {
+        let fig = write_cycle_figure(&flat(), &table, at(v_hat), "synthetic", &path).unwrap();
+        (fig, image::open(&path).unwrap().to_rgb8())
+    };
+    let (speed, fixed, edge) = (
+        rgb(SPEED_BAND_COLOR),
+        rgb(BAND_COLOR),
+        rgb(SPEED_EDGE_COLOR),
+    );
+    let color = |fig, img: &image::RgbImage, pct, v| {
+        let (x, y) = pixel(fig, Panel::HipFlexion, pct, v);
+        img.get_pixel(x, y).0
+    };
+    let (fig, img) = draw(0.5);
+    assert_eq!(color(&fig, &img, 22.0, 50.0), speed);
+    assert_eq!(color(&fig, &img, 28.0, 50.0), fixed);
+    assert_eq!(color(&fig, &img, 32.0, 50.0), fixed);
+    assert_ne!(color(&fig, &img, 22.0, 58.0), speed);
+    assert_ne!(color(&fig, &img, 22.0, 42.0), speed);
+    // the edge at 55°, over the fixed band at 28 %: within a pixel of where the axes put it
+    for pct in [22.0, 28.0] {
+        let (x, y) = pixel(&fig, Panel::HipFlexion, pct, 55.0);
+        assert!(
+            (y - 1..=y + 1).any(|y| img.get_pixel(x, y).0 == edge),
+            "no edge at {pct} %"
+        );
+    }
+    let (fig, img) = draw(0.25);
+    assert_eq!(color(&fig, &img, 22.0, 40.0), speed);
+    assert_ne!(color(&fig, &img, 22.0, 50.0), speed);
+    let (fig, img) = draw(0.8);
+    assert_ne!(color(&fig, &img, 22.0, 50.0), speed);
+    assert_eq!(color(&fig, &img, 28.0, 50.0), fixed);
+}
+
 /// The default walk's figure as PNG (1500 × 1000) and SVG; a bad extension is a typed error and
 /// writes nothing; a walk too short for a steady cycle of each leg is a typed error.
 #[test]
@@ -365,14 +454,16 @@ fn default_walk_figure_and_errors() {
     let dir = tempfile::tempdir().unwrap();
     let norms = NormTable::builtin();
     let png = dir.path().join("gait-cycle.png");
-    let fig = write_cycle_figure(&cycle, &norms, "default walk", &png).unwrap();
+    let speed = WalkSpeed::of_walk(&walk);
+    assert!((speed.velocity - 1.4).abs() < 1e-12 && speed.leg_length == walk.body.l1);
+    let fig = write_cycle_figure(&cycle, &norms, speed, "default walk", &png).unwrap();
     assert_eq!(
         image::open(&png).unwrap().to_rgb8().dimensions(),
         CYCLE_FIGURE_SIZE
     );
     assert_eq!(fig.panels.len(), 6);
     let svg = dir.path().join("gait-cycle.svg");
-    write_cycle_figure(&cycle, &norms, "default walk", &svg).unwrap();
+    write_cycle_figure(&cycle, &norms, speed, "default walk", &svg).unwrap();
     let svg = fs::read_to_string(&svg).unwrap();
     assert!(svg.starts_with("<svg"));
     if klaw::plot::text_available() {
@@ -381,7 +472,7 @@ fn default_walk_figure_and_errors() {
 
     for bad in ["cycle.jpg", "cycle", "cycle.gif"] {
         let p = dir.path().join(bad);
-        let e = write_cycle_figure(&cycle, &norms, "x", &p).unwrap_err();
+        let e = write_cycle_figure(&cycle, &norms, speed, "x", &p).unwrap_err();
         assert!(
             matches!(e, Error::Input(InputError::Malformed { .. })),
             "{e}"
@@ -392,8 +483,8 @@ fn default_walk_figure_and_errors() {
     assert!(matches!(e, CycleError::NoSteadyCycle { .. }), "{e}");
 }
 
-/// `klaw plot`: writes the figure and prints one line per check (23 for the bundled table: 9
-/// norms on both legs, 5 on the pelvis); a bad extension exits 2 before simulating.
+/// `klaw plot`: writes the figure and prints one line per check (44 for the bundled table: 9 +
+/// 9 by speed on both legs, 5 + 3 by speed on the pelvis); a bad extension exits 2 before simulating.
 #[test]
 fn cli_writes_the_figure_and_prints_the_checks() {
     let dir = tempfile::tempdir().unwrap();
@@ -411,7 +502,7 @@ fn cli_writes_the_figure_and_prints_the_checks() {
         .lines()
         .filter(|l| l.ends_with(": inside") || l.ends_with(": OUTSIDE"))
         .count();
-    assert_eq!(checks, 23, "{stdout}");
+    assert_eq!(checks, 44, "{stdout}");
     assert_eq!(
         image::open(&out).unwrap().to_rgb8().dimensions(),
         CYCLE_FIGURE_SIZE

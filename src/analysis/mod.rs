@@ -1,5 +1,6 @@
-//! Analysis of a walk's motion: gait events, gait-cycle averaging and the check of the averaged
-//! cycle against published norms.
+//! Analysis of a walk's motion: gait events, gait-cycle averaging, the check of the averaged
+//! cycle against published norms, and biomechanical quality criteria (jerk, cyclicity, power).
+pub mod criteria;
 pub mod cycle;
 pub mod events;
 pub mod norms;

@@ -1,21 +1,59 @@
 //! The published normal ranges of adult walking (`models/gait-norms.toml`, the rows of
-//! `gait-norms.md`: Inman, Ralston & Todd 1981; Murray 1964; Winter; Perry; Whittle) and the
-//! check of an averaged gait cycle against them (issue item 9): each norm is measured on every
-//! curve of its panel ([`check`]) and compared at the resolution the values are shown to
-//! (0.1 ° or cm, `CHECK_RESOLUTION`).
+//! `gait-norms.md`: Inman, Ralston & Todd 1981; Murray 1964; Winter; Perry; Whittle), the
+//! speed-dependent ranges of Schwartz, Rozumalski & Trost 2008 (`[norm.by_speed]`, evaluated at
+//! the walk's dimensionless speed, [`WalkSpeed`]) and the check of an averaged gait cycle against
+//! them (issue items 9 and 16): each norm is measured on every curve of its panel ([`check`])
+//! and compared at the resolution the values are shown to (0.1 ° or cm, `CHECK_RESOLUTION`).
 use std::path::Path;
 
 use serde::Deserialize;
 
-use super::cycle::{GaitCycle, Panel};
+use super::cycle::{CYCLE_SKIP, GaitCycle, Panel};
 use super::extent;
+use crate::engine::walker::Walk;
 use crate::figure::skeleton::Side;
-use crate::model::InputError;
+use crate::model::{GRAVITY, InputError};
 
 /// The bundled norm table (`models/gait-norms.toml`).
 pub(crate) const NORMS_TABLE: &str = include_str!("../../models/gait-norms.toml");
 /// The values are shown to 0.1 (° or cm) and compared with the norms at that resolution.
 pub(crate) const CHECK_RESOLUTION: f64 = 0.1;
+
+/// A walk's speed as the speed-dependent norms read it: the velocity and the leg length l1
+/// (hip joint to ankle, the leg of the engine's Froude limit), whose dimensionless speed
+/// v / √(g l1) is Hof's (1996) scaling that Schwartz et al. 2008 bin their speeds by
+/// (docs/realism.md, "Speed dependence").
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WalkSpeed {
+    /// Velocity (m/s).
+    pub velocity: f64,
+    /// Leg length l1 (m).
+    pub leg_length: f64,
+}
+
+impl WalkSpeed {
+    /// The speed of the cycles [`GaitCycle::from_walk`] averages: the time-weighted mean of the
+    /// gait velocity over the steps after the first `CYCLE_SKIP` cycles (the whole walk when it
+    /// has no more), and the body's l1.
+    pub fn of_walk(walk: &Walk) -> WalkSpeed {
+        let steady = walk.steps.get(2 * CYCLE_SKIP..).filter(|s| !s.is_empty());
+        let steps = steady.unwrap_or(&walk.steps);
+        let (mut distance, mut time) = (0.0, 0.0);
+        for s in steps {
+            distance += s.constraints.gait.velocity * s.constraints.timing.t_step;
+            time += s.constraints.timing.t_step;
+        }
+        WalkSpeed {
+            velocity: distance / time,
+            leg_length: walk.body.l1,
+        }
+    }
+
+    /// The dimensionless speed v̂ = v / √(g l1).
+    pub fn dimensionless(&self) -> f64 {
+        self.velocity / (GRAVITY * self.leg_length).sqrt()
+    }
+}
 
 /// How a curve is compared with a norm's range.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
@@ -33,8 +71,7 @@ pub enum Measure {
 
 /// One published normal range (a row of `models/gait-norms.toml`; its header documents the
 /// fields).
-#[derive(Clone, Debug, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Norm {
     /// The curve it applies to.
     pub panel: Panel,
@@ -45,12 +82,9 @@ pub struct Norm {
     /// How the curve is compared with the range [low, high].
     pub measure: Measure,
     /// Cycle % for [`Measure::At`].
-    #[serde(default)]
     pub at: Option<f64>,
-    /// Lower end of the normal range, in `unit`.
-    pub low: f64,
-    /// Upper end of the normal range, in `unit`.
-    pub high: f64,
+    /// The normal range, in `unit`: fixed, or by the walk's speed.
+    pub range: Range,
     /// `deg` or `cm`: the panel's unit.
     pub unit: String,
     /// Cycle-% intervals [start, end] where the band is shaded (and, for max / min, searched).
@@ -62,10 +96,219 @@ pub struct Norm {
     pub source: String,
 }
 
+/// A range given at listed speeds (`[norm.by_speed]`): the mean and SD of the quantity at
+/// dimensionless speeds v̂ = v / √(g l1), each linear in v̂ between the listed speeds and held
+/// at the end values out to `span`, the speeds the source's subjects walked at; the range is
+/// mean ± `sd_multiple` SD. Outside `span` the source says nothing, and neither does the norm.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BySpeed {
+    /// The source in a few words, for a figure's legend, e.g. `Schwartz et al. 2008 (children)`.
+    pub cite: String,
+    /// The listed dimensionless speeds v̂, increasing.
+    pub speed: Vec<f64>,
+    /// [slowest, fastest] v̂ the norm holds for.
+    pub span: [f64; 2],
+    /// The quantity's mean at each listed speed, in the norm's unit.
+    pub mean: Vec<f64>,
+    /// Its standard deviation at each listed speed, in the norm's unit.
+    pub sd: Vec<f64>,
+    /// The range's half-width in SDs.
+    pub sd_multiple: f64,
+}
+
+impl BySpeed {
+    /// Why the table is unusable, if it is: speeds finite and strictly increasing (at least
+    /// one), `span` holding them, one finite mean and one finite positive SD per speed, a finite
+    /// positive `sd_multiple`.
+    fn fault(&self) -> Option<String> {
+        let n = self.speed.len();
+        let finite = |xs: &[f64]| xs.iter().all(|x| x.is_finite());
+        if n == 0 || !finite(&self.speed) || self.speed.windows(2).any(|w| w[0] >= w[1]) {
+            return Some("by_speed: speed must be finite and strictly increasing".into());
+        }
+        if !(finite(&self.span)
+            && self.span[0] <= self.speed[0]
+            && self.speed[n - 1] <= self.span[1])
+        {
+            return Some(format!(
+                "by_speed: span {:?} must be finite and hold the speeds {}…{}",
+                self.span,
+                self.speed[0],
+                self.speed[n - 1]
+            ));
+        }
+        if self.mean.len() != n || self.sd.len() != n {
+            return Some(format!(
+                "by_speed: {} speeds need as many means and SDs, not {} and {}",
+                n,
+                self.mean.len(),
+                self.sd.len()
+            ));
+        }
+        if !finite(&self.mean) || !self.sd.iter().all(|s| s.is_finite() && *s > 0.0) {
+            return Some("by_speed: means must be finite and SDs finite and > 0".into());
+        }
+        if !(self.sd_multiple.is_finite() && self.sd_multiple > 0.0) {
+            return Some("by_speed: sd_multiple must be finite and > 0".into());
+        }
+        None
+    }
+
+    /// [low, high] at dimensionless speed `v`, or `None` outside `span` (or for a speed that
+    /// is not a number).
+    pub fn range(&self, v: f64) -> Option<(f64, f64)> {
+        if !(self.span[0]..=self.span[1]).contains(&v) {
+            return None;
+        }
+        let mean = piecewise_linear(&self.speed, &self.mean, v);
+        let half = self.sd_multiple * piecewise_linear(&self.speed, &self.sd, v);
+        Some((mean - half, mean + half))
+    }
+}
+
+/// ys at x, linear between the points (xs increasing, as long as ys, not empty) and held at the
+/// end values beyond them.
+fn piecewise_linear(xs: &[f64], ys: &[f64], x: f64) -> f64 {
+    let n = xs.len();
+    if x <= xs[0] {
+        return ys[0];
+    }
+    if x >= xs[n - 1] {
+        return ys[n - 1];
+    }
+    let i = xs.partition_point(|&p| p <= x) - 1;
+    let u = (x - xs[i]) / (xs[i + 1] - xs[i]);
+    ys[i] + u * (ys[i + 1] - ys[i])
+}
+
+/// A norm's range: the same at every speed, or by the walk's speed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Range {
+    /// [low, high] at every speed.
+    Fixed {
+        /// Lower end, in the norm's unit.
+        low: f64,
+        /// Upper end, in the norm's unit.
+        high: f64,
+    },
+    /// By the walk's dimensionless speed.
+    BySpeed(BySpeed),
+}
+
+impl Range {
+    /// The speed table of a speed-dependent range.
+    pub fn by_speed(&self) -> Option<&BySpeed> {
+        match self {
+            Range::BySpeed(b) => Some(b),
+            Range::Fixed { .. } => None,
+        }
+    }
+
+    /// [low, high] for a walk at `speed`; `None` for a speed-dependent range outside its span.
+    pub fn at(&self, speed: WalkSpeed) -> Option<(f64, f64)> {
+        match self {
+            Range::Fixed { low, high } => Some((*low, *high)),
+            Range::BySpeed(b) => b.range(speed.dimensionless()),
+        }
+    }
+}
+
+/// A row as written: `low` and `high`, or `[norm.by_speed]`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct NormRow {
+    panel: Panel,
+    name: String,
+    label: String,
+    measure: Measure,
+    #[serde(default)]
+    at: Option<f64>,
+    #[serde(default)]
+    low: Option<f64>,
+    #[serde(default)]
+    high: Option<f64>,
+    #[serde(default)]
+    by_speed: Option<BySpeed>,
+    unit: String,
+    windows: Vec<[f64; 2]>,
+    window_source: String,
+    source: String,
+}
+
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct NormFile {
-    norm: Vec<Norm>,
+    norm: Vec<NormRow>,
+}
+
+impl NormRow {
+    /// The checked norm (see [`NormTable::parse`]), or why not.
+    fn check(self) -> Result<Norm, String> {
+        let range = match (self.low, self.high, self.by_speed) {
+            (Some(low), Some(high), None) if low.is_finite() && high.is_finite() && low < high => {
+                Range::Fixed { low, high }
+            }
+            (Some(_), Some(_), None) => {
+                return Err("low and high must be finite with low < high".into());
+            }
+            (None, None, Some(b)) => match b.fault() {
+                Some(fault) => return Err(fault),
+                None => Range::BySpeed(b),
+            },
+            (None, None, None) => return Err("a range needs low and high, or by_speed".into()),
+            _ => return Err("give low and high, or by_speed, not parts of both".into()),
+        };
+        if self.unit != self.panel.unit() {
+            return Err(format!(
+                "unit `{}`: the panel's values are in {}",
+                self.unit,
+                self.panel.unit()
+            ));
+        }
+        let in_cycle = |p: f64| (0.0..=100.0).contains(&p);
+        if self
+            .windows
+            .iter()
+            .any(|w| !(in_cycle(w[0]) && in_cycle(w[1]) && w[0] < w[1]))
+        {
+            return Err("windows must lie in [0, 100] % with start < end".into());
+        }
+        // the lowest low: a fixed low, or a by-speed low at a listed speed (linear between them)
+        let lowest = match &range {
+            Range::Fixed { low, .. } => *low,
+            Range::BySpeed(b) => b
+                .speed
+                .iter()
+                .filter_map(|&v| b.range(v))
+                .map(|r| r.0)
+                .fold(f64::INFINITY, f64::min),
+        };
+        match (self.measure, self.at) {
+            (Measure::At, Some(p)) if in_cycle(p) => {}
+            (Measure::At, _) => return Err("measure \"at\" needs `at` in [0, 100] %".into()),
+            (_, Some(_)) => return Err("`at` is only for measure \"at\"".into()),
+            (Measure::Max | Measure::Min, None) if self.windows.is_empty() => {
+                return Err("max / min need the windows to search".into());
+            }
+            (Measure::PeakToPeak, None) if lowest < 0.0 => {
+                return Err("a peak-to-peak range cannot be negative".into());
+            }
+            _ => {}
+        }
+        Ok(Norm {
+            panel: self.panel,
+            name: self.name,
+            label: self.label,
+            measure: self.measure,
+            at: self.at,
+            range,
+            unit: self.unit,
+            windows: self.windows,
+            window_source: self.window_source,
+            source: self.source,
+        })
+    }
 }
 
 /// The norms a figure is checked against.
@@ -76,48 +319,27 @@ pub struct NormTable {
 }
 
 impl NormTable {
-    /// Parse and check a norm table: finite `low < high`, the panel's unit, windows inside
-    /// [0, 100] with start < end, `at` in [0, 100] given exactly for `measure = "at"`, windows
-    /// for max / min. Errors are [`InputError::Malformed`] naming `path` and the row.
+    /// Parse and check a norm table: a fixed range (finite `low < high`) or a `by_speed` one
+    /// ([`BySpeed`]: speeds increasing inside `span`, a mean and a positive SD at each), the
+    /// panel's unit, windows inside [0, 100] with start < end, `at` in [0, 100] given exactly
+    /// for `measure = "at"`, windows for max / min, no negative peak-to-peak range. Errors are
+    /// [`InputError::Malformed`] naming `path` and the row.
     pub fn parse(text: &str, path: &Path) -> Result<NormTable, InputError> {
         let file: NormFile =
             toml::from_str(text).map_err(|e| InputError::malformed("norm table", path, e))?;
-        for (i, n) in file.norm.iter().enumerate() {
-            let row = |reason: &str| {
-                let reason = format!("norm {} ({}): {reason}", i + 1, n.name);
-                InputError::malformed("norm table", path, reason)
-            };
-            if !(n.low.is_finite() && n.high.is_finite() && n.low < n.high) {
-                return Err(row("low and high must be finite with low < high"));
-            }
-            if n.unit != n.panel.unit() {
-                return Err(row(&format!(
-                    "unit `{}`: the panel's values are in {}",
-                    n.unit,
-                    n.panel.unit()
-                )));
-            }
-            let in_cycle = |p: f64| (0.0..=100.0).contains(&p);
-            if n.windows
-                .iter()
-                .any(|w| !(in_cycle(w[0]) && in_cycle(w[1]) && w[0] < w[1]))
-            {
-                return Err(row("windows must lie in [0, 100] % with start < end"));
-            }
-            match (n.measure, n.at) {
-                (Measure::At, Some(p)) if in_cycle(p) => {}
-                (Measure::At, _) => return Err(row("measure \"at\" needs `at` in [0, 100] %")),
-                (_, Some(_)) => return Err(row("`at` is only for measure \"at\"")),
-                (Measure::Max | Measure::Min, None) if n.windows.is_empty() => {
-                    return Err(row("max / min need the windows to search"));
-                }
-                (Measure::PeakToPeak, None) if n.low < 0.0 => {
-                    return Err(row("a peak-to-peak range cannot be negative"));
-                }
-                _ => {}
-            }
-        }
-        Ok(NormTable { norms: file.norm })
+        let norms = file
+            .norm
+            .into_iter()
+            .enumerate()
+            .map(|(i, row)| {
+                let name = row.name.clone();
+                row.check().map_err(|reason| {
+                    let reason = format!("norm {} ({name}): {reason}", i + 1);
+                    InputError::malformed("norm table", path, reason)
+                })
+            })
+            .collect::<Result<Vec<Norm>, InputError>>()?;
+        Ok(NormTable { norms })
     }
 
     /// The bundled table (`models/gait-norms.toml`).
@@ -146,6 +368,9 @@ pub struct NormCheck {
     pub low: f64,
     /// Upper end of the norm's range, in `unit`.
     pub high: f64,
+    /// The dimensionless speed v / √(g l1) a speed-dependent range was evaluated at (`None`
+    /// for a fixed range).
+    pub speed: Option<f64>,
     /// `deg` or `cm`.
     pub unit: String,
 }
@@ -158,7 +383,9 @@ impl NormCheck {
         self.value >= self.low - half && self.value <= self.high + half
     }
 
-    /// One line for people: `knee peak swing flexion, right: 61.2° at 72 % (norm 55…65°): inside`.
+    /// One line for people: `knee peak swing flexion, right: 61.2° at 72 % (norm 55…65°): inside`;
+    /// a speed-dependent norm's range to 0.1 with the speed it holds at, `(norm 55.9…65.7° at
+    /// v/√(g l1) 0.48)`.
     pub fn describe(&self) -> String {
         let unit = if self.unit == "deg" { "°" } else { " cm" };
         let side = match self.side {
@@ -168,12 +395,14 @@ impl NormCheck {
         let at = self
             .at_pct
             .map_or(String::new(), |p| format!(" at {p:.0} %"));
+        let norm = match self.speed {
+            Some(v) => format!("{:.1}…{:.1}{unit} at v/√(g l1) {v:.2}", self.low, self.high),
+            None => format!("{}…{}{unit}", self.low, self.high),
+        };
         format!(
-            "{}{side}: {:.1}{unit}{at} (norm {}…{}{unit}): {}",
+            "{}{side}: {:.1}{unit}{at} (norm {norm}): {}",
             self.name,
             self.value,
-            self.low,
-            self.high,
             if self.inside() { "inside" } else { "OUTSIDE" }
         )
     }
@@ -187,10 +416,18 @@ fn at_pct(values: &[f64], p: f64) -> f64 {
     values[i] + u * (values[i + 1] - values[i])
 }
 
-/// Measure every norm on every curve of its panel.
-pub fn check(cycle: &GaitCycle, norms: &NormTable) -> Vec<NormCheck> {
+/// Measure every norm on every curve of its panel, each range taken at the walk's `speed`; a
+/// speed-dependent norm whose span does not hold the speed is left out.
+pub fn check(cycle: &GaitCycle, norms: &NormTable, speed: WalkSpeed) -> Vec<NormCheck> {
     let mut out = Vec::new();
     for n in &norms.norms {
+        let Some((low, high)) = n.range.at(speed) else {
+            continue;
+        };
+        let evaluated_at = match n.range {
+            Range::Fixed { .. } => None,
+            Range::BySpeed(_) => Some(speed.dimensionless()),
+        };
         for c in cycle.panel_curves(n.panel) {
             if c.values.len() < 2 {
                 continue;
@@ -235,8 +472,9 @@ pub fn check(cycle: &GaitCycle, norms: &NormTable) -> Vec<NormCheck> {
                 measure: n.measure,
                 value,
                 at_pct: at,
-                low: n.low,
-                high: n.high,
+                low,
+                high,
+                speed: evaluated_at,
                 unit: n.unit.clone(),
             });
         }

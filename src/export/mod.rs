@@ -17,6 +17,7 @@ pub mod events;
 pub mod file;
 pub(crate) mod number;
 pub mod opensim;
+pub mod read;
 pub mod report;
 mod rows;
 mod spool;

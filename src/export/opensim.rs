@@ -71,7 +71,7 @@ impl OpenSimModel {
         }
     }
 
-    fn knee_sign(self) -> f64 {
+    pub(crate) fn knee_sign(self) -> f64 {
         match self {
             OpenSimModel::Gait2392 => -1.0,
             OpenSimModel::Rajagopal2015 => 1.0,

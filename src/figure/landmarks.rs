@@ -137,6 +137,18 @@ fn place_leg(
     }
 }
 
+/// An arm following the opposite thigh's sagittal angle `thigh` (knee forward +): shoulder
+/// flexion half the attribute `arm_swing` when the thigh is at `reference`, abduction 5°, elbow
+/// 20° + ½ max(0, shoulder flexion).
+pub(crate) fn arm_swing(thigh: f64, reference: f64, attrs: &Attributes) -> ArmAngles {
+    let flexion = 0.5 * attrs.arm_swing * thigh / reference;
+    ArmAngles {
+        shoulder_flexion: flexion,
+        shoulder_abduction: 5f64.to_radians(),
+        elbow_flexion: 20f64.to_radians() + 0.5 * flexion.max(0.0),
+    }
+}
+
 /// The figure at world time `t` within `step` (spec §7): the pelvis centre from the stance
 /// dynamics moved sideways by the lateral displacement; tilt tilt0 + θ2 − θ2_ref; list and
 /// rotation from the determinants; the stance leg from its foot rules, the swing (or hind) leg
@@ -188,14 +200,7 @@ pub fn landmarks(step: &Step, t: f64, attrs: &Attributes) -> Result<Landmarks, F
     // thigh at heel strike (−θ3*) swings the arm to half the range
     let thigh = |leg: &LegPoints| atan2(leg.knee[0] - leg.hip[0], leg.hip[1] - leg.knee[1]);
     let reference = (-c.theta3).max(1e-3);
-    let arm = |opposite: &LegPoints| {
-        let flexion = 0.5 * attrs.arm_swing * thigh(opposite) / reference;
-        ArmAngles {
-            shoulder_flexion: flexion,
-            shoulder_abduction: 5f64.to_radians(),
-            elbow_flexion: 20f64.to_radians() + 0.5 * flexion.max(0.0),
-        }
-    };
+    let arm = |opposite: &LegPoints| arm_swing(thigh(opposite), reference, attrs);
     Ok(Landmarks {
         time: t,
         step: step.index,

@@ -1,8 +1,9 @@
-//! The gait-cycle figure (`klaw plot`, issue item 9): the curves of a [`GaitCycle`] — hip
-//! flexion, knee flexion, ankle dorsiflexion, pelvic list, pelvic rotation and pelvis height
+//! The gait-cycle figure (`klaw plot`, issue items 9 and 16): the curves of a [`GaitCycle`] —
+//! hip flexion, knee flexion, ankle dorsiflexion, pelvic list, pelvic rotation and pelvis height
 //! against 0–100 % of the gait cycle, averaged over the steady cycles — with the published
-//! normal ranges of [`crate::analysis::norms`] shaded over their cycle windows and each panel's
-//! norm checks noted above its curves. Each leg's curves start at its own heel strike (the phase of
+//! normal ranges of [`crate::analysis::norms`] shaded over their cycle windows (the
+//! speed-dependent ones at the walk's speed, light blue with a blue edge, under and over the
+//! fixed ones) and each panel's norm checks noted above its curves. Each leg's curves start at its own heel strike (the phase of
 //! [`crate::analysis::cycle`]); right solid, left dashed.
 //!
 //! PNG or SVG by the extension, 1500 × 1000 px, written whole or not at all; text needs the font
@@ -15,7 +16,9 @@ use plotters::prelude::*;
 
 use crate::analysis::cycle::{Curve, GaitCycle, Panel};
 use crate::analysis::extent;
-use crate::analysis::norms::{Measure, Norm, NormCheck, NormTable, check};
+use crate::analysis::norms::{
+    BySpeed, Measure, Norm, NormCheck, NormTable, Range, WalkSpeed, check,
+};
 use crate::error::Result;
 use crate::figure::skeleton::Side;
 use crate::plot::{
@@ -29,11 +32,15 @@ pub const CYCLE_FIGURE_SIZE: (u32, u32) = (1500, 1000);
 pub const BAND_COLOR: RGBColor = RGBColor(196, 230, 188);
 /// Fill of a peak-to-peak norm, anchored at the curve's minimum.
 pub const EXCURSION_BAND_COLOR: RGBColor = RGBColor(253, 218, 168);
+/// Fill of a speed-dependent norm at the walk's speed (drawn under the fixed bands).
+pub const SPEED_BAND_COLOR: RGBColor = RGBColor(204, 224, 247);
+/// Edge of a speed-dependent norm (drawn over the fixed bands).
+pub const SPEED_EDGE_COLOR: RGBColor = RGBColor(40, 96, 196);
 /// The pelvis' curves (solid, right cycle).
 pub(crate) const PELVIS_COLOR: RGBColor = RGBColor(30, 30, 30);
 const LABEL_SIZE: i32 = 15;
-const NOTE_SIZE: i32 = 14;
-const LEGEND_H: u32 = 34;
+const NOTE_SIZE: i32 = 13;
+const LEGEND_ROW_H: u32 = 30;
 
 /// A panel's title.
 fn title(panel: Panel) -> &'static str {
@@ -83,54 +90,76 @@ pub struct CycleFigure {
     pub panels: Vec<PanelPixels>,
 }
 
-/// Draw the cycle figure to `path` (PNG or SVG by its extension). `subtitle` names the walk
-/// (see [`crate::plot::parameters_title`]). Errors: a bad extension
+/// Draw the cycle figure to `path` (PNG or SVG by its extension), the speed-dependent norms
+/// taken at the walk's `speed` ([`WalkSpeed::of_walk`]). `subtitle` names the walk (see
+/// [`crate::plot::parameters_title`]). Errors: a bad extension
 /// ([`crate::model::InputError::Malformed`], before anything is drawn), drawing
 /// ([`crate::Error::Draw`]) or writing ([`crate::Error::Io`] with action "writing"; no file is
 /// left).
 pub fn write_cycle_figure(
     cycle: &GaitCycle,
     norms: &NormTable,
+    speed: WalkSpeed,
     subtitle: &str,
     path: &Path,
 ) -> Result<CycleFigure> {
     let format = plot::figure_format(path)?;
-    render(cycle, norms, subtitle, path, format, plot::text_available())
-}
-
-fn render(
-    cycle: &GaitCycle,
-    norms: &NormTable,
-    subtitle: &str,
-    path: &Path,
-    format: FigureFormat,
-    text: bool,
-) -> Result<CycleFigure> {
-    let checks = check(cycle, norms);
     let mut figure = CycleDrawing {
         cycle,
         norms,
-        checks: &checks,
+        speed,
+        checks: check(cycle, norms, speed),
         subtitle,
-        text,
+        text: plot::text_available(),
     };
+    render(&mut figure, path, format)
+}
+
+fn render(figure: &mut CycleDrawing, path: &Path, format: FigureFormat) -> Result<CycleFigure> {
     let panels = plot::write_figure(
-        &mut figure,
+        figure,
         path,
         format,
         CYCLE_FIGURE_SIZE,
         Png::Small,
         "the gait-cycle figure",
     )?;
-    Ok(CycleFigure { checks, panels })
+    Ok(CycleFigure {
+        checks: figure.checks.clone(),
+        panels,
+    })
 }
 
 struct CycleDrawing<'a> {
     cycle: &'a GaitCycle,
     norms: &'a NormTable,
-    checks: &'a [NormCheck],
+    speed: WalkSpeed,
+    checks: Vec<NormCheck>,
     subtitle: &'a str,
     text: bool,
+}
+
+impl CycleDrawing<'_> {
+    /// The legend's line on the speed-dependent norms, if the table has any: the speed they are
+    /// taken at and their sources (`cite`).
+    fn speed_legend(&self) -> Option<String> {
+        let norms = &self.norms.norms;
+        let rows: Vec<&BySpeed> = norms.iter().filter_map(|n| n.range.by_speed()).collect();
+        let first = rows.first()?;
+        let mut cites: Vec<&str> = rows.iter().map(|b| b.cite.as_str()).collect();
+        cites.dedup();
+        let k = if rows.iter().all(|b| b.sd_multiple == first.sd_multiple) {
+            first.sd_multiple.to_string()
+        } else {
+            "k".to_string()
+        };
+        Some(format!(
+            "normal range at this walk's speed, v/√(g·l1) = {:.3} ({:.2} m/s): mean ± {k} SD of {}",
+            self.speed.dimensionless(),
+            self.speed.velocity,
+            cites.join("; ")
+        ))
+    }
 }
 
 impl Draw for CycleDrawing<'_> {
@@ -148,9 +177,15 @@ impl Draw for CycleDrawing<'_> {
             self.subtitle
         );
         let body = titled(root, &title, TITLE_SIZE, self.text)?;
-        let (legend, grid) = body.split_vertically(LEGEND_H);
+        let speed_line = self.speed_legend();
+        let rows = if speed_line.is_some() { 2 } else { 1 };
+        let (legend, grid) = body.split_vertically(rows * LEGEND_ROW_H);
         if self.text {
-            draw_legend(&legend)?;
+            let (first, second) = legend.split_vertically(LEGEND_ROW_H);
+            draw_legend(&first)?;
+            if let Some(line) = speed_line {
+                draw_speed_legend(&second, &line)?;
+            }
         }
         let mut out = Vec::new();
         for (area, panel) in grid.split_evenly((2, 3)).iter().zip(Panel::ALL) {
@@ -164,10 +199,7 @@ impl Draw for CycleDrawing<'_> {
 fn draw_legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>) -> Drawn {
     let (_, h) = area.dim_in_pixel();
     let y = h as i32 / 2;
-    let style = TextStyle::from((FONT, LABEL_SIZE)).pos(plotters::style::text_anchor::Pos::new(
-        plotters::style::text_anchor::HPos::Left,
-        plotters::style::text_anchor::VPos::Center,
-    ));
+    let style = legend_style();
     let mut x = 20;
     let label = |x: &mut i32, s: &str| -> Drawn {
         area.draw(&Text::new(s.to_string(), (*x, y), style.clone()))
@@ -224,12 +256,42 @@ fn draw_legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>) -> Drawn {
     label(&mut x, "toe-off")
 }
 
-/// A norm's band: (x0, x1, y0, y1, colour) per window, in the panel's unit.
-type Band = (f64, f64, f64, f64, RGBColor);
+/// The legend's text style: left-aligned, vertically centred.
+fn legend_style() -> TextStyle<'static> {
+    TextStyle::from((FONT, LABEL_SIZE)).pos(plotters::style::text_anchor::Pos::new(
+        plotters::style::text_anchor::HPos::Left,
+        plotters::style::text_anchor::VPos::Center,
+    ))
+}
 
-/// The band of a norm on a panel.
-fn bands(norm: &Norm, curves: &[&Curve]) -> Vec<Band> {
-    let (low, high, color) = match norm.measure {
+/// The legend's second row: a speed band's sample and `line`.
+fn draw_speed_legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, line: &str) -> Drawn {
+    let (_, h) = area.dim_in_pixel();
+    let (x, y) = (20, h as i32 / 2);
+    let sample = [(x, y - 8), (x + 30, y + 8)];
+    area.draw(&Rectangle::new(sample, SPEED_BAND_COLOR.filled()))
+        .map_err(msg)?;
+    area.draw(&Rectangle::new(sample, SPEED_EDGE_COLOR.stroke_width(2)))
+        .map_err(msg)?;
+    area.draw(&Text::new(line.to_string(), (x + 36, y), legend_style()))
+        .map_err(msg)
+}
+
+/// A norm's band over one window, in the panel's unit: cycle % [x0, x1], values [y0, y1].
+#[derive(Clone, Copy)]
+struct Band {
+    x0: f64,
+    x1: f64,
+    y0: f64,
+    y1: f64,
+    fill: RGBColor,
+    /// A speed-dependent norm's (filled under the fixed bands, edged over them).
+    speed: bool,
+}
+
+/// The bands of a norm whose range is [low, high] on a panel.
+fn bands(norm: &Norm, (low, high): (f64, f64), curves: &[&Curve]) -> Vec<Band> {
+    let base = match norm.measure {
         Measure::PeakToPeak => {
             // anchored at the lowest curve of the panel
             let lo = curves
@@ -240,13 +302,26 @@ fn bands(norm: &Norm, curves: &[&Curve]) -> Vec<Band> {
             if !lo.is_finite() {
                 return Vec::new();
             }
-            (lo + norm.low, lo + norm.high, EXCURSION_BAND_COLOR)
+            lo
         }
-        _ => (norm.low, norm.high, BAND_COLOR),
+        _ => 0.0,
+    };
+    let speed = norm.range.by_speed().is_some();
+    let fill = match (speed, norm.measure) {
+        (true, _) => SPEED_BAND_COLOR,
+        (false, Measure::PeakToPeak) => EXCURSION_BAND_COLOR,
+        (false, _) => BAND_COLOR,
     };
     norm.windows
         .iter()
-        .map(|w| (w[0], w[1], low, high, color))
+        .map(|w| Band {
+            x0: w[0],
+            x1: w[1],
+            y0: base + low,
+            y1: base + high,
+            fill,
+            speed,
+        })
         .collect()
 }
 
@@ -266,7 +341,7 @@ impl PanelRange {
         let ys = curves
             .iter()
             .flat_map(|c| c.values.iter().copied())
-            .chain(bands.iter().flat_map(|b| [b.2, b.3]));
+            .chain(bands.iter().flat_map(|b| [b.y0, b.y1]));
         let (lo, hi) = extent(ys).unwrap_or((0.0, 1.0));
         let span = (hi - lo).max(1.0);
         PanelRange {
@@ -294,17 +369,25 @@ fn draw_panel<DB: DrawingBackend>(
         .iter()
         .filter(|n| n.panel == panel)
         .collect();
-    let all_bands: Vec<Band> = panel_norms.iter().flat_map(|n| bands(n, &curves)).collect();
+    let ranges: Vec<Option<(f64, f64)>> = panel_norms
+        .iter()
+        .map(|n| n.range.at(figure.speed))
+        .collect();
+    let all_bands: Vec<Band> = panel_norms
+        .iter()
+        .zip(&ranges)
+        .filter_map(|(n, r)| r.map(|r| bands(n, r, &curves)))
+        .flatten()
+        .collect();
     let notes: Vec<String> = panel_norms
         .iter()
-        .map(|n| {
-            note(
-                n,
-                figure
-                    .checks
-                    .iter()
-                    .filter(|c| c.panel == panel && c.name == n.name),
-            )
+        .zip(&ranges)
+        .map(|(n, &r)| {
+            let checks = figure
+                .checks
+                .iter()
+                .filter(|c| c.panel == panel && c.name == n.name);
+            note(n, r, checks)
         })
         .collect();
     let range = PanelRange::new(&curves, &all_bands, if text { notes.len() } else { 0 });
@@ -365,11 +448,24 @@ fn draw_marks<DB: DrawingBackend>(
     bands: &[Band],
     range: PanelRange,
 ) -> Drawn {
+    // speed-dependent fills, then the fixed bands over them, then the speed bands' edges
+    let corners = |b: &Band| [(b.x0, b.y1), (b.x1, b.y0)];
+    for speed in [true, false] {
+        chart
+            .draw_series(
+                bands
+                    .iter()
+                    .filter(|b| b.speed == speed)
+                    .map(|b| Rectangle::new(corners(b), b.fill.filled())),
+            )
+            .map_err(msg)?;
+    }
     chart
         .draw_series(
             bands
                 .iter()
-                .map(|&(x0, x1, y0, y1, c)| Rectangle::new([(x0, y1), (x1, y0)], c.filled())),
+                .filter(|b| b.speed)
+                .map(|b| Rectangle::new(corners(b), SPEED_EDGE_COLOR.stroke_width(2))),
         )
         .map_err(msg)?;
     if panel.per_leg() {
@@ -448,8 +544,13 @@ fn draw_notes<DB: DrawingBackend>(chart: &mut Chart<'_, DB>, notes: &[String], y
     Ok(())
 }
 
-/// A panel's note on one norm: `swing peak 55…65°: R 61.2 L 61.0 inside`.
-fn note<'a>(norm: &Norm, checks: impl Iterator<Item = &'a NormCheck>) -> String {
+/// A panel's note on one norm whose range here is `range` (`None`: a speed-dependent norm
+/// outside its span): `swing peak 55…65°: R 61.2 L 61.0 inside`, a speed-dependent range to 0.1.
+fn note<'a>(
+    norm: &Norm,
+    range: Option<(f64, f64)>,
+    checks: impl Iterator<Item = &'a NormCheck>,
+) -> String {
     let unit = if norm.unit == "deg" { "°" } else { " cm" };
     let mut values = Vec::new();
     let mut all_inside = true;
@@ -471,11 +572,16 @@ fn note<'a>(norm: &Norm, checks: impl Iterator<Item = &'a NormCheck>) -> String 
         }
         _ => values.join(", "),
     };
+    let range = match (range, &norm.range) {
+        (None, _) => return format!("{}: no norm at this speed", norm.label),
+        (Some((low, high)), Range::BySpeed(_)) => {
+            format!("{}…{}{unit}", tenths(low), tenths(high))
+        }
+        (Some((low, high)), Range::Fixed { .. }) => format!("{low}…{high}{unit}"),
+    };
     format!(
-        "{} {}…{}{unit}: {shown} {}",
+        "{} {range}: {shown} {}",
         norm.label,
-        norm.low,
-        norm.high,
         if values.is_empty() {
             "not measured"
         } else if all_inside {
@@ -484,4 +590,10 @@ fn note<'a>(norm: &Norm, checks: impl Iterator<Item = &'a NormCheck>) -> String 
             "OUTSIDE"
         }
     )
+}
+
+/// `x` to 0.1, without a minus sign on a value that shows as zero.
+fn tenths(x: f64) -> String {
+    let s = format!("{x:.1}");
+    if s == "-0.0" { "0.0".to_string() } else { s }
 }

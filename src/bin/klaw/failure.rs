@@ -4,8 +4,10 @@ use klaw::Error;
 use klaw::analysis::cycle::CycleError;
 use klaw::engine::SimulationError;
 use klaw::figure::FigureError;
+use klaw::ik::IkError;
 use klaw::model::InputError;
 use klaw::nrs::NrsError;
+use klaw::poulaine::PoulaineError;
 
 /// The message of `e`: a bad value names the flag it was given for (`--velocity: …`).
 pub(crate) fn message(e: &Error) -> String {
@@ -27,8 +29,15 @@ pub(crate) fn exit_code(e: &Error) -> u8 {
         | FigureError::ZeroLength { .. }
         | FigureError::Parallel { .. } => BAD_INPUT,
     };
+    let ik = |e: &IkError| match e {
+        IkError::Input(_) => BAD_INPUT,
+        IkError::NotConverged { .. } | IkError::Minimiser { .. } => FAILED,
+    };
     match e {
         Error::Input(_) | Error::Export(_) | Error::ScenarioFile(_) => BAD_INPUT,
+        Error::Ik(e) | Error::Poulaine(PoulaineError::Ik(e)) => ik(e),
+        Error::Poulaine(PoulaineError::Fit { .. }) => FAILED,
+        Error::Poulaine(_) => BAD_INPUT,
         Error::Simulation(SimulationError::Plan(_)) => BAD_INPUT,
         Error::Simulation(
             SimulationError::NotConverged { .. }
@@ -37,6 +46,7 @@ pub(crate) fn exit_code(e: &Error) -> u8 {
         ) => FAILED,
         Error::Figure(f) | Error::Cycle(CycleError::Frame(f)) => figure(f),
         Error::Cycle(_) => BAD_INPUT,
+        Error::Criteria(_) => BAD_INPUT,
         Error::Io { action, .. } if *action == "writing" => FAILED,
         Error::Io { .. } => BAD_INPUT,
         Error::Draw { .. } => FAILED,

@@ -5,12 +5,15 @@
 mod animate;
 mod args;
 mod bench;
+mod evaluate;
 mod failure;
+mod ik;
 mod merge;
 mod one_action;
 mod outputs;
 mod plot;
 mod plot_sweep;
+mod poulaine;
 mod progress;
 mod scenario;
 mod signals;
@@ -152,7 +155,8 @@ enum Command {
             left; the walk is sampled at 200 frames/s). The right leg\n\
             and the pelvis run from right heel strike, the left leg (dashed) from left heel strike.\n\
             The published normal ranges of models/gait-norms.toml are shaded over their cycle\n\
-            windows, and each is checked: the values are printed, outside ranges flagged.\n\
+            windows (those that change with speed at the walk's v/sqrt(g l1), light blue), and\n\
+            each is checked: the values are printed, outside ranges flagged.\n\
             1500 x 1000 px, PNG or SVG by the extension of --out, written whole or not at all.\n\
             \n\
             Example: klaw plot --velocity 1.2 --out slow-cycle.svg"
@@ -208,6 +212,60 @@ enum Command {
             Example: klaw turn --angle 180 --side right --kind stationary --out turn.csv --events turn-events.csv"
     )]
     Turn(one_action::TurnArgs),
+    /// Biomechanical quality criteria of a walk in a file: jerk, cyclicity, power (Pronost et al. 2006)
+    #[command(
+        long_about = "Read a walk (klaw's frame CSV from klaw walk --out, a measured walk in its columns, or\n\
+            OpenSim storage .mot/.sto with gait2392's coordinates) and print, over each gait cycle\n\
+            (heel strike to the next of the same foot; from the step column, else the ankle's\n\
+            foremost position), Pronost et al. 2006's criteria at 60 frames/s: C1 the total jerk\n\
+            (rad²/s⁶) and the mean squared jerk, C2 the cyclicity (rad), C3 the power per kg as\n\
+            printed (eqs. 10-11) with Willems et al. 1995's internal and external power; with\n\
+            --against the mean-shifted RMS of each angle (eq. 7); with --report the actuators'\n\
+            work per metre; and the published ranges of models/gait-norms.toml met or missed.\n\
+            docs/criteria.md defines each and compares klaw's walks with the paper's Table 1.\n\
+            A malformed file exits 2 naming the file and line; nothing is written.\n\
+            \n\
+            Example: klaw walk --out w.csv --report w.json --no-plot && klaw evaluate w.csv --report w.json --json c.json"
+    )]
+    Evaluate(evaluate::EvaluateArgs),
+    /// Poulaines (ankles relative to the pelvis over a gait cycle): extract one from a walk, model it
+    #[command(
+        subcommand,
+        long_about = "Poulaines (Pronost et al.): the ankles relative to the pelvis centre over one gait\n\
+            cycle, in the walking direction's frame (x forward, y up, z right).\n\
+            `extract` simulates a walk (the flags of `klaw walk`) and writes its last gait cycle's\n\
+            poulaine as CSV; `fit` models a poulaine by its four characteristic points and four C¹\n\
+            cubic Hermite curves, prints the fit error and writes the model (JSON; a database entry\n\
+            with --leg-length and --step-length). Layouts in docs/ik.md.\n\
+            \n\
+            Example: klaw poulaine extract --velocity 1.2 --out p.csv && klaw poulaine fit p.csv --out m.json"
+    )]
+    Poulaine(poulaine::PoulaineCommand),
+    /// Build a database of poulaines from klaw walks over a grid, and measured entries
+    #[command(
+        subcommand,
+        name = "poulaine-db",
+        long_about = "Build a database of modelled poulaines (Pronost et al. §3): one klaw walk per point of\n\
+            the grid of --height, --step-length and --attr NAME=A,B values (labelled synthetic), and\n\
+            the entries of `klaw poulaine fit --leg-length … --step-length …` (measured). JSON,\n\
+            written whole or not at all; its layout is in docs/ik.md.\n\
+            \n\
+            Example: klaw poulaine-db build --height 1.6,1.8,2.0 --step-length 0.6,0.75,0.9 --attr step_width=0.05,0.1 --out db.json"
+    )]
+    PoulaineDb(poulaine::DbCommand),
+    /// Lower-limb angles from a poulaine by inverse kinematics; the whole figure (CSV/.mot/.sto/.bvh)
+    #[command(
+        long_about = "Recover the lower limbs' angles from a poulaine by inverse kinematics whose null space\n\
+            serves biomechanical secondary tasks (joint limits, rotational kinetic energy, the rest\n\
+            posture; Pronost et al., docs/ik.md), and write the whole figure like `klaw walk`: the\n\
+            pelvis carried at the walk's speed, its height from the supporting ankle on the floor.\n\
+            The poulaine is a file (--poulaine) or the database's for the walker (--db with --height,\n\
+            --step-length or --velocity, --step-width, --stance). A target beyond the leg's reach is\n\
+            clamped to it; a frame the closed loop cannot bring within 1e-5 m exits 1.\n\
+            \n\
+            Example: klaw ik --db db.json --height 1.75 --step-length 0.7 --out ik.bvh"
+    )]
+    Ik(ik::IkArgs),
 }
 
 fn main() -> ExitCode {
@@ -228,6 +286,10 @@ fn main() -> ExitCode {
         Command::Scenario(args) => scenario::run(&args),
         Command::Step(args) => one_action::step(&args),
         Command::Turn(args) => one_action::turn(&args),
+        Command::Evaluate(args) => evaluate::run(&args),
+        Command::Poulaine(command) => poulaine::run(&command),
+        Command::PoulaineDb(command) => poulaine::run_db(&command),
+        Command::Ik(args) => ik::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

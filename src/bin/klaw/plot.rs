@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use clap::Args;
 use klaw::Result;
 use klaw::analysis::cycle::{GaitCycle, min_steps};
-use klaw::analysis::norms::NormTable;
+use klaw::analysis::norms::{NormTable, WalkSpeed};
 use klaw::plot::cycle::write_cycle_figure;
 
 use crate::args::GaitArgs;
@@ -36,7 +36,8 @@ pub(crate) fn run(args: &PlotArgs) -> Result<()> {
     let (walk, title) = args.walk.plan(min_steps(true), MAX_STEPS)?.simulate()?;
     let cycle = GaitCycle::from_walk(&walk)?;
     let norms = NormTable::builtin();
-    let figure = write_cycle_figure(&cycle, &norms, &title, &args.out)?;
+    let speed = WalkSpeed::of_walk(&walk);
+    let figure = write_cycle_figure(&cycle, &norms, speed, &title, &args.out)?;
     drop(spinner);
     let mut out = std::io::stdout().lock();
     let _ = writeln!(
@@ -44,6 +45,13 @@ pub(crate) fn run(args: &PlotArgs) -> Result<()> {
         "gait cycle of {title}: mean of {} right / {} left",
         count(cycle.cycles.0, "cycle"),
         count(cycle.cycles.1, "cycle")
+    );
+    let _ = writeln!(
+        out,
+        "speed-dependent norms taken at v/√(g l1) = {:.3} (v {:.3} m/s, l1 {:.3} m)",
+        speed.dimensionless(),
+        speed.velocity,
+        speed.leg_length
     );
     for c in &figure.checks {
         let _ = writeln!(out, "  {}", c.describe());

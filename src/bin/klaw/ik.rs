@@ -1,0 +1,232 @@
+//! `klaw ik`: lower-limb angles from a poulaine by inverse kinematics with biomechanical
+//! secondary tasks (Pronost et al.; docs/ik.md), the whole figure written like `klaw walk`'s.
+use std::path::PathBuf;
+
+use clap::{Args, ValueEnum};
+use klaw::ik::{Ik, Optimizer};
+use klaw::model::InputError;
+use klaw::model::attributes::AttributeTable;
+use klaw::poulaine::database::clamp_to_reach;
+use klaw::poulaine::{Database, Query, Trajectory};
+use klaw::{Body, GaitRequest, Result, export};
+use serde::Serialize;
+
+use crate::outputs::{self, Output};
+use crate::{DEFAULT_HEIGHT, DEFAULT_MASS, check_count};
+
+#[derive(Clone, Copy, ValueEnum)]
+enum Minimiser {
+    /// Torczon's multi-directional search (the paper's)
+    Mds,
+    /// argmin's Nelder–Mead
+    NelderMead,
+}
+
+#[derive(Args)]
+pub(crate) struct IkArgs {
+    /// The poulaine to follow (.csv of `klaw poulaine extract`: one cycle, uniform samples)
+    #[arg(
+        long,
+        value_name = "FILE.csv",
+        conflicts_with = "db",
+        required_unless_present = "db"
+    )]
+    poulaine: Option<PathBuf>,
+    /// A poulaine database (.json of `klaw poulaine-db build`): the poulaine for the walker
+    #[arg(long, value_name = "FILE.json")]
+    db: Option<PathBuf>,
+    /// Body height H in m, range [1.2, 2.2]
+    #[arg(long, value_name = "M", default_value_t = DEFAULT_HEIGHT, allow_negative_numbers = true)]
+    height: f64,
+    /// Body mass M in kg, range [25, 200]
+    #[arg(long, value_name = "KG", default_value_t = DEFAULT_MASS, allow_negative_numbers = true)]
+    mass: f64,
+    /// Walking speed (m/s) [with --poulaine: the poulaine's own; with --db: by klaw's
+    /// normalizing formula from --step-length, or 1.4]
+    #[arg(long, value_name = "M/S", allow_negative_numbers = true)]
+    velocity: Option<f64>,
+    /// --db: the step length (m) [default: by the normalizing formula]
+    #[arg(long, value_name = "M", requires = "db", allow_negative_numbers = true)]
+    step_length: Option<f64>,
+    /// --db: the feet's spacing in support, ankle to ankle (m) [default: the selected walk's]
+    #[arg(long, value_name = "M", requires = "db", allow_negative_numbers = true)]
+    step_width: Option<f64>,
+    /// --db: the pelvis-to-ankle height in support, a fraction of the leg, range [0.7, 1]
+    /// [default: the selected walk's]
+    #[arg(
+        long,
+        value_name = "FRACTION",
+        requires = "db",
+        allow_negative_numbers = true
+    )]
+    stance: Option<f64>,
+    /// --db: frames per second of the inverse kinematics and of --out, range [20, 500]
+    #[arg(
+        long,
+        value_name = "HZ",
+        default_value_t = 60.0,
+        allow_negative_numbers = true
+    )]
+    fps: f64,
+    /// Gait cycles to write, range [1, 1000]
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 4,
+        allow_negative_numbers = true
+    )]
+    cycles: i64,
+    /// The secondary tasks' minimiser
+    #[arg(long, value_enum, default_value = "mds")]
+    minimiser: Minimiser,
+    /// The figure's motion: .csv clinical angles, .mot/.sto OpenSim, .bvh
+    #[arg(long, value_name = "FILE", default_value = "ik.csv")]
+    out: PathBuf,
+    /// A report (.json): the poulaine's source, the closed loop's residual, the minimiser's work
+    #[arg(long, value_name = "FILE.json")]
+    report: Option<PathBuf>,
+}
+
+#[derive(Serialize)]
+struct Report {
+    source: String,
+    selected: Option<[String; 3]>,
+    query: Option<Query>,
+    period_s: f64,
+    velocity_m_s: f64,
+    frames_per_cycle: usize,
+    max_residual_m: f64,
+    clamped_samples: usize,
+    median_iterations: u64,
+    median_evaluations: u64,
+    within_limits: bool,
+}
+
+/// The poulaine, speed, source, selection and query of `klaw ik`.
+type Source = (Trajectory, f64, String, Option<[String; 3]>, Option<Query>);
+
+/// The database's poulaine for the walker of `a` (docs/ik.md, "Selection").
+fn db_poulaine(a: &IkArgs, db_path: &std::path::Path, body: &Body) -> Result<Source> {
+    InputError::check_range("fps", a.fps, 20.0, 500.0, "frames/s")?;
+    if let Some(w) = a.step_width {
+        InputError::check_range("step-width", w, 0.0, 0.4, "m")?;
+    }
+    if let Some(s) = a.stance {
+        InputError::check_range("stance", s, 0.7, 1.0, "")?;
+    }
+    let db = Database::read(db_path)?;
+    let attrs = AttributeTable::builtin().defaults();
+    let velocity = match (a.velocity, a.step_length) {
+        (None, None) => Some(1.4),
+        (v, _) => v,
+    };
+    let gait = GaitRequest {
+        velocity,
+        step_length: a.step_length,
+        step_frequency: None,
+    }
+    .complete(body, &attrs)?;
+    let period = 120.0 / gait.step_frequency;
+    let trace = db.trace_for_step(gait.step_length, body.l1);
+    let nearest = db.select(&Query {
+        trace,
+        spacing: 0.0,
+        stance: 0.0,
+    });
+    let axes = db.entries[nearest.x].axes;
+    let q = Query {
+        trace,
+        spacing: a.step_width.map_or(axes.spacing, |w| w / 2.0 / body.l1),
+        stance: a.stance.unwrap_or(axes.stance),
+    };
+    let (model, s) = db.poulaine(&q, body.l1, period);
+    let n = (period * a.fps).round() as usize;
+    let labels = [s.x, s.y, s.z].map(|i| db.entries[i].label.clone());
+    let source = db_path.display().to_string();
+    Ok((
+        model.sample(n),
+        gait.velocity,
+        source,
+        Some(labels),
+        Some(q),
+    ))
+}
+
+pub(crate) fn run(a: &IkArgs) -> Result<()> {
+    let body = Body::standard(a.height, a.mass)?;
+    let cycles = check_count("cycles", a.cycles, 1, 1000, "cycles")?;
+    let mut outs = vec![Output::new("out", &a.out, outputs::MOTION)];
+    if let Some(r) = &a.report {
+        outs.push(Output::new("report", r, outputs::JSON));
+    }
+    outputs::check(&outs)?;
+    let format = export::Format::from_path(&a.out)?;
+    if let Some(v) = a.velocity {
+        InputError::check_range("velocity", v, 0.1, 3.0, "m/s")?;
+    }
+    let mut ik = Ik::new(&body);
+    ik.params.optimizer = match a.minimiser {
+        Minimiser::Mds => Optimizer::MultiDirectional,
+        Minimiser::NelderMead => Optimizer::NelderMead,
+    };
+    let (mut poulaine, velocity, source, selected, query) = match (&a.poulaine, &a.db) {
+        (Some(p), _) => {
+            let t = Trajectory::read_csv(p)?;
+            let v = a.velocity.unwrap_or_else(|| t.speed());
+            (t, v, p.display().to_string(), None, None)
+        }
+        (None, Some(db_path)) => db_poulaine(a, db_path, &body)?,
+        (None, None) => unreachable!("clap requires --poulaine or --db"),
+    };
+    let clamped = clamp_to_reach(&mut poulaine, body.l0 / 2.0, ik.params.reach * body.l1);
+    let dt = poulaine
+        .uniform_step()
+        .ok_or_else(|| InputError::bad_value("poulaine", "its samples are not uniform in time"))?;
+    let sol = ik.solve(&poulaine.targets(), dt, true)?;
+    let angles: Vec<_> = sol.frames.iter().map(|f| f.theta).collect();
+    let attrs = AttributeTable::builtin().defaults();
+    let frames = klaw::ik::figure::frames((&body, &attrs), &angles, dt, velocity, cycles);
+    export::write(
+        &a.out,
+        format,
+        &body,
+        1.0 / dt,
+        frames,
+        &export::Options::default(),
+    )?;
+    let median = |mut v: Vec<u64>| {
+        v.sort_unstable();
+        v[v.len() / 2]
+    };
+    let report = Report {
+        source,
+        selected,
+        query,
+        period_s: poulaine.period,
+        velocity_m_s: velocity,
+        frames_per_cycle: angles.len(),
+        max_residual_m: sol.frames.iter().map(|f| f.residual).fold(0.0, f64::max),
+        clamped_samples: clamped,
+        median_iterations: median(sol.frames.iter().map(|f| f.iterations).collect()),
+        median_evaluations: median(sol.frames.iter().map(|f| f.evaluations).collect()),
+        within_limits: angles.iter().all(|t| ik.model.within_limits(t)),
+    };
+    if let Some(r) = &a.report {
+        export::write_report_json(r, &report)?;
+    }
+    println!(
+        "ik: {} frames per cycle ({:.3} s, v {:.3} m/s), {cycles} cycles, ankles within {:.1e} m, \
+         angles {} their limits: {}",
+        report.frames_per_cycle,
+        report.period_s,
+        velocity,
+        report.max_residual_m,
+        if report.within_limits {
+            "within"
+        } else {
+            "outside"
+        },
+        a.out.display()
+    );
+    Ok(())
+}

@@ -1,0 +1,159 @@
+//! The poulaine's curve model (Pronost et al. §3.2): per ankle, four characteristic points and
+//! four cubic Hermite (Coons) segments between them, closed and C¹, parameterized by the
+//! cycle's phase φ = t / T ∈ [0, 1).
+//!
+//! Points, in the cycle's order: (1) the ankle at its highest, (2) most forward, (3) under the
+//! pelvis in support (x nearest 0 between 2 and 4), (4) most backward. Between knots k and k+1
+//! (phases φ_k < φ_{k+1}, cyclically), with s = (φ − φ_k) / Δ_k:
+//!
+//! `p(φ) = h₀₀(s) P_k + h₁₀(s) Δ_k m_k + h₀₁(s) P_{k+1} + h₁₁(s) Δ_k m_{k+1}`,
+//!
+//! h₀₀ = 2s³ − 3s² + 1, h₁₀ = s³ − 2s² + s, h₀₁ = −2s³ + 3s², h₁₁ = s³ − s²; m_k is the
+//! derivative dp/dφ at knot k (m per cycle), shared by the segments on either side: the curve
+//! passes through the points and its velocity is continuous.
+//!
+//! \[ours\] Each coordinate is its own closed curve with its own four knots ([`Component`]): a
+//! fitted poulaine has the same knots on its three coordinates, and the database's selection
+//! (§4) takes each coordinate from a different poulaine, knots and all.
+use serde::{Deserialize, Serialize};
+
+/// The Hermite basis (h₀₀, h₁₀, h₀₁, h₁₁) at s.
+pub fn hermite(s: f64) -> [f64; 4] {
+    let (s2, s3) = (s * s, s * s * s);
+    [
+        2.0 * s3 - 3.0 * s2 + 1.0,
+        s3 - 2.0 * s2 + s,
+        -2.0 * s3 + 3.0 * s2,
+        s3 - s2,
+    ]
+}
+
+/// One coordinate of one ankle: a closed C¹ cubic Hermite curve through four knots.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Component {
+    /// The knots' phases, in [0, 1), increasing cyclically from the first (not necessarily
+    /// from 0: the first may follow the last across the cycle's end).
+    pub phase: [f64; 4],
+    /// The coordinate at the knots (m).
+    pub value: [f64; 4],
+    /// Its derivative at the knots, d/dφ (m per cycle).
+    pub slope: [f64; 4],
+}
+
+impl Component {
+    /// The knot interval holding phase φ: its index k, the local s and the interval Δ_k.
+    pub fn locate(&self, phi: f64) -> (usize, f64, f64) {
+        let phi = phi.rem_euclid(1.0);
+        for k in 0..4 {
+            let a = self.phase[k];
+            let d = (self.phase[(k + 1) % 4] - a).rem_euclid(1.0);
+            let u = (phi - a).rem_euclid(1.0);
+            if u < d || k == 3 {
+                return (k, u / d, d);
+            }
+        }
+        unreachable!("the loop returns at k = 3")
+    }
+
+    /// The coordinate at phase φ.
+    pub fn at(&self, phi: f64) -> f64 {
+        let (k, s, d) = self.locate(phi);
+        let [a, b, c, e] = hermite(s);
+        let j = (k + 1) % 4;
+        a * self.value[k] + b * d * self.slope[k] + c * self.value[j] + e * d * self.slope[j]
+    }
+
+    /// The knots' phases are distinct and in [0, 1), and every number finite.
+    pub fn is_valid(&self) -> bool {
+        let finite = self.value.iter().chain(&self.slope).all(|v| v.is_finite());
+        let spans: f64 = (0..4)
+            .map(|k| (self.phase[(k + 1) % 4] - self.phase[k]).rem_euclid(1.0))
+            .sum();
+        finite
+            && self.phase.iter().all(|p| (0.0..1.0).contains(p))
+            && (0..4).all(|k| self.phase[k] != self.phase[(k + 1) % 4])
+            && (spans - 1.0).abs() < 1e-9
+    }
+}
+
+/// One ankle's curve: its x (forward), y (up) and z (right) coordinates.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LegCurve {
+    /// x, forward.
+    pub x: Component,
+    /// y, up.
+    pub y: Component,
+    /// z, to the right.
+    pub z: Component,
+}
+
+impl LegCurve {
+    /// The ankle at phase φ.
+    pub fn at(&self, phi: f64) -> [f64; 3] {
+        [self.x.at(phi), self.y.at(phi), self.z.at(phi)]
+    }
+
+    /// The components.
+    pub fn components(&self) -> [&Component; 3] {
+        [&self.x, &self.y, &self.z]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn component() -> Component {
+        Component {
+            phase: [0.8, 0.1, 0.35, 0.6],
+            value: [0.1, 0.4, 0.0, -0.35],
+            slope: [2.0, -0.5, -1.5, 0.3],
+        }
+    }
+
+    /// The curve passes through its knots with their slopes, and it is C¹ across every knot and
+    /// across the cycle's end (central differences of the value on either side agree).
+    #[test]
+    fn it_interpolates_the_knots_and_is_c1_and_closed() {
+        let c = component();
+        assert!(c.is_valid());
+        let h = 1e-6;
+        for k in 0..4 {
+            let p = c.phase[k];
+            assert!((c.at(p) - c.value[k]).abs() < 1e-12);
+            let left = (c.at(p) - c.at(p - h)) / h;
+            let right = (c.at(p + h) - c.at(p)) / h;
+            assert!((left - c.slope[k]).abs() < 1e-4, "{k}: {left}");
+            assert!((right - c.slope[k]).abs() < 1e-4, "{k}: {right}");
+        }
+        assert!((c.at(0.999_999_999) - c.at(0.0)).abs() < 1e-6);
+        assert_eq!(c.at(1.25), c.at(0.25));
+    }
+
+    /// A cubic is reproduced exactly by Hermite segments with its values and derivatives at the
+    /// knots (the basis's defining property), here p(φ) = φ³ − φ on one span.
+    #[test]
+    fn a_cubic_is_reproduced() {
+        let p = |t: f64| t * t * t - t;
+        let dp = |t: f64| 3.0 * t * t - 1.0;
+        let (a, b) = (0.2, 0.7);
+        let d = b - a;
+        for s in [0.0, 0.3, 0.5, 0.9] {
+            let [h0, h1, h2, h3] = hermite(s);
+            let v = h0 * p(a) + h1 * d * dp(a) + h2 * p(b) + h3 * d * dp(b);
+            assert!((v - p(a + s * d)).abs() < 1e-14);
+        }
+    }
+
+    #[test]
+    fn bad_knots_are_invalid() {
+        let mut c = component();
+        c.phase = [0.1, 0.35, 0.8, 0.6];
+        assert!(!c.is_valid());
+        let mut c = component();
+        c.slope[2] = f64::NAN;
+        assert!(!c.is_valid());
+    }
+}

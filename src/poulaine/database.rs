@@ -1,0 +1,315 @@
+//! The database of modelled poulaines and the poulaine it gives for a new walker (Pronost et al.
+//! §4): each axis taken from the poulaine nearest in the parameter that characterizes it, then
+//! corrected to fit the request exactly.
+//!
+//! The parameters, each as a fraction of the walker's leg length l (hip to ankle, l3 + l4) so
+//! that walkers of every size share one database:
+//! - x: the ankle's trace length along x over the cycle (max x − min x), the paper's "step
+//!   length" parameter;
+//! - y: half the feet's spacing in support, the ankle's mean |z| from its most forward to its
+//!   most backward point;
+//! - z: the stance, the pelvis-to-ankle height where the ankle passes under the pelvis in
+//!   support (characteristic point 3).
+//!
+//! The corrections, per ankle, in units of l: x scaled by x*/x_e (points and tangents), z
+//! (lateral) shifted outwards by y* − y_e, y (vertical) shifted down by z* − z_e; then × the new
+//! walker's l, and the sampled targets clamped to the leg's reach ([`clamp_to_reach`]).
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+
+use crate::poulaine::curve::{Component, LegCurve};
+use crate::poulaine::error::PoulaineError;
+use crate::poulaine::fit::{FitError, Model};
+use crate::poulaine::trajectory::Trajectory;
+
+/// The samples per cycle the parameters are measured on.
+const SAMPLES: usize = 400;
+
+/// A poulaine's three parameters, fractions of the leg length (module doc).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Axes {
+    /// x: the trace length along x.
+    pub trace: f64,
+    /// y: half the feet's spacing in support.
+    pub spacing: f64,
+    /// z: the pelvis-to-ankle height under the pelvis in support.
+    pub stance: f64,
+}
+
+impl Axes {
+    /// The parameters of `model` for a walker of leg length `leg` (m): the mean of the two
+    /// ankles'.
+    pub fn of(model: &Model, leg: f64) -> Self {
+        let one = |c: &LegCurve| {
+            let t: Vec<[f64; 3]> = (0..SAMPLES)
+                .map(|i| c.at(i as f64 / SAMPLES as f64))
+                .collect();
+            let (lo, hi) = t
+                .iter()
+                .fold((f64::MAX, f64::MIN), |(l, h), p| (l.min(p[0]), h.max(p[0])));
+            // support: the x component's knots 2 (most forward) to 4 (most backward)
+            let [_, front, under, back] = c.x.phase;
+            let span = (back - front).rem_euclid(1.0);
+            let k = 64;
+            let spacing = (0..=k)
+                .map(|i| c.z.at(front + span * i as f64 / k as f64).abs())
+                .sum::<f64>()
+                / (k + 1) as f64;
+            Axes {
+                trace: (hi - lo) / leg,
+                spacing: spacing / leg,
+                stance: -c.y.at(under) / leg,
+            }
+        };
+        let (r, l) = (one(&model.right), one(&model.left));
+        Axes {
+            trace: (r.trace + l.trace) / 2.0,
+            spacing: (r.spacing + l.spacing) / 2.0,
+            stance: (r.stance + l.stance) / 2.0,
+        }
+    }
+}
+
+/// One modelled poulaine and what it was recorded from.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Entry {
+    /// A name, unique in its database.
+    pub label: String,
+    /// Where it comes from: `synthetic` (a klaw walk) or `measured` (a motion capture).
+    pub source: String,
+    /// The walker's leg length l, hip to ankle (m).
+    pub leg_length: f64,
+    /// The walker's height (m), if known.
+    pub height: Option<f64>,
+    /// The walk's step length (m).
+    pub step_length: f64,
+    /// The walk's speed (m/s), if known.
+    pub velocity: Option<f64>,
+    /// The inputs of a synthetic walk that set its stance and feet (klaw attributes, in their
+    /// file units), or anything a measured one records.
+    #[serde(default)]
+    pub attributes: BTreeMap<String, f64>,
+    /// The model.
+    pub model: Model,
+    /// The model's error on the samples it was fitted to.
+    pub fit_error: FitError,
+    /// The parameters (computed from the model; checked on reading).
+    pub axes: Axes,
+}
+
+/// A database of poulaines.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Database {
+    /// What it holds and how it was made.
+    pub description: String,
+    /// The poulaines.
+    pub entries: Vec<Entry>,
+}
+
+/// The poulaine asked of the database: its three parameters (fractions of the leg length).
+pub type Query = Axes;
+
+/// The entries chosen for each axis.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct Selection {
+    /// The entry giving x.
+    pub x: usize,
+    /// The entry giving the lateral coordinate (klaw's z, the paper's y).
+    pub y: usize,
+    /// The entry giving the vertical coordinate (klaw's y, the paper's z).
+    pub z: usize,
+}
+
+impl Entry {
+    /// An entry for `model` (fitted with `fit_error`) of a walker of leg length `leg_length`.
+    pub fn new(
+        label: String,
+        source: &str,
+        leg_length: f64,
+        step_length: f64,
+        model: Model,
+        fit_error: FitError,
+    ) -> Self {
+        Entry {
+            label,
+            source: source.to_string(),
+            leg_length,
+            height: None,
+            step_length,
+            velocity: None,
+            attributes: BTreeMap::new(),
+            axes: Axes::of(&model, leg_length),
+            model,
+            fit_error,
+        }
+    }
+}
+
+impl Database {
+    /// Read a database file (JSON, the layout of `docs/ik.md`), checking every entry: a valid
+    /// model, a positive leg length, parameters that are the model's, unique labels.
+    pub fn read(path: &Path) -> crate::Result<Self> {
+        let text = std::fs::read_to_string(path).map_err(|source| crate::Error::Io {
+            action: "reading",
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Ok(Self::parse(&text, path)?)
+    }
+
+    /// [`Self::read`] of the text of `path`.
+    pub fn parse(text: &str, path: &Path) -> Result<Self, PoulaineError> {
+        let bad = |reason: String| PoulaineError::Malformed {
+            path: path.to_path_buf(),
+            reason,
+        };
+        let db: Database =
+            serde_json::from_str(text).map_err(|e| bad(format!("not a poulaine database: {e}")))?;
+        if db.entries.is_empty() {
+            return Err(bad("the database has no entry".into()));
+        }
+        let mut labels = std::collections::BTreeSet::new();
+        for (i, e) in db.entries.iter().enumerate() {
+            let at = |what: String| bad(format!("entry {i} ({}): {what}", e.label));
+            if !labels.insert(e.label.as_str()) {
+                return Err(at("the label is used twice".into()));
+            }
+            if !(e.leg_length.is_finite() && (0.3..=1.5).contains(&e.leg_length)) {
+                return Err(at(format!(
+                    "leg_length {} m is out of [0.3, 1.5] m",
+                    e.leg_length
+                )));
+            }
+            if !(e.model.period.is_finite() && e.model.period > 0.0) {
+                return Err(at(format!(
+                    "the period {} s must be positive",
+                    e.model.period
+                )));
+            }
+            let valid = [&e.model.right, &e.model.left]
+                .iter()
+                .flat_map(|c| c.components())
+                .all(Component::is_valid);
+            if !valid {
+                return Err(at("a curve's knots are not distinct phases in [0, 1) in cyclic order, or a value is not finite".into()));
+            }
+            let axes = Axes::of(&e.model, e.leg_length);
+            let close = |a: f64, b: f64| (a - b).abs() <= 1e-6 * a.abs().max(1.0);
+            if !(close(axes.trace, e.axes.trace)
+                && close(axes.spacing, e.axes.spacing)
+                && close(axes.stance, e.axes.stance))
+            {
+                return Err(at(format!(
+                    "its axes {:?} are not its model's {axes:?}",
+                    e.axes
+                )));
+            }
+        }
+        Ok(db)
+    }
+
+    /// The entry nearest `target` in the parameter `key`.
+    fn nearest(&self, key: impl Fn(&Axes) -> f64, target: f64) -> usize {
+        (0..self.entries.len())
+            .min_by(|&a, &b| {
+                let d = |i: usize| (key(&self.entries[i].axes) - target).abs();
+                d(a).total_cmp(&d(b))
+            })
+            .expect("a database has entries")
+    }
+
+    /// The nearest entry per axis (§4).
+    pub fn select(&self, q: &Query) -> Selection {
+        Selection {
+            x: self.nearest(|a| a.trace, q.trace),
+            y: self.nearest(|a| a.spacing, q.spacing),
+            z: self.nearest(|a| a.stance, q.stance),
+        }
+    }
+
+    /// The trace length (fraction of the leg) that goes with step length `step` (m) for a
+    /// walker of leg length `leg` (m): the database's trace per step length at the entry nearest
+    /// in step length per leg length.
+    pub fn trace_for_step(&self, step: f64, leg: f64) -> f64 {
+        let target = step / leg;
+        let e = self
+            .entries
+            .iter()
+            .min_by(|a, b| {
+                let d = |e: &Entry| (e.step_length / e.leg_length - target).abs();
+                d(a).total_cmp(&d(b))
+            })
+            .expect("a database has entries");
+        target * e.axes.trace / (e.step_length / e.leg_length)
+    }
+
+    /// The poulaine for a walker of leg length `leg` (m) and cycle `period` (s) that meets `q`
+    /// exactly: the selection's axes scaled to the leg, x scaled to the trace length, then the
+    /// lateral and vertical coordinates shifted by what the combined curve still lacks (its
+    /// support phases are the x entry's, so the shift is measured on the combination, not on
+    /// the y or z entry alone). Not clamped: sample it and [`clamp_to_reach`].
+    pub fn poulaine(&self, q: &Query, leg: f64, period: f64) -> (Model, Selection) {
+        let s = self.select(q);
+        let (ex, ey, ez) = (&self.entries[s.x], &self.entries[s.y], &self.entries[s.z]);
+        let scale = |c: &Component, k: f64, shift: f64| Component {
+            phase: c.phase,
+            value: c.value.map(|v| k * v + shift),
+            slope: c.slope.map(|m| k * m),
+        };
+        let kx = q.trace / ex.axes.trace * leg / ex.leg_length;
+        let combine = |lateral: f64, down: f64| {
+            let leg_curve = |side: f64, pick: fn(&Model) -> &LegCurve| LegCurve {
+                x: scale(&pick(&ex.model).x, kx, 0.0),
+                y: scale(&pick(&ez.model).y, leg / ez.leg_length, -down * leg),
+                z: scale(
+                    &pick(&ey.model).z,
+                    leg / ey.leg_length,
+                    side * lateral * leg,
+                ),
+            };
+            Model {
+                period,
+                right: leg_curve(1.0, |m| &m.right),
+                left: leg_curve(-1.0, |m| &m.left),
+            }
+        };
+        let raw = Axes::of(&combine(0.0, 0.0), leg);
+        (combine(q.spacing - raw.spacing, q.stance - raw.stance), s)
+    }
+
+    /// The database without the entry labelled `label` (leave-one-out).
+    pub fn without(&self, label: &str) -> Self {
+        Database {
+            description: self.description.clone(),
+            entries: self
+                .entries
+                .iter()
+                .filter(|e| e.label != label)
+                .cloned()
+                .collect(),
+        }
+    }
+}
+
+/// Clamp each ankle of `t` to at most `reach` (m) from its hip at the pelvis's rest position,
+/// (0, 0, ±`half_width`): pulled in along the hip–ankle line. Returns how many samples moved.
+pub fn clamp_to_reach(t: &mut Trajectory, half_width: f64, reach: f64) -> usize {
+    let mut moved = 0;
+    for (side, leg) in [(1.0, &mut t.right), (-1.0, &mut t.left)] {
+        for p in leg.iter_mut() {
+            let d = [p[0], p[1], p[2] - side * half_width];
+            let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            if r > reach {
+                let k = reach / r;
+                *p = [d[0] * k, d[1] * k, side * half_width + d[2] * k];
+                moved += 1;
+            }
+        }
+    }
+    moved
+}

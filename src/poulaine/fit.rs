@@ -1,0 +1,338 @@
+//! A sampled poulaine modelled (Pronost et al. §3.2): the four characteristic points found in
+//! the samples, and the four knots' tangents fitted by least squares to every sample, one
+//! coordinate at a time. The curve is linear in its tangents (four unknowns per coordinate), so
+//! the least-squares tangents solve the normal equations AᵀA m = Aᵀ(y − p₀), which argmin's
+//! conjugate gradient solves (exact in four steps but for round-off; the paper's "iterative
+//! algorithm" for the tangents).
+use argmin::core::{Error as ArgminError, Executor, Operator, State};
+use argmin::solver::conjugategradient::ConjugateGradient;
+use serde::{Deserialize, Serialize};
+
+use crate::poulaine::curve::{Component, LegCurve, hermite};
+use crate::poulaine::error::PoulaineError;
+use crate::poulaine::trajectory::Trajectory;
+
+/// A poulaine's model: both ankles' curves over a cycle of duration `period`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Model {
+    /// The cycle's duration T (s).
+    pub period: f64,
+    /// The right ankle.
+    pub right: LegCurve,
+    /// The left ankle.
+    pub left: LegCurve,
+}
+
+/// How far the model lies from the samples it was fitted to (m): the distance from each sample
+/// to the model at its phase.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FitError {
+    /// Root mean square over both ankles' samples.
+    pub rms: f64,
+    /// Largest.
+    pub max: f64,
+}
+
+impl Model {
+    /// The ankles at phase φ.
+    pub fn at(&self, phi: f64) -> ([f64; 3], [f64; 3]) {
+        (self.right.at(phi), self.left.at(phi))
+    }
+
+    /// The model sampled at `n` uniform instants over its cycle.
+    pub fn sample(&self, n: usize) -> Trajectory {
+        let phases: Vec<f64> = (0..n).map(|i| i as f64 / n as f64).collect();
+        Trajectory {
+            time: phases.iter().map(|p| p * self.period).collect(),
+            period: self.period,
+            right: phases.iter().map(|&p| self.right.at(p)).collect(),
+            left: phases.iter().map(|&p| self.left.at(p)).collect(),
+        }
+    }
+
+    /// The distance of the samples of `t` from the model.
+    pub fn error(&self, t: &Trajectory) -> FitError {
+        let mut sum = 0.0;
+        let mut max: f64 = 0.0;
+        for (i, time) in t.time.iter().enumerate() {
+            let (r, l) = self.at(time / t.period);
+            for (m, s) in [(r, t.right[i]), (l, t.left[i])] {
+                let d2: f64 = (0..3).map(|a| (m[a] - s[a]).powi(2)).sum();
+                sum += d2;
+                max = max.max(d2.sqrt());
+            }
+        }
+        FitError {
+            rms: (sum / (2 * t.time.len()) as f64).sqrt(),
+            max,
+        }
+    }
+}
+
+/// The characteristic points' sample indices of one ankle (points 1 to 4, module doc of
+/// [`crate::poulaine::curve`]), checked to come in the cycle's order 1, 2, 3, 4.
+pub fn characteristic_points(
+    leg: &[[f64; 3]],
+    name: &'static str,
+) -> Result<[usize; 4], PoulaineError> {
+    let n = leg.len();
+    let arg = |key: &dyn Fn(&[f64; 3]) -> f64| {
+        (0..n).fold(0, |b, i| if key(&leg[i]) > key(&leg[b]) { i } else { b })
+    };
+    let highest = arg(&|p| p[1]);
+    let front = arg(&|p| p[0]);
+    let back = arg(&|p| -p[0]);
+    // after `from`, cyclically
+    let after = |i: usize, from: usize| (i + n - from) % n;
+    let support = after(back, front);
+    let under = (0..=support)
+        .map(|k| (front + k) % n)
+        .min_by(|&a, &b| leg[a][0].abs().total_cmp(&leg[b][0].abs()))
+        .expect("the support has a sample");
+    let order = [highest, front, under, back];
+    let offsets: Vec<usize> = order.iter().map(|&i| after(i, highest)).collect();
+    if !(offsets[1] > 0 && offsets[1] < offsets[2] && offsets[2] < offsets[3]) {
+        return Err(PoulaineError::Order {
+            leg: name,
+            reason: format!(
+                "samples {highest} (highest), {front} (most forward), {under} (under the pelvis), \
+                 {back} (most backward) of {n}"
+            ),
+        });
+    }
+    Ok(order)
+}
+
+/// One coordinate's least-squares problem in its four slopes: Σᵢ (p(φᵢ) − yᵢ)².
+struct Slopes<'a> {
+    /// The knots (phases and values; the slopes are the unknowns).
+    knots: Component,
+    phases: &'a [f64],
+    samples: Vec<f64>,
+}
+
+impl Slopes<'_> {
+    /// The residuals and, for each, the slopes' coefficients.
+    fn rows(&self, slopes: &[f64]) -> impl Iterator<Item = (f64, [f64; 4])> + '_ {
+        let c = Component {
+            slope: [slopes[0], slopes[1], slopes[2], slopes[3]],
+            ..self.knots
+        };
+        self.phases
+            .iter()
+            .zip(&self.samples)
+            .map(move |(&phi, &y)| {
+                let (k, s, d) = c.locate(phi);
+                let [_, h10, _, h11] = hermite(s);
+                let mut coef = [0.0; 4];
+                coef[k] += h10 * d;
+                coef[(k + 1) % 4] += h11 * d;
+                (c.at(phi) - y, coef)
+            })
+    }
+}
+
+impl Slopes<'_> {
+    /// AᵀA and Aᵀ(y − p₀) of the normal equations (p₀: the curve with zero slopes).
+    fn normal_equations(&self) -> ([[f64; 4]; 4], Vec<f64>) {
+        let (mut ata, mut atb) = ([[0.0; 4]; 4], vec![0.0; 4]);
+        for (r0, coef) in self.rows(&[0.0; 4]) {
+            for i in 0..4 {
+                atb[i] -= coef[i] * r0;
+                for j in 0..4 {
+                    ata[i][j] += coef[i] * coef[j];
+                }
+            }
+        }
+        (ata, atb)
+    }
+}
+
+/// The normal equations' matrix as an argmin operator.
+struct Normal([[f64; 4]; 4]);
+
+impl Operator for Normal {
+    type Param = Vec<f64>;
+    type Output = Vec<f64>;
+    fn apply(&self, m: &Vec<f64>) -> Result<Vec<f64>, ArgminError> {
+        Ok((0..4)
+            .map(|i| (0..4).map(|j| self.0[i][j] * m[j]).sum())
+            .collect())
+    }
+}
+
+/// The slopes that fit one coordinate's samples: L-BFGS from the finite-difference slopes
+/// (the chord through each knot's neighbouring samples).
+fn fit_component(
+    knots: [usize; 4],
+    phases: &[f64],
+    samples: Vec<f64>,
+    leg: &'static str,
+) -> Result<Component, PoulaineError> {
+    let n = phases.len();
+    let start: Vec<f64> = knots
+        .iter()
+        .map(|&i| {
+            let (a, b) = ((i + n - 1) % n, (i + 1) % n);
+            let dphi = (phases[b] - phases[a]).rem_euclid(1.0);
+            (samples[b] - samples[a]) / dphi
+        })
+        .collect();
+    let knots = Component {
+        phase: knots.map(|i| phases[i]),
+        value: knots.map(|i| samples[i]),
+        slope: [0.0; 4],
+    };
+    let problem = Slopes {
+        knots,
+        phases,
+        samples,
+    };
+    let fail = |e: ArgminError| PoulaineError::Fit {
+        leg,
+        reason: e.to_string(),
+    };
+    let (ata, atb) = problem.normal_equations();
+    let scale: f64 = atb.iter().map(|b| b * b).sum::<f64>().max(1e-300);
+    let result = Executor::new(Normal(ata), ConjugateGradient::new(atb))
+        .configure(|s| s.param(start).max_iters(12).target_cost(1e-28 * scale))
+        .timer(false)
+        .run()
+        .map_err(fail)?;
+    let m = result
+        .state()
+        .get_best_param()
+        .cloned()
+        .ok_or_else(|| fail(ArgminError::msg("no point")))?;
+    if !m.iter().all(|v| v.is_finite()) {
+        return Err(fail(ArgminError::msg("the tangents are not finite")));
+    }
+    Ok(Component {
+        slope: [m[0], m[1], m[2], m[3]],
+        ..knots
+    })
+}
+
+/// Model the poulaine `t` (module doc), and the model's error on its samples.
+pub fn fit(t: &Trajectory) -> Result<(Model, FitError), PoulaineError> {
+    t.check(std::path::Path::new("(poulaine)"))?;
+    let phases: Vec<f64> = t.time.iter().map(|x| x / t.period).collect();
+    let leg = |samples: &[[f64; 3]], name: &'static str| -> Result<LegCurve, PoulaineError> {
+        let knots = characteristic_points(samples, name)?;
+        let axis =
+            |a: usize| fit_component(knots, &phases, samples.iter().map(|p| p[a]).collect(), name);
+        Ok(LegCurve {
+            x: axis(0)?,
+            y: axis(1)?,
+            z: axis(2)?,
+        })
+    };
+    let model = Model {
+        period: t.period,
+        right: leg(&t.right, "right")?,
+        left: leg(&t.left, "left")?,
+    };
+    let error = model.error(t);
+    Ok((model, error))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{Matrix4, Vector4};
+
+    /// A poulaine-like closed curve: the ankle swings forward high and comes back low.
+    fn trajectory(n: usize) -> Trajectory {
+        let leg = |shift: f64, side: f64| -> Vec<[f64; 3]> {
+            (0..n)
+                .map(|i| {
+                    let a = std::f64::consts::TAU * (i as f64 / n as f64 + shift);
+                    [
+                        0.4 * a.sin() + 0.05 * (2.0 * a).sin(),
+                        -0.85 + 0.06 * (a - 1.0).cos().max(0.0).powi(2),
+                        side * (0.05 + 0.01 * a.cos()),
+                    ]
+                })
+                .collect()
+        };
+        Trajectory {
+            time: (0..n).map(|i| i as f64 * 1.1 / n as f64).collect(),
+            period: 1.1,
+            right: leg(0.0, 1.0),
+            left: leg(0.5, -1.0),
+        }
+    }
+
+    /// argmin's slopes are the least-squares solution of the normal equations (nalgebra, an
+    /// independent route) to 1e-8 of their size.
+    #[test]
+    fn the_fitted_slopes_solve_the_normal_equations() {
+        let t = trajectory(90);
+        let phases: Vec<f64> = t.time.iter().map(|x| x / t.period).collect();
+        let knots = characteristic_points(&t.right, "right").unwrap();
+        for a in 0..3 {
+            let samples: Vec<f64> = t.right.iter().map(|p| p[a]).collect();
+            let c = fit_component(knots, &phases, samples.clone(), "right").unwrap();
+            let problem = Slopes {
+                knots: Component {
+                    slope: [0.0; 4],
+                    ..c
+                },
+                phases: &phases,
+                samples,
+            };
+            let (mut ata, mut atb) = (Matrix4::zeros(), Vector4::zeros());
+            for (r0, coef) in problem.rows(&[0.0; 4]) {
+                let v = Vector4::from(coef);
+                ata += v * v.transpose();
+                atb -= v * r0;
+            }
+            let exact = ata.lu().solve(&atb).unwrap();
+            let got = Vector4::from(c.slope);
+            assert!(
+                (got - exact).amax() < 1e-8 * exact.amax().max(1.0),
+                "{got} vs {exact}"
+            );
+        }
+    }
+
+    /// Samples of a known Hermite curve, with its knots on samples, give back its slopes and no
+    /// error (the fit is exact where the model is).
+    #[test]
+    fn a_hermite_curve_is_fitted_exactly() {
+        let n = 100;
+        let phases: Vec<f64> = (0..n).map(|i| i as f64 / n as f64).collect();
+        let knots = [85, 10, 37, 61];
+        let truth = Component {
+            phase: knots.map(|i| phases[i]),
+            value: [0.12, 0.41, -0.02, -0.38],
+            slope: [2.1, -0.4, -1.6, 0.25],
+        };
+        let samples: Vec<f64> = phases.iter().map(|&p| truth.at(p)).collect();
+        let c = fit_component(knots, &phases, samples.clone(), "right").unwrap();
+        for k in 0..4 {
+            assert!((c.slope[k] - truth.slope[k]).abs() < 1e-9, "{:?}", c.slope);
+        }
+        let worst = phases
+            .iter()
+            .zip(&samples)
+            .map(|(&p, y)| (c.at(p) - y).abs())
+            .fold(0.0, f64::max);
+        assert!(worst < 1e-12, "{worst}");
+    }
+
+    /// The characteristic points of the test curve: highest, forward, under the pelvis, back,
+    /// in order; a curve run backwards is refused naming the order.
+    #[test]
+    fn the_characteristic_points_come_in_order() {
+        let t = trajectory(100);
+        let [h, f, u, b] = characteristic_points(&t.right, "right").unwrap();
+        assert!(t.right[f][0] > 0.39 && t.right[b][0] < -0.39 && t.right[u][0].abs() < 0.02);
+        assert!(t.right[h][1] >= t.right.iter().map(|p| p[1]).fold(f64::MIN, f64::max));
+        let mut reversed = t.right.clone();
+        reversed.reverse();
+        let e = characteristic_points(&reversed, "right").unwrap_err();
+        assert!(e.to_string().contains("out of order"), "{e}");
+    }
+}

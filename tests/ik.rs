@@ -1,0 +1,119 @@
+//! The inverse kinematics of Pronost et al. (src/ik/) on klaw's own walks: the chain's angles
+//! are klaw's clinical angles (its forward kinematics reproduces a walk's ankles from them), and
+//! the closed loop follows a walk's ankle trajectories within its tolerance at every frame, every
+//! angle inside its joint limits.
+mod common;
+
+use klaw::figure::clinical::clinical;
+use klaw::ik::{Angles, Ik};
+use klaw::poulaine::Trajectory;
+use klaw::poulaine::validate::chain_angles;
+
+/// The forward kinematics at a walk's clinical angles puts the ankles where the walk has them
+/// relative to its pelvis (an independent check of the chain's axes, signs and Euler orders
+/// against src/figure/clinical.rs), over a whole gait cycle.
+#[test]
+fn the_chain_at_a_walks_clinical_angles_reproduces_its_ankles() {
+    let body = common::default_body();
+    let walk = klaw::Simulation::new(body)
+        .velocity(1.3)
+        .steps(4)
+        .run()
+        .unwrap();
+    let (poulaine, frames) = Trajectory::from_walk(&walk, 100.0).unwrap();
+    let ik = Ik::new(&body);
+    for (f, x) in frames.iter().zip(poulaine.targets()) {
+        let theta = chain_angles(&clinical(f, &body).unwrap());
+        let e = (ik.chain.ankles(&theta) - x).amax();
+        assert!(e < 1e-12, "t {}: {e} m", f.time);
+    }
+}
+
+/// The closed loop on a walk's own ankle trajectories (60 Hz, the paper's rate): at every frame
+/// the ankles are within the tolerance (10 µm, far inside the 1 mm), every angle within
+/// its limits, and the cycle closes: the first frame follows from the last like any other.
+#[test]
+fn the_closed_loop_follows_a_walks_ankles_within_the_limits() {
+    let (_, poulaine, ik, sol) = solved(1.4, 6);
+    assert_eq!(sol.frames.len(), poulaine.time.len());
+    for (i, f) in sol.frames.iter().enumerate() {
+        assert!(
+            f.residual <= ik.params.tolerance,
+            "frame {i}: {} m",
+            f.residual
+        );
+        let x = ik.chain.ankles(&f.theta);
+        assert!((x - poulaine.targets()[i]).amax() <= 1e-3);
+        assert!(ik.model.within_limits(&f.theta), "frame {i}: {:?}", f.theta);
+    }
+    // cyclic: the step from the last frame to the first is no larger than the largest step
+    let steps: Vec<f64> = sol
+        .frames
+        .windows(2)
+        .map(|w| (w[1].theta - w[0].theta).amax())
+        .collect();
+    let wrap = (sol.frames[0].theta - sol.frames.last().unwrap().theta).amax();
+    let largest = steps.iter().cloned().fold(0.0, f64::max);
+    assert!(wrap <= largest, "{wrap} vs {largest}");
+}
+
+/// The figure posed from the solution: its clinical angles are the chain's (hips, knees,
+/// pelvis), no foot goes through the floor and one touches it at every frame, the pelvis
+/// advances at the walk's speed, and the exporters take it (CSV, .mot, BVH).
+#[test]
+fn the_posed_figure_carries_the_angles_and_stands_on_the_floor() {
+    let (body, poulaine, _, sol) = solved(1.2, 4);
+    let dt = poulaine.uniform_step().unwrap();
+    let angles: Vec<Angles> = sol.frames.iter().map(|f| f.theta).collect();
+    let attrs = common::default_attributes();
+    let frames = klaw::ik::figure::frames((&body, &attrs), &angles, dt, 1.2, 2);
+    assert_eq!(frames.len(), 2 * angles.len());
+    for (k, f) in frames.iter().enumerate() {
+        let c = clinical(f, &body).unwrap();
+        let e = (chain_angles(&c) - angles_at(&angles, k)).amax();
+        assert!(e < 1e-9, "frame {k}: {e}");
+        let lowest = [f.right, f.left]
+            .iter()
+            .flat_map(|l| [l.heel[1], l.mtp[1], l.toe[1]])
+            .fold(f64::INFINITY, f64::min);
+        assert!(lowest.abs() < 1e-9, "frame {k}: lowest foot point {lowest}");
+        assert!((f.pelvis[0] - 1.2 * f.time).abs() < 1e-12);
+    }
+    let dir = std::env::temp_dir().join(format!("klaw-ik-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for name in ["ik.csv", "ik.mot", "ik.bvh"] {
+        let path = dir.join(name);
+        let format = klaw::Format::from_path(&path).unwrap();
+        klaw::export::write(
+            &path,
+            format,
+            &body,
+            1.0 / dt,
+            frames.clone(),
+            &Default::default(),
+        )
+        .unwrap();
+        assert!(std::fs::metadata(&path).unwrap().len() > 1000);
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A walk at `v` m/s of the default body (`steps` steps), its poulaine at 60 Hz, the IK and its
+/// solution.
+fn solved(v: f64, steps: usize) -> (klaw::Body, Trajectory, Ik, klaw::ik::Solution) {
+    let body = common::default_body();
+    let walk = klaw::Simulation::new(body)
+        .velocity(v)
+        .steps(steps)
+        .run()
+        .unwrap();
+    let (poulaine, _) = Trajectory::from_walk(&walk, 60.0).unwrap();
+    let dt = poulaine.uniform_step().unwrap();
+    let ik = Ik::new(&body);
+    let sol = ik.solve(&poulaine.targets(), dt, true).unwrap();
+    (body, poulaine, ik, sol)
+}
+
+fn angles_at(a: &[Angles], k: usize) -> Angles {
+    a[k % a.len()]
+}

@@ -1,0 +1,141 @@
+//! Poulaines (src/poulaine/): the curve model of a klaw walk's poulaine, the synthetic database,
+//! its self-coherence (a poulaine of the database comes back unchanged up to the curve model's
+//! error) and its files.
+use std::path::Path;
+
+use klaw::poulaine::build::{Grid, synthetic};
+use klaw::poulaine::database::clamp_to_reach;
+use klaw::poulaine::{Database, Trajectory, fit};
+use klaw::{Body, Simulation};
+
+fn walk_poulaine(h: f64, v: f64) -> Trajectory {
+    let body = Body::standard(h, 23.0 * h * h).unwrap();
+    let walk = Simulation::new(body).velocity(v).steps(6).run().unwrap();
+    Trajectory::from_walk(&walk, 100.0).unwrap().0
+}
+
+/// A small synthetic database: 2 heights × 2 step lengths × 2 step widths.
+fn database() -> Database {
+    let grid = Grid {
+        heights: vec![1.6, 1.9],
+        step_lengths: vec![0.6, 0.75],
+        attributes: vec![("step_width".into(), vec![0.05, 0.12])],
+    };
+    let (db, skipped) = synthetic(&grid).unwrap();
+    assert!(skipped.is_empty(), "{skipped:?}");
+    db
+}
+
+/// The four-point Hermite model of klaw's poulaines lies within 3 cm RMS (9 cm at worst) of
+/// their samples over speeds and heights (the model's error, reported in docs/ik.md: four
+/// cubic segments over a whole cycle are coarse).
+#[test]
+fn the_curve_model_fits_klaws_poulaines() {
+    for (h, v) in [(1.6, 0.8), (1.8, 1.4), (2.0, 1.8)] {
+        let t = walk_poulaine(h, v);
+        let (model, err) = fit(&t).unwrap();
+        eprintln!("H {h} v {v}: rms {:.4} m, max {:.4} m", err.rms, err.max);
+        assert!(err.rms < 0.03 && err.max < 0.09, "{err:?}");
+        assert_eq!(model.period, t.period);
+    }
+}
+
+/// Self-coherence (§6.1): asked for its own parameters, the database selects each entry for
+/// every axis and gives back its model unchanged, so the reconstructed poulaine differs from
+/// the walk's samples only by the curve model's error.
+#[test]
+fn each_poulaine_of_the_database_comes_back_unchanged() {
+    let db = database();
+    assert_eq!(db.entries.len(), 8);
+    for (i, e) in db.entries.iter().enumerate() {
+        let (model, sel) = db.poulaine(&e.axes, e.leg_length, e.model.period);
+        assert_eq!((sel.x, sel.y, sel.z), (i, i, i), "{}", e.label);
+        for (a, b) in [(model.right, e.model.right), (model.left, e.model.left)] {
+            for (ca, cb) in a.components().iter().zip(b.components()) {
+                for k in 0..4 {
+                    assert!((ca.value[k] - cb.value[k]).abs() < 1e-12);
+                    assert!((ca.slope[k] - cb.slope[k]).abs() < 1e-12);
+                }
+            }
+        }
+    }
+}
+
+/// The corrections fit the request exactly: another walker's leg length, trace length, feet
+/// spacing and stance are those of the corrected poulaine, whatever the entries selected.
+#[test]
+fn the_corrections_fit_the_request_exactly() {
+    let db = database();
+    let q = klaw::poulaine::Query {
+        trace: 0.8,
+        spacing: 0.05,
+        stance: 0.95,
+    };
+    for leg in [0.75, 0.9] {
+        let (model, _) = db.poulaine(&q, leg, 1.1);
+        let got = klaw::poulaine::Axes::of(&model, leg);
+        assert!((got.trace - q.trace).abs() < 2e-3, "{got:?}");
+        assert!((got.spacing - q.spacing).abs() < 1e-3, "{got:?}");
+        assert!((got.stance - q.stance).abs() < 1e-9, "{got:?}");
+    }
+}
+
+/// The clamp pulls every ankle within reach of its hip and leaves the others alone.
+#[test]
+fn the_clamp_keeps_the_ankles_within_reach() {
+    let mut t = walk_poulaine(1.8, 1.4);
+    let before = t.clone();
+    let moved = clamp_to_reach(&mut t, 0.09, 0.8);
+    assert!(moved > 0);
+    for (side, leg, old) in [
+        (1.0, &t.right, &before.right),
+        (-1.0, &t.left, &before.left),
+    ] {
+        for (p, q) in leg.iter().zip(old) {
+            let r = (p[0].powi(2) + p[1].powi(2) + (p[2] - side * 0.09).powi(2)).sqrt();
+            assert!(r <= 0.8 + 1e-12);
+            let r_old = (q[0].powi(2) + q[1].powi(2) + (q[2] - side * 0.09).powi(2)).sqrt();
+            if r_old <= 0.8 {
+                assert_eq!(p, q);
+            }
+        }
+    }
+}
+
+/// The database's JSON comes back equal; a damaged file is refused naming the entry.
+#[test]
+fn the_database_file_round_trips_and_damage_is_refused() {
+    let db = database();
+    let text = serde_json::to_string(&db).unwrap();
+    let back = Database::parse(&text, Path::new("db.json")).unwrap();
+    // every number back to its last bits or so (JSON's decimal text)
+    let numbers = |v: &serde_json::Value| -> Vec<f64> {
+        fn walk(v: &serde_json::Value, out: &mut Vec<f64>) {
+            match v {
+                serde_json::Value::Number(n) => out.push(n.as_f64().unwrap()),
+                serde_json::Value::Array(a) => a.iter().for_each(|x| walk(x, out)),
+                serde_json::Value::Object(o) => o.values().for_each(|x| walk(x, out)),
+                _ => {}
+            }
+        }
+        let mut out = Vec::new();
+        walk(v, &mut out);
+        out
+    };
+    let (a, b) = (
+        numbers(&serde_json::to_value(&db).unwrap()),
+        numbers(&serde_json::to_value(&back).unwrap()),
+    );
+    assert_eq!(a.len(), b.len());
+    assert!(
+        a.iter()
+            .zip(&b)
+            .all(|(x, y)| (x - y).abs() <= 1e-15 * x.abs().max(1.0))
+    );
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    v["entries"][1]["axes"]["trace"] = serde_json::json!(0.1);
+    let e = Database::parse(&v.to_string(), Path::new("db.json")).unwrap_err();
+    assert!(e.to_string().contains("entry 1"), "{e}");
+    let e = Database::parse("{}", Path::new("db.json")).unwrap_err();
+    assert!(e.to_string().contains("db.json"), "{e}");
+}
