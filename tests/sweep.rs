@@ -647,6 +647,80 @@ fn styles_are_a_sweep_axis() {
     assert!(e.contains("sprint") && e.contains("long-stride"), "{e}");
 }
 
+/// `--body-table` sweeps the anthropometric tables by name, and each point's leg comes from its
+/// table: at H 1.5 m the walk–run transition √(0.5 g l1) is 1.9022 m/s for de Leva's men
+/// (l1 = (0.242504 + 0.249282) · 1.5 m), 1.88366 m/s for Winter's and 1.84280 m/s for de Leva's
+/// women (by hand; the message floors them to 1.8836 and 1.8427), so 1.89 m/s walks for the
+/// first only; the sweep file's `body_table` gives the
+/// same rows; an unknown table is an input error listing the tables.
+#[test]
+fn body_tables_are_a_sweep_axis() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let args = [
+        "sweep",
+        "--body-table",
+        "winter,deleva-male,deleva-female",
+        "--velocity",
+        "1.89",
+        "--height",
+        "1.5",
+        "--steps",
+        "3",
+        "--out",
+        "s.csv",
+    ];
+    let out = klaw(d, &args, None);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let (header, rows) = rows(&d.join("s.csv"));
+    let (table, conv) = (col(&header, "body_table"), col(&header, "converged"));
+    let got: Vec<(&str, &str)> = rows
+        .iter()
+        .map(|r| (r[table].as_str(), r[conv].as_str()))
+        .collect();
+    assert_eq!(
+        got,
+        [
+            ("winter", "false"),
+            ("deleva-male", "true"),
+            ("deleva-female", "false"),
+        ]
+    );
+    let error = col(&header, "error");
+    assert!(rows[0][error].contains("1.8836]"), "{}", rows[0][error]);
+    assert!(rows[2][error].contains("1.8427]"), "{}", rows[2][error]);
+    fs::write(
+        d.join("f.toml"),
+        "body_table = [\"winter\", \"deleva-male\", \"deleva-female\"]\nvelocity = 1.89\nheight = 1.5\n",
+    )
+    .unwrap();
+    let out = klaw(
+        d,
+        &[
+            "sweep", "--file", "f.toml", "--steps", "3", "--out", "f.csv",
+        ],
+        None,
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(
+        fs::read_to_string(d.join("s.csv")).unwrap(),
+        fs::read_to_string(d.join("f.csv")).unwrap()
+    );
+    let e = klaw_fails(
+        d,
+        &["sweep", "--body-table", "winter,dempster", "--out", "x.csv"],
+    );
+    assert!(e.contains("dempster") && e.contains("deleva-female"), "{e}");
+}
+
 /// A sweep point beyond its body's walk–run transition (2.0 m/s at H 1.5 m: limit
 /// √(0.5 · 9.81 · 0.723375) = 1.8836 m/s by hand) is a failed row with that reason; the sweep
 /// carries on and the same speed at H 1.8 m walks.

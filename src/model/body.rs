@@ -8,6 +8,25 @@ use crate::model::error::{InputError, Reason};
 /// The table bundled with klaw: Winter's (Dempster's) data as printed in Table B-1.
 pub(crate) const BUILTIN_TABLE: &str = include_str!("../../models/body-winter.toml");
 
+/// The name of the default body table.
+pub const DEFAULT_BODY_TABLE: &str = "winter";
+
+/// The bundled body tables (`--body-table NAME`), by name: Winter's (Dempster's) data of Table
+/// B-1, and de Leva 1996's adjusted Zatsiorsky–Seluyanov parameters of young adult men and
+/// women (Table 4; derived by `scripts/body_deleva.py`, docs/bodies.md), whose thigh-to-shank
+/// ratios differ from Winter's and from each other.
+pub const BODY_TABLES: &[(&str, &str)] = &[
+    (DEFAULT_BODY_TABLE, BUILTIN_TABLE),
+    (
+        "deleva-male",
+        include_str!("../../models/body-deleva-male.toml"),
+    ),
+    (
+        "deleva-female",
+        include_str!("../../models/body-deleva-female.toml"),
+    ),
+];
+
 /// A segment row of the body table (fractions of H and M).
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -81,6 +100,9 @@ pub(crate) struct Limits {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct BodyTable {
+    /// The table's name in [`BODY_TABLES`] (`winter` for a table parsed from elsewhere).
+    #[serde(skip, default = "default_table_name")]
+    pub(crate) key: &'static str,
     /// What the table is and where it comes from.
     #[expect(dead_code, reason = "the table file's title, for its readers")]
     pub(crate) name: String,
@@ -94,11 +116,27 @@ pub(crate) struct BodyTable {
     pub(crate) limits: Limits,
 }
 
+fn default_table_name() -> &'static str {
+    DEFAULT_BODY_TABLE
+}
+
 impl BodyTable {
     /// The bundled table.
     pub(crate) fn builtin() -> Self {
         Self::parse(BUILTIN_TABLE, Path::new("models/body-winter.toml"))
             .expect("the bundled body table parses (tested)")
+    }
+
+    /// The bundled table `name` of [`BODY_TABLES`]; an unknown name is an error listing them.
+    pub(crate) fn named(name: &str) -> Result<Self, InputError> {
+        let (key, text) = BODY_TABLES
+            .iter()
+            .find(|(n, _)| *n == name)
+            .ok_or_else(|| InputError::bad_value("body-table", unknown_body_table(name)))?;
+        let path = format!("models/body-{}.toml", key);
+        let mut table = Self::parse(text, Path::new(&path))?;
+        table.key = key;
+        Ok(table)
     }
 
     /// Parse a table from TOML text; `path` only names the source in errors.
@@ -147,11 +185,22 @@ impl BodyTable {
     }
 }
 
+/// Why a body table name is unknown: the name, and the bundled tables.
+pub fn unknown_body_table(name: &str) -> String {
+    let known: Vec<&str> = BODY_TABLES.iter().map(|(n, _)| *n).collect();
+    format!(
+        "unknown body table `{name}`; the tables are {}",
+        known.join(", ")
+    )
+}
+
 /// A body of height H and mass M in SI units. Names follow Table B-1: l_i lengths, m_i masses,
 /// `r_i` centre-of-mass distances in metres (r1 from the ankle, r2 from the hip, r3 from the hip,
 /// r4 from the knee), `i_i` moments of inertia about the centre of mass, I = m (γ l)².
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Body {
+    /// The body table it is scaled from (a name of [`BODY_TABLES`]).
+    pub table: &'static str,
     /// Body height H (m).
     pub height: f64,
     /// Body mass M (kg).
@@ -223,6 +272,7 @@ impl Body {
         let m2 = table.upper_body.mass * m;
         let inertia = |mass: f64, gamma: f64, length: f64| mass * (gamma * length).powi(2);
         Ok(Body {
+            table: table.key,
             height,
             mass,
             l0: table.pelvis.length * h,
@@ -267,6 +317,11 @@ impl Body {
     /// The bundled table scaled to `height` and `mass`.
     pub fn standard(height: f64, mass: f64) -> Result<Self, InputError> {
         Self::new(&BodyTable::builtin(), height, mass)
+    }
+
+    /// The bundled table `table` (a name of [`BODY_TABLES`]) scaled to `height` and `mass`.
+    pub fn from_table(table: &str, height: f64, mass: f64) -> Result<Self, InputError> {
+        Self::new(&BodyTable::named(table)?, height, mass)
     }
 
     /// Horizontal distance from the ankle to the 1st metatarsal joint with the foot flat
@@ -329,6 +384,63 @@ mod tests {
         assert!(e.contains("height") && e.contains("[1.2, 2.2]"), "{e}");
         let e = Body::standard(1.8, f64::NAN).unwrap_err().to_string();
         assert!(e.contains("mass") && e.contains("NaN"), "{e}");
+    }
+
+    /// Every bundled table scales to a body whose segment masses add up to M and whose standing
+    /// height l9 + l1 + l2 is H (de Leva's: the upper body is the rest of the stature).
+    #[test]
+    fn every_bundled_table_makes_a_whole_body() {
+        for (name, _) in BODY_TABLES {
+            let b = Body::from_table(name, 1.7, 65.0).unwrap();
+            assert_eq!(b.table, *name);
+            assert!((b.m2 + 2.0 * b.m1 - b.mass).abs() < 1e-9, "{name}");
+            assert!((b.l1 - b.l3 - b.l4).abs() < 1e-15, "{name}");
+        }
+        for name in ["deleva-male", "deleva-female"] {
+            let b = Body::from_table(name, 1.7, 65.0).unwrap();
+            assert!((b.l9 + b.l1 + b.l2 - 1.7).abs() < 1e-9, "{name}");
+        }
+    }
+
+    /// de Leva 1996, Table 4, at its mean statures: thigh (HJC–KJC) 422.2 / 368.5 mm and shank
+    /// (KJC–LMAL) 434.0 / 432.3 mm for men / women of 1741 / 1735 mm; thigh 14.16 / 14.78 %
+    /// of the body mass, shank and foot 4.33 + 1.37 / 4.81 + 1.29 %.
+    #[test]
+    fn de_leva_bodies_have_the_published_segments() {
+        let men = Body::from_table("deleva-male", 1.741, 73.0).unwrap();
+        let women = Body::from_table("deleva-female", 1.735, 61.9).unwrap();
+        for (b, thigh, shank, m3, m4) in [
+            (men, 0.4222, 0.4340, 14.16, 4.33 + 1.37),
+            (women, 0.3685, 0.4323, 14.78, 4.81 + 1.29),
+        ] {
+            assert!((b.l3 - thigh).abs() < 1e-6 && (b.l4 - shank).abs() < 1e-6);
+            assert!((b.m3 / b.mass * 100.0 - m3).abs() < 1e-9);
+            assert!((b.m4 / b.mass * 100.0 - m4).abs() < 1e-9);
+        }
+    }
+
+    /// The tables' bodies are not similar: the thigh-to-shank ratio is Winter's 0.964, de
+    /// Leva's men's 0.973 and women's 0.852.
+    #[test]
+    fn the_tables_differ_in_proportions() {
+        let ratio = |name: &str| {
+            let b = Body::from_table(name, 1.8, 80.0).unwrap();
+            b.l3 / b.l4
+        };
+        assert!((ratio("winter") - 0.23669 / 0.24556).abs() < 1e-12);
+        assert!((ratio("deleva-male") - 422.2 / 434.0).abs() < 1e-6);
+        assert!((ratio("deleva-female") - 368.5 / 432.3).abs() < 1e-6);
+    }
+
+    #[test]
+    fn unknown_tables_are_named_errors() {
+        let e = Body::from_table("dempster", 1.8, 80.0)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("`dempster`") && e.contains("deleva-female"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -15,7 +15,7 @@ use super::{Action, Goal, Scenario};
 use crate::error::Result;
 use crate::model::InputError;
 use crate::model::attributes::{Attributes, overrides_of_table};
-use crate::model::body::Body;
+use crate::model::body::{Body, DEFAULT_BODY_TABLE};
 use crate::nrs::parameters::NrsParameters;
 use crate::nrs::specs::{FootAngles, Side, TurnKind};
 use crate::plan::GaitRequest;
@@ -79,12 +79,17 @@ pub fn parse_scenario(text: &str, path: &Path) -> Result<Scenario, ScenarioFileE
         .map_err(at)?
         .unwrap_or(DEFAULT_MASS);
     let style = body_table.string("style").map_err(at)?;
-    body_table.finish("height, mass, style").map_err(at)?;
-    let body = Body::standard(height, mass).map_err(|e| {
+    let table = body_table.string("table").map_err(at)?;
+    body_table
+        .finish("height, mass, style, table")
+        .map_err(at)?;
+    let table = table.as_deref().unwrap_or(DEFAULT_BODY_TABLE);
+    let body = Body::from_table(table, height, mass).map_err(|e| {
         let field = match &e {
             InputError::OutOfRange { name, .. } | InputError::NotFinite { name, .. } => {
                 name.clone()
             }
+            InputError::BadValue { .. } => "table".into(),
             _ => "height".into(),
         };
         err(Place::Table("body"), &field, e.into())

@@ -6,7 +6,7 @@
 use super::product::{Axis, Sweep};
 use crate::model::InputError;
 use crate::model::attributes::AttributeTable;
-use crate::model::body::{Body, BodyTable};
+use crate::model::body::{BODY_TABLES, Body, BodyTable};
 
 impl Sweep {
     /// Check every value against the range it has whatever the rest of its point (the module
@@ -36,10 +36,30 @@ fn check_values(sweep: &Sweep, table: &AttributeTable) -> Result<(), InputError>
 /// style (checked by name when parsed).
 fn range(axis: &Axis, table: &AttributeTable) -> Option<(f64, f64, &'static str, &'static str)> {
     let spec = |name: &str| &table.0[name];
-    let body = BodyTable::builtin();
-    let [hmin, hmax] = body.limits.height;
-    let [mmin, mmax] = body.limits.mass;
-    let leg = |h: f64| Body::new(&body, h, mmin).map_or(f64::NAN, |b| b.l1);
+    let tables: Vec<BodyTable> = BODY_TABLES
+        .iter()
+        .map(|(name, _)| BodyTable::named(name).expect("the bundled body tables parse (tested)"))
+        .collect();
+    let limit = |f: fn(&BodyTable) -> f64, pick: fn(f64, f64) -> f64| {
+        tables.iter().map(f).reduce(pick).unwrap_or(f64::NAN)
+    };
+    let (hmin, hmax) = (
+        limit(|t| t.limits.height[0], f64::min),
+        limit(|t| t.limits.height[1], f64::max),
+    );
+    let (mmin, mmax) = (
+        limit(|t| t.limits.mass[0], f64::min),
+        limit(|t| t.limits.mass[1], f64::max),
+    );
+    // the shortest and the longest leg of any table at height h
+    let leg = |h: f64, pick: fn(f64, f64) -> f64| {
+        tables
+            .iter()
+            .filter_map(|t| Body::new(t, h, mmin).ok())
+            .map(|b| b.l1)
+            .reduce(pick)
+            .unwrap_or(f64::NAN)
+    };
     Some(match axis {
         Axis::Velocity => (
             spec("velocity_min").min,
@@ -54,19 +74,19 @@ fn range(axis: &Axis, table: &AttributeTable) -> Option<(f64, f64, &'static str,
             "the widest [step_frequency_min, step_frequency_max] the attributes allow",
         ),
         Axis::StepLength => (
-            spec("step_length_min").min * leg(hmin),
-            spec("step_length_max").max * leg(hmax),
+            spec("step_length_min").min * leg(hmin, f64::min),
+            spec("step_length_max").max * leg(hmax, f64::max),
             "m",
             "the widest [step_length_min, step_length_max] leg lengths the attributes allow, \
-             for the shortest and the tallest body",
+             for the shortest and the tallest body of any body table",
         ),
-        Axis::Height => (hmin, hmax, "m", "the body table's heights"),
-        Axis::Mass => (mmin, mmax, "kg", "the body table's masses"),
+        Axis::Height => (hmin, hmax, "m", "the body tables' heights"),
+        Axis::Mass => (mmin, mmax, "kg", "the body tables' masses"),
         Axis::MassPerHeight2 => (
             mmin / (hmax * hmax),
             mmax / (hmin * hmin),
             "kg/m²",
-            "some height of the body table must make it a mass of the table",
+            "some height of the body tables must make it a mass of the tables",
         ),
         Axis::Steps => (1.0, super::run::MAX_STEPS as f64, "steps", "a walk's steps"),
         Axis::Attribute(name) => {
@@ -78,7 +98,7 @@ fn range(axis: &Axis, table: &AttributeTable) -> Option<(f64, f64, &'static str,
                 "the attribute's range (models/attributes.toml)",
             )
         }
-        Axis::Style => return None,
+        Axis::Style | Axis::BodyTable => return None,
     })
 }
 
@@ -127,9 +147,11 @@ mod tests {
         for h in [hmin, hmax] {
             assert!(check_values(&sweep(Axis::Height, vec![h]), &table).is_ok());
         }
-        // the step length's bound is the tallest leg's longest step
+        // the step length's bound is the longest step of the tallest body's longest leg, de
+        // Leva's men's (l1 = 0.4918 H against Winter's 0.4823 H)
         let (_, max, ..) = range(&Axis::StepLength, &table).unwrap();
-        let tall = Body::standard(hmax, 80.0).unwrap();
+        let tall = Body::from_table("deleva-male", hmax, 80.0).unwrap();
+        assert!(tall.l1 > Body::standard(hmax, 80.0).unwrap().l1);
         assert!((max - 1.6 * tall.l1).abs() < 1e-12, "{max}");
         // a style is not range-checked here
         assert!(range(&Axis::Style, &table).is_none());

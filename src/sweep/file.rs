@@ -2,7 +2,7 @@
 use std::path::Path;
 
 use super::product::{Axis, Entry, QUANTITIES};
-use super::spec::{parse_styles, values};
+use super::spec::{parse_body_tables, parse_styles, values};
 use crate::error::{Error, Result};
 use crate::model::InputError;
 use crate::model::attributes::AttributeTable;
@@ -41,9 +41,9 @@ pub enum SweepFileError {
         /// The key.
         key: String,
     },
-    /// A `style` array with an item that is not a string.
-    #[error("`{key}` must be style names")]
-    StyleNames {
+    /// A `style` or `body_table` array with an item that is not a string.
+    #[error("`{key}` must be names")]
+    Names {
         /// The key.
         key: String,
     },
@@ -117,14 +117,19 @@ pub(crate) fn parse_sweep_toml(
             toml::Value::Float(x) => Some(*x),
             _ => None,
         };
+        let names = match axis {
+            Axis::Style => Some(parse_styles as fn(&str) -> Result<Vec<f64>, InputError>),
+            Axis::BodyTable => Some(parse_body_tables as fn(&str) -> Result<Vec<f64>, InputError>),
+            _ => None,
+        };
         let values = match value {
-            toml::Value::String(spec) if axis == Axis::Style => {
-                parse_styles(spec).map_err(value_error)?
+            toml::Value::String(spec) if let Some(parse) = names => {
+                parse(spec).map_err(value_error)?
             }
-            toml::Value::Array(items) if axis == Axis::Style => {
-                let names: Option<Vec<&str>> = items.iter().map(|v| v.as_str()).collect();
-                let names = names.ok_or_else(|| SweepFileError::StyleNames { key: key_name() })?;
-                parse_styles(&names.join(",")).map_err(value_error)?
+            toml::Value::Array(items) if let Some(parse) = names => {
+                let list: Option<Vec<&str>> = items.iter().map(|v| v.as_str()).collect();
+                let list = list.ok_or_else(|| SweepFileError::Names { key: key_name() })?;
+                parse(&list.join(",")).map_err(value_error)?
             }
             toml::Value::String(spec) => values(spec).map_err(|e| SweepFileError::Value {
                 key: key_name(),

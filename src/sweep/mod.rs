@@ -20,4 +20,4 @@ pub use file::read_sweep_file;
 pub use product::{Axis, Sweep};
 pub use rows::Format;
 pub use shard::Shard;
-pub use spec::{parse_attr, parse_spec, parse_styles};
+pub use spec::{parse_attr, parse_body_tables, parse_spec, parse_styles};

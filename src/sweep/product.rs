@@ -28,12 +28,14 @@ pub enum Axis {
     Steps,
     /// A style preset of `models/styles/`, by its index in `attributes::STYLES`.
     Style,
+    /// A body table of `models/`, by its index in `body::BODY_TABLES`.
+    BodyTable,
     /// The locomotion attribute of this name (`models/attributes.toml`), in its units there.
     Attribute(String),
 }
 
 /// The quantities a sweep names besides the attributes, in product order.
-pub(crate) const QUANTITIES: [&str; 8] = [
+pub(crate) const QUANTITIES: [&str; 9] = [
     "velocity",
     "step_length",
     "step_frequency",
@@ -42,6 +44,7 @@ pub(crate) const QUANTITIES: [&str; 8] = [
     "mass_per_height2",
     "steps",
     "style",
+    "body_table",
 ];
 
 impl Axis {
@@ -56,6 +59,7 @@ impl Axis {
             Axis::MassPerHeight2 => "mass_per_height2",
             Axis::Steps => "steps",
             Axis::Style => "style",
+            Axis::BodyTable => "body_table",
             Axis::Attribute(n) => n,
         }
     }
@@ -73,6 +77,7 @@ impl Axis {
             "mass_per_height2" => Axis::MassPerHeight2,
             "steps" => Axis::Steps,
             "style" => Axis::Style,
+            "body_table" => Axis::BodyTable,
             _ if table.0.contains_key(&key) => Axis::Attribute(key),
             _ => return None,
         })
@@ -108,6 +113,8 @@ pub(crate) struct Inputs {
     pub steps: f64,
     /// The style preset (index in `attributes::STYLES`), when swept.
     pub style: Option<usize>,
+    /// The body table (index in `body::BODY_TABLES`), when swept.
+    pub body_table: Option<usize>,
     pub attributes: Vec<(String, f64)>,
 }
 
@@ -212,6 +219,7 @@ impl Sweep {
             mass: 80.0,
             steps: 10.0,
             style: None,
+            body_table: None,
             attributes: Vec::new(),
         };
         let mut mass = None;
@@ -225,6 +233,7 @@ impl Sweep {
                 Axis::MassPerHeight2 => inputs.mass_per_height2 = Some(x),
                 Axis::Steps => inputs.steps = x,
                 Axis::Style => inputs.style = Some(x as usize),
+                Axis::BodyTable => inputs.body_table = Some(x as usize),
                 Axis::Attribute(n) => inputs.attributes.push((n.clone(), x)),
             }
         }

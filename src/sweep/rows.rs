@@ -6,6 +6,7 @@ use super::product::{Axis, Inputs, Sweep};
 use crate::error::Result;
 use crate::model::InputError;
 use crate::model::attributes::STYLES;
+use crate::model::body::BODY_TABLES;
 
 /// One cell of an output row.
 #[derive(Clone, Debug, PartialEq)]
@@ -99,6 +100,9 @@ impl Sweep {
         if self.axes.iter().any(|(a, _)| *a == Axis::Style) {
             h.push("style".into());
         }
+        if self.axes.iter().any(|(a, _)| *a == Axis::BodyTable) {
+            h.push("body_table".into());
+        }
         for (axis, _) in &self.axes {
             if let Axis::Attribute(n) = axis {
                 h.push(n.clone());
@@ -133,6 +137,9 @@ impl Inputs {
         c.push(Cell::Num(self.steps));
         if let Some(i) = self.style {
             c.push(Cell::Text(STYLES[i].0.to_string()));
+        }
+        if let Some(i) = self.body_table {
+            c.push(Cell::Text(BODY_TABLES[i].0.to_string()));
         }
         c.extend(self.attributes.iter().map(|(_, v)| Cell::Num(*v)));
         c

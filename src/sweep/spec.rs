@@ -2,6 +2,7 @@
 //! `START:STOP:STEP` or a list `A,B,C`; `NAME=SPEC` of `--attr`; style names.
 use crate::model::InputError;
 use crate::model::attributes::{AttributeTable, STYLES, unknown_style};
+use crate::model::body::{BODY_TABLES, unknown_body_table};
 
 /// Largest number of values one flag may expand to.
 pub(crate) const MAX_VALUES: usize = 1_000_000;
@@ -207,6 +208,20 @@ pub fn parse_styles(spec: &str) -> Result<Vec<f64>, InputError> {
                 .position(|(n, _)| *n == name)
                 .map(|i| i as f64)
                 .ok_or_else(|| InputError::bad_value("style", unknown_style(name)))
+        })
+        .collect()
+}
+
+/// Parse a list of body table names `A,B` into their indices in `body::BODY_TABLES`.
+pub fn parse_body_tables(spec: &str) -> Result<Vec<f64>, InputError> {
+    spec.split(',')
+        .map(|name| {
+            let name = name.trim();
+            BODY_TABLES
+                .iter()
+                .position(|(n, _)| *n == name)
+                .map(|i| i as f64)
+                .ok_or_else(|| InputError::bad_value("body-table", unknown_body_table(name)))
         })
         .collect()
 }

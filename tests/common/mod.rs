@@ -13,7 +13,12 @@ pub fn default_body() -> Body {
 
 /// A body of height `h` (m) and mass 23 h² kg (BMI 23), as the grid scales it.
 pub fn body_of_height(h: f64) -> Body {
-    Body::standard(h, 23.0 * h * h).unwrap()
+    body_of_height_in("winter", h)
+}
+
+/// [`body_of_height`] scaled from the body table `table` (`klaw::model::body::BODY_TABLES`).
+pub fn body_of_height_in(table: &str, h: f64) -> Body {
+    Body::from_table(table, h, 23.0 * h * h).unwrap()
 }
 
 /// The bundled default attributes.
@@ -52,6 +57,7 @@ pub fn default_walk(steps: usize) -> Walk {
 /// 0.5), and that limit itself: 48 walks. [`fine_grid`] is the 0.1 × 0.1 box.
 pub fn grid() -> Vec<(f64, f64)> {
     grid_of(
+        "winter",
         0.2,
         &(0..5).map(|i| 1.2 + 0.25 * i as f64).collect::<Vec<_>>(),
     )
@@ -61,18 +67,20 @@ pub fn grid() -> Vec<(f64, f64)> {
 /// included: 192 walks.
 pub fn fine_grid() -> Vec<(f64, f64)> {
     grid_of(
+        "winter",
         0.1,
         &(0..11).map(|i| 1.2 + 0.1 * i as f64).collect::<Vec<_>>(),
     )
 }
 
-/// v = 0.4 + dv j up to each height's limit (by 1e-9), then the limit, for each of `heights`.
-fn grid_of(dv: f64, heights: &[f64]) -> Vec<(f64, f64)> {
+/// v = 0.4 + dv j up to each height's limit (by 1e-9), then the limit, for each of `heights`,
+/// for the bodies of the body table `table`.
+pub fn grid_of(table: &str, dv: f64, heights: &[f64]) -> Vec<(f64, f64)> {
     let attrs = default_attributes();
     heights
         .iter()
         .flat_map(|&h| {
-            let limit = klaw::plan::gait::velocity_limit(&body_of_height(h), &attrs);
+            let limit = klaw::plan::gait::velocity_limit(&body_of_height_in(table, h), &attrs);
             let n = ((limit - attrs.velocity_min) / dv + 1e-9).floor() as usize;
             let mut vs: Vec<f64> = (0..=n)
                 .map(|j| attrs.velocity_min + dv * j as f64)

@@ -4,6 +4,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use klaw::engine::walker::{Walk, simulate};
+use klaw::model::body::DEFAULT_BODY_TABLE;
 use klaw::{Attributes, Body, Gait, GaitRequest, Result, input};
 
 use crate::{DEFAULT_HEIGHT, DEFAULT_MASS, DEFAULT_STEPS, MAX_STEPS, check_count};
@@ -89,8 +90,8 @@ pub(crate) struct BodyArgs {
         value_name = "M",
         default_value_t = DEFAULT_HEIGHT,
         allow_negative_numbers = true,
-        long_help = "Body height H in m; valid range [1.2, 2.2] m. Segment lengths scale with H (Winter's\n\
-            anthropometric table) and H enters the normalizing formula."
+        long_help = "Body height H in m; valid range [1.2, 2.2] m. Segment lengths scale with H (the\n\
+            --body-table) and H enters the normalizing formula."
     )]
     height: f64,
 
@@ -123,12 +124,23 @@ pub(crate) struct BodyArgs {
             march, long-stride). --attributes overrides the style's values name by name."
     )]
     style: Option<String>,
+
+    /// Anthropometric table: winter, deleva-male or deleva-female
+    #[arg(
+        long,
+        value_name = "NAME",
+        default_value = DEFAULT_BODY_TABLE,
+        long_help = "Anthropometric table the segments scale from with H and M: winter (Winter's / Dempster's\n\
+            data, KLAW Table B-1; the default), deleva-male or deleva-female (de Leva 1996, Table 4:\n\
+            other proportions, e.g. a women's thigh 0.212 H against Winter's 0.237 H; docs/bodies.md)."
+    )]
+    body_table: String,
 }
 
 impl BodyArgs {
     /// The body of the flags.
     pub(crate) fn body(&self) -> Result<Body> {
-        Ok(Body::standard(self.height, self.mass)?)
+        Ok(Body::from_table(&self.body_table, self.height, self.mass)?)
     }
 
     /// The defaults, then the style preset's values, then the attribute file's.

@@ -57,6 +57,9 @@ pub(crate) struct SweepArgs {
     /// Style presets A,B,C (normal, brisk, elderly, march, long-stride); --attr overrides them
     #[arg(long, value_name = "NAMES")]
     style: Option<String>,
+    /// Body tables A,B (winter, deleva-male, deleva-female)
+    #[arg(long, value_name = "NAMES")]
+    body_table: Option<String>,
     /// A locomotion attribute to sweep, NAME=SPEC in the units of models/attributes.toml (repeatable)
     #[arg(long, value_name = "NAME=SPEC", allow_hyphen_values = true)]
     attr: Vec<String>,
@@ -158,6 +161,9 @@ fn build(args: &SweepArgs) -> Result<Sweep> {
     }
     if let Some(spec) = &args.style {
         flags.push((Axis::Style, sw::parse_styles(spec)?));
+    }
+    if let Some(spec) = &args.body_table {
+        flags.push((Axis::BodyTable, sw::parse_body_tables(spec)?));
     }
     for arg in &args.attr {
         let (name, values) = sw::parse_attr(arg, &table)?;
