@@ -21,6 +21,7 @@ const LEVELS: &[&[&str]] = &[
     &["figure"],
     &["analysis"],
     &["nrs"],
+    &["generalize"],
     &["export", "input"],
     &["simulation", "sweep", "scenario"],
     &["plot"],

@@ -29,6 +29,8 @@ pub(crate) fn exit_code(e: &Error) -> u8 {
     };
     match e {
         Error::Input(_) | Error::Export(_) | Error::ScenarioFile(_) => BAD_INPUT,
+        // walk data that cannot be read, or a walk condition it cannot be generalized to
+        Error::Generalize(_) => BAD_INPUT,
         Error::Simulation(SimulationError::Plan(_)) => BAD_INPUT,
         Error::Simulation(
             SimulationError::NotConverged { .. }
