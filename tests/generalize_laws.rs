@@ -7,8 +7,8 @@
 //! the foot's own geometry, not read from the code's targets.
 use klaw::generalize::sequence::{Curve, Path, grid};
 use klaw::generalize::{
-    BodyCondition, Character, Phases, Piece, Target, WalkData, combined, generalize, phi, psi,
-    steady,
+    BodyCondition, Character, Pelvis, Phases, Piece, Target, WalkData, combined, generalize, phi,
+    psi, steady,
 };
 use proptest::prelude::*;
 
@@ -94,14 +94,16 @@ fn body_strategy() -> impl Strategy<Value = BodyCondition> {
         0.05..0.09f64,
         0.10..0.16f64,
         0.0..0.08f64,
+        0.0..0.2f64,
     )
-        .prop_map(|(thigh, shin, h, a, b, t)| BodyCondition {
+        .prop_map(|(thigh, shin, h, a, b, t, w)| BodyCondition {
             thigh,
             shin,
             heel_to_n: h,
             ankle_to_n: a,
             ball_to_n: b,
             ball_to_toe: t,
+            pelvis_width: w,
         })
 }
 
@@ -131,10 +133,19 @@ fn walk_strategy() -> impl Strategy<Value = WalkData> {
                 hip_offset: off,
             },
         );
-    let phases = (0.02..0.2f64, 0.1..0.3f64, 0.0..1.0f64).prop_map(|(fgm, tom, m)| Phases {
-        fgm,
-        mom: fgm + m * (1.0 + tom - fgm),
-        tom,
+    let phases =
+        (0.02..0.2f64, 0.1..0.3f64, 0.0..1.0f64, 0.0..1.0f64).prop_map(|(fgm, tom, m, h)| {
+            let mom = fgm + m * (1.0 + tom - fgm);
+            Phases {
+                fgm,
+                heel_off: fgm + h * (mom - fgm),
+                mom,
+                tom,
+            }
+        });
+    let pelvis = (0.0..0.15f64, 0.0..0.15f64).prop_map(|(rotation, step_width)| Pelvis {
+        rotation,
+        step_width,
     });
     (
         body_strategy(),
@@ -152,10 +163,19 @@ fn walk_strategy() -> impl Strategy<Value = WalkData> {
             values(6, -0.5, 0.5),
             values(6, 0.0, 0.15),
         ),
-        values(9, -0.05, 0.05),
+        (values(9, -0.05, 0.05), pelvis),
     )
         .prop_map(
-            |(body, (s, sb), character, ph, (hx, hy), (f1, f2, f3), (m, ax, ay), trunk)| {
+            |(
+                body,
+                (s, sb),
+                character,
+                ph,
+                (hx, hy),
+                (f1, f2, f3),
+                (m, ax, ay),
+                (trunk, pelvis),
+            )| {
                 let ll = body.leg_length();
                 let end = 1.0 + ph.tom;
                 let mut hx = hx;
@@ -169,6 +189,7 @@ fn walk_strategy() -> impl Strategy<Value = WalkData> {
                     body,
                     step_length: s * ll,
                     step_length_before: sb * ll,
+                    pelvis,
                     character,
                     phases: ph,
                     hip: Path {
@@ -334,7 +355,7 @@ proptest! {
         w in walk_strategy(), other in body_strategy(), k in 0.6..1.4f64
     ) {
         let sl = k * w.step_length * other.leg_length() / w.body.leg_length();
-        let g = steady(&w, &other, sl).unwrap();
+        let g = steady(&w, &other, &w.pelvis, sl).unwrap();
         let (a, b) = (g.hip.first(), g.hip.last());
         prop_assert!((b[0] - sl - a[0]).abs() < EXACT && (b[1] - a[1]).abs() < EXACT);
         prop_assert!((g.f3.last() - g.f1.values()[0]).abs() < EXACT);
@@ -354,7 +375,8 @@ fn the_literal_hip_map_jumps_and_the_pinned_one_does_not() {
     };
     let mut w = consistent(&runner_w);
     w.character.hip_lead = 0.5;
-    let w = steady(&w, &w.body.clone(), w.step_length).unwrap();
+    w.body.pelvis_width = 0.0;
+    let w = steady(&w, &w.body.clone(), &w.pelvis, w.step_length).unwrap();
     let (sl, rho) = (w.step_length, 1.4);
     let rho1 = (sl + rho * sl) / (sl + sl);
     let literal_end = rho1 * w.hip.last()[0];

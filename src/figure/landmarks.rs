@@ -184,18 +184,7 @@ pub fn landmarks(step: &Step, t: f64, attrs: &Attributes) -> Result<Landmarks, F
     };
     let theta2 = state[2];
     let tilt = attrs.pelvis_tilt + theta2 - attrs.trunk_lean;
-    // each arm follows the opposite thigh's sagittal angle (knee forward +), scaled so that the
-    // thigh at heel strike (−θ3*) swings the arm to half the range
-    let thigh = |leg: &LegPoints| atan2(leg.knee[0] - leg.hip[0], leg.hip[1] - leg.knee[1]);
-    let reference = (-c.theta3).max(1e-3);
-    let arm = |opposite: &LegPoints| {
-        let flexion = 0.5 * attrs.arm_swing * thigh(opposite) / reference;
-        ArmAngles {
-            shoulder_flexion: flexion,
-            shoulder_abduction: 5f64.to_radians(),
-            elbow_flexion: 20f64.to_radians() + 0.5 * flexion.max(0.0),
-        }
-    };
+    let arm = |opposite: &LegPoints| arm_swing(attrs, opposite, -c.theta3);
     Ok(Landmarks {
         time: t,
         step: step.index,
@@ -212,6 +201,23 @@ pub fn landmarks(step: &Step, t: f64, attrs: &Attributes) -> Result<Landmarks, F
         right,
         left,
     })
+}
+
+/// A thigh's sagittal angle from the downward vertical, the knee forward +.
+pub(crate) fn thigh_angle(leg: &LegPoints) -> f64 {
+    atan2(leg.knee[0] - leg.hip[0], leg.hip[1] - leg.knee[1])
+}
+
+/// An arm following the opposite thigh (spec §7): shoulder flexion the thigh's sagittal angle
+/// scaled so that `strike_thigh`, the leading thigh's angle at heel strike (−θ3*), swings the arm
+/// to half the arm-swing range; elbow 20° + ½ max(0, shoulder flexion); shoulder abduction 5°.
+pub(crate) fn arm_swing(attrs: &Attributes, opposite: &LegPoints, strike_thigh: f64) -> ArmAngles {
+    let flexion = 0.5 * attrs.arm_swing * thigh_angle(opposite) / strike_thigh.max(1e-3);
+    ArmAngles {
+        shoulder_flexion: flexion,
+        shoulder_abduction: 5f64.to_radians(),
+        elbow_flexion: 20f64.to_radians() + 0.5 * flexion.max(0.0),
+    }
 }
 
 fn shifted(f: &FootPoints, dx: f64) -> FootPoints {

@@ -27,6 +27,9 @@ pub struct BodyCondition {
     pub ball_to_n: f64,
     /// bt: ball to toe tip (m; l13; 0 for a foot without toes).
     pub ball_to_toe: f64,
+    /// \[ours\] The pelvis's width, hip joint to hip joint (m; l0; 0 for the paper's point
+    /// pelvis): eq. 11 places the leading hip joint.
+    pub pelvis_width: f64,
 }
 
 impl BodyCondition {
@@ -39,6 +42,7 @@ impl BodyCondition {
             ankle_to_n: body.l9,
             ball_to_n: body.ankle_to_metatarsal_horizontal(),
             ball_to_toe: body.l13,
+            pelvis_width: body.l0,
         }
     }
 
@@ -49,6 +53,7 @@ impl BodyCondition {
         thigh: f64,
         shin: f64,
         [ah, ab, hb, bt]: [f64; 4],
+        pelvis_width: f64,
     ) -> Result<Self, GeneralizeError> {
         let cos_heel = (ah * ah + hb * hb - ab * ab) / (2.0 * ah * hb);
         let cos_ball = (ab * ab + hb * hb - ah * ah) / (2.0 * ab * hb);
@@ -70,6 +75,7 @@ impl BodyCondition {
             ankle_to_n: ah * heel.sin(),
             ball_to_n: hb - ah * cos_heel,
             ball_to_toe: bt,
+            pelvis_width,
         };
         c.check()?;
         Ok(c)
@@ -84,6 +90,7 @@ impl BodyCondition {
             ("ankle_to_n", self.ankle_to_n, false),
             ("ball_to_n", self.ball_to_n, false),
             ("ball_to_toe", self.ball_to_toe, true),
+            ("pelvis_width", self.pelvis_width, true),
         ] {
             if !(v.is_finite() && (v > 0.0 || (zero_ok && v == 0.0))) {
                 let what = if zero_ok { "≥ 0" } else { "> 0" };
@@ -140,6 +147,7 @@ impl BodyCondition {
             ankle_to_n: a * self.ankle_to_n,
             ball_to_n: a * self.ball_to_n,
             ball_to_toe: a * self.ball_to_toe,
+            pelvis_width: a * self.pelvis_width,
         }
     }
 
@@ -178,7 +186,7 @@ mod tests {
         ];
         for (sides, angles, under, [shin, thigh, ll]) in columns {
             assert!((angles.iter().sum::<f64>() - std::f64::consts::PI).abs() < 1e-3);
-            let c = BodyCondition::from_triangle(thigh, shin, sides).unwrap();
+            let c = BodyCondition::from_triangle(thigh, shin, sides, 0.0).unwrap();
             // the printed angles, 4 significant digits
             assert!(
                 (c.ball_angle() - angles[0]).abs() < 2e-3,
@@ -218,11 +226,11 @@ mod tests {
             assert!((c.reach(k) - b.hip_ankle_distance(k)).abs() < 1e-15);
         }
         assert!(
-            BodyCondition::from_triangle(0.4, 0.4, [0.05, 0.1, 0.2, 0.05]).is_err(),
+            BodyCondition::from_triangle(0.4, 0.4, [0.05, 0.1, 0.2, 0.05], 0.0).is_err(),
             "no triangle"
         );
         assert!(
-            BodyCondition::from_triangle(0.4, 0.4, [0.05, 0.25, 0.2, 0.05]).is_err(),
+            BodyCondition::from_triangle(0.4, 0.4, [0.05, 0.25, 0.2, 0.05], 0.0).is_err(),
             "the ankle ahead of the ball"
         );
     }

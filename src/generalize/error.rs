@@ -14,11 +14,11 @@ pub enum GeneralizeError {
         reason: String,
     },
     /// A step too long for the body: at heel strike the leading leg, its knee flexed by μ1,
-    /// cannot reach the hip over the step (eq. 10 has no real root).
+    /// cannot reach the hip over the step (eq. 10 has no real root), or a leg of the posed step
+    /// would stretch or a foot go under the floor.
     #[error(
-        "step length {} m is too long for this body (leg length {} m): its leading leg cannot \
-         reach the hip at heel strike (eq. 10); the longest step this prototype generalizes to \
-         is {} m",
+        "step length {} m is too long for this body (leg length {} m): {reason}; the longest \
+         step this prototype generalizes to on it is {} m",
         Shown(*step_length), Shown(*leg_length), Shown(*limit)
     )]
     TooLong {
@@ -26,13 +26,32 @@ pub enum GeneralizeError {
         step_length: f64,
         /// The body's leg length, thigh + shank (m).
         leg_length: f64,
-        /// The longest step length the hip can be placed for (m).
+        /// The longest step length that works (m).
         limit: f64,
+        /// What fails at the step length asked for.
+        reason: String,
+    },
+    /// A step too short for the body: a leg of the posed step would stretch or a foot go under
+    /// the floor.
+    #[error(
+        "step length {} m is too short for this body (leg length {} m): {reason}; the shortest \
+         step this prototype generalizes to on it is {} m",
+        Shown(*step_length), Shown(*leg_length), Shown(*limit)
+    )]
+    TooShort {
+        /// The step length asked for (m).
+        step_length: f64,
+        /// The body's leg length, thigh + shank (m).
+        leg_length: f64,
+        /// The shortest step length that works (m).
+        limit: f64,
+        /// What fails at the step length asked for.
+        reason: String,
     },
     /// A leg whose hip joint is farther from its ankle than thigh + shank.
     #[error(
         "the {side} leg would be stretched at t = {t:.3} of step {step}: hip to ankle {} m, \
-         longer than the leg ({} m); the step is too long for this body",
+         longer than the leg ({} m)",
         Shown(*distance), Shown(*length)
     )]
     Stretched {
@@ -46,6 +65,18 @@ pub enum GeneralizeError {
         distance: f64,
         /// thigh + shank (m).
         length: f64,
+    },
+    /// A step whose legs reach only with the hip lowered from the walk data's H by more than
+    /// the parameters allow.
+    #[error(
+        "the legs reach the hip only with it {} m below the walk data's (at most {} m allowed)",
+        Shown(*drop), Shown(*max)
+    )]
+    HipDrop {
+        /// The most the hip would come down (m).
+        drop: f64,
+        /// The parameters' bound (m).
+        max: f64,
     },
     /// A point under the floor by more than the tolerance.
     #[error(

@@ -38,6 +38,44 @@ pub struct Character {
     pub hip_offset: f64,
 }
 
+/// \[ours\] The walk's pelvis at heel strike besides its width (a body length): its rotation
+/// (the determinants' amplitude: the leading hip joint ahead of the pelvis centre by
+/// ½ width · sin A) and the step width (each ankle ½ step width from the walk's line, so the
+/// leading leg spans ½ width · cos A − ½ step width sideways). Both 0: the paper's sagittal
+/// point pelvis.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Pelvis {
+    /// The pelvic rotation's amplitude A (rad).
+    pub rotation: f64,
+    /// The ankles' lateral distance (m).
+    pub step_width: f64,
+}
+
+impl Pelvis {
+    /// The leading hip joint from the pelvis centre at heel strike, (forward, sideways from the
+    /// ankle) for a pelvis of `width`.
+    pub fn leading_hip(&self, width: f64) -> [f64; 2] {
+        let (s, c) = self.rotation.sin_cos();
+        [0.5 * width * s, 0.5 * width * c - 0.5 * self.step_width]
+    }
+
+    /// Both finite, the step width ≥ 0.
+    pub fn check(&self) -> Result<(), GeneralizeError> {
+        if !(self.rotation.is_finite() && self.step_width.is_finite() && self.step_width >= 0.0) {
+            return Err(GeneralizeError::invalid(
+                "pelvis",
+                format!(
+                    "rotation {} rad, step width {} m: finite numbers, the width ≥ 0, are \
+                     required",
+                    self.rotation, self.step_width
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
 /// μ1…μ4 at one walk condition (S, sl).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Mu {
@@ -115,39 +153,49 @@ pub fn ankle_before_toe_off(body: &BodyCondition, mu3: f64, mu4: f64) -> [f64; 2
 
 /// The hip (the pelvis centre) at heel strike after a step of `sl` (eqs. 7–11): the leading
 /// leg's hip–ankle distance a1 from the knee flexion μ1 (eq. 7), its ankle A turned about the
-/// heel by μ2 (eqs. 8–9), the hip `hip_lead` · sl ahead of the trailing foot's N (the paper:
-/// sl / 2) and a3 = √(a1² − (x_A − x_hip)²) above A (eqs. 10–11), raised by `hip_offset` leg
-/// lengths. Err: the step is too long for the leading leg to reach the hip.
+/// heel by μ2 (eqs. 8–9), the pelvis centre `hip_lead` · sl ahead of the trailing foot's N (the
+/// paper: sl / 2) and \[ours\] the leading hip joint ahead of it and beside the ankle by
+/// [`Pelvis::leading_hip`], so that its sagittal reach is √(a1² − dz²) and a3 = √(reach² −
+/// (x_A − x_joint)²) above A (eqs. 10–11); raised by `hip_offset` leg lengths. Err: the step is
+/// too long for the leading leg to reach the hip.
 pub fn hip_at_strike(
     body: &BodyCondition,
     character: &Character,
+    pelvis: &Pelvis,
     sl: f64,
 ) -> Result<[f64; 2], GeneralizeError> {
     let ll = body.leg_length();
-    match hip_height(body, character, sl) {
+    match hip_height(body, character, pelvis, sl) {
         Some(y) => Ok([character.hip_lead * sl, y + character.hip_offset * ll]),
         None => Err(GeneralizeError::TooLong {
             step_length: sl,
             leg_length: ll,
-            limit: longest_step(body, character),
+            limit: longest_step(body, character, pelvis),
+            reason: "its leading leg cannot reach the hip at heel strike (eq. 10)".into(),
         }),
     }
 }
 
 /// Eq. 11's height (without the offset), None where a3 has no real root.
-fn hip_height(body: &BodyCondition, character: &Character, sl: f64) -> Option<f64> {
+fn hip_height(
+    body: &BodyCondition,
+    character: &Character,
+    pelvis: &Pelvis,
+    sl: f64,
+) -> Option<f64> {
     let mu = character.mu(body.leg_length(), sl);
     let a1 = body.reach(mu.knee);
+    let [ahead, dz] = pelvis.leading_hip(body.pelvis_width);
     let a = ankle_after_strike(body, sl, mu.strike);
-    let dx = a[0] - character.hip_lead * sl;
-    let a3 = a1 * a1 - dx * dx;
+    let dx = a[0] - character.hip_lead * sl - ahead;
+    let a3 = a1 * a1 - dz * dz - dx * dx;
     (a3 >= 0.0).then(|| a[1] + a3.sqrt())
 }
 
 /// The longest step length for which [`hip_at_strike`] has a hip (to 1e-9 m), searched over
 /// (0, 3 ll].
-pub fn longest_step(body: &BodyCondition, character: &Character) -> f64 {
-    let ok = |sl: f64| hip_height(body, character, sl).is_some();
+pub fn longest_step(body: &BodyCondition, character: &Character, pelvis: &Pelvis) -> f64 {
+    let ok = |sl: f64| hip_height(body, character, pelvis, sl).is_some();
     let hi = 3.0 * body.leg_length();
     if ok(hi) {
         return hi;
@@ -167,6 +215,11 @@ mod tests {
     fn body() -> BodyCondition {
         BodyCondition::of(&Body::standard(1.8, 80.0).unwrap())
     }
+
+    const POINT: Pelvis = Pelvis {
+        rotation: 0.0,
+        step_width: 0.0,
+    };
 
     fn character() -> Character {
         Character {
@@ -224,10 +277,11 @@ mod tests {
     /// typed error naming the limit.
     #[test]
     fn the_hip_at_heel_strike_is_reached_by_the_leading_leg() {
-        let b = body();
+        let mut b = body();
+        b.pelvis_width = 0.0;
         let mut c = character();
         for sl in [0.4, 0.7, 0.9] {
-            let h = hip_at_strike(&b, &c, sl).unwrap();
+            let h = hip_at_strike(&b, &c, &POINT, sl).unwrap();
             let mu = c.mu(b.leg_length(), sl);
             let a = ankle_after_strike(&b, sl, mu.strike);
             let d = (h[0] - a[0]).hypot(h[1] - a[1]);
@@ -235,19 +289,39 @@ mod tests {
             assert!((h[0] - 0.5 * sl).abs() < 1e-15);
             assert!(h[1] > a[1]);
         }
-        let y0 = hip_at_strike(&b, &c, 0.7).unwrap()[1];
+        let y0 = hip_at_strike(&b, &c, &POINT, 0.7).unwrap()[1];
         c.hip_offset = 0.01;
-        let y1 = hip_at_strike(&b, &c, 0.7).unwrap()[1];
+        let y1 = hip_at_strike(&b, &c, &POINT, 0.7).unwrap()[1];
         assert!((y1 - y0 - 0.01 * b.leg_length()).abs() < 1e-14);
-        let limit = longest_step(&b, &c);
-        assert!(hip_at_strike(&b, &c, limit).is_ok());
-        let e = hip_at_strike(&b, &c, limit + 1e-6).unwrap_err();
+        let limit = longest_step(&b, &c, &POINT);
+        assert!(hip_at_strike(&b, &c, &POINT, limit).is_ok());
+        let e = hip_at_strike(&b, &c, &POINT, limit + 1e-6).unwrap_err();
         match e {
             GeneralizeError::TooLong { limit: l, .. } => assert_eq!(l, limit),
             e => panic!("{e}"),
         }
+        // a pelvis of width w rotated by A: the leading hip joint, (w/2 sin A) ahead of the
+        // centre and (w/2 cos A − step width/2) beside the ankle, is a1 from it
+        let pelvis = Pelvis {
+            rotation: 0.07,
+            step_width: 0.1,
+        };
+        let wide = BodyCondition {
+            pelvis_width: 0.18,
+            ..b
+        };
+        let h = hip_at_strike(&wide, &c, &pelvis, 0.7).unwrap();
+        let mu = c.mu(b.leg_length(), 0.7);
+        let a = ankle_after_strike(&b, 0.7, mu.strike);
+        let joint = [
+            h[0] + 0.09 * 0.07f64.sin(),
+            h[1] - c.hip_offset * b.leg_length(),
+        ];
+        let dz = 0.09 * 0.07f64.cos() - 0.05;
+        let d = ((joint[0] - a[0]).powi(2) + (joint[1] - a[1]).powi(2) + dz * dz).sqrt();
+        assert!((d - b.reach(mu.knee)).abs() < 1e-12, "{d}");
         // a longer step lowers the hip (Figure 4)
-        let h = |sl| hip_at_strike(&b, &c, sl).unwrap()[1];
+        let h = |sl| hip_at_strike(&b, &c, &POINT, sl).unwrap()[1];
         assert!(h(0.5) > h(0.7) && h(0.7) > h(0.9));
     }
 

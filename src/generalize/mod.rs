@@ -15,7 +15,11 @@ pub mod walk_data;
 
 pub use condition::BodyCondition;
 pub use error::GeneralizeError;
-pub use geometry::Character;
+pub use geometry::{Character, Pelvis};
 pub use parameters::GeneralizeParameters;
 pub use transform::{Target, combined, generalize, phi, psi, steady};
 pub use walk_data::{Phases, Piece, WalkData};
+pub mod extract;
+pub mod pose;
+pub mod walk;
+pub use walk::KinematicWalk;

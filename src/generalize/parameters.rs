@@ -28,12 +28,16 @@ pub struct GeneralizeParameters {
     pub length_tolerance: f64,
     /// The fewest frames of a measured step.
     pub min_frames_per_step: usize,
-    /// Samples per unit of normalized time of an extracted timed sequence.
+    /// Samples per unit of normalized time of an extracted timed sequence to start from.
     pub samples_per_step: usize,
+    /// An extracted angle sequence reproduces its prototype to this (rad) between samples.
+    pub sample_angle: f64,
+    /// An extracted position sequence reproduces its prototype to this (m) between samples.
+    pub sample_length: f64,
     /// How far below the floor a posed foot point may be (m).
     pub floor_tolerance: f64,
-    /// How far beyond thigh + shank a posed hip–ankle distance may be (m).
-    pub reach_tolerance: f64,
+    /// The most the hip may come down from the walk data's H to let the legs reach (m).
+    pub hip_drop_max: f64,
     /// Instants of a step checked before it is walked.
     pub check_samples: usize,
 }
@@ -61,6 +65,7 @@ impl GeneralizeParameters {
             &mut p.alpha3,
             &mut p.alpha4,
             &mut p.flat_angle,
+            &mut p.sample_angle,
         ] {
             *a = a.to_radians();
         }
@@ -81,9 +86,11 @@ impl GeneralizeParameters {
                 3.0,
                 1e6,
             ),
-            ("samples_per_step", p.samples_per_step as f64, 4.0, 1e5),
+            ("samples_per_step", p.samples_per_step as f64, 2.0, 1e5),
+            ("sample_angle", p.sample_angle, 1e-9, 0.1),
+            ("sample_length", p.sample_length, 1e-9, 0.01),
             ("floor_tolerance", p.floor_tolerance, 0.0, 0.01),
-            ("reach_tolerance", p.reach_tolerance, 0.0, 0.01),
+            ("hip_drop_max", p.hip_drop_max, 0.0, 0.5),
             ("check_samples", p.check_samples as f64, 2.0, 1e6),
         ] {
             InputError::check_range(name, v, lo, hi, "").map_err(|e| bad(name, e))?;

@@ -18,7 +18,9 @@
 //! direct one (Theorems 1–5) to round-off.
 use crate::generalize::condition::BodyCondition;
 use crate::generalize::error::GeneralizeError;
-use crate::generalize::geometry::{ankle_after_strike, ankle_before_toe_off, hip_at_strike};
+use crate::generalize::geometry::{
+    Pelvis, ankle_after_strike, ankle_before_toe_off, hip_at_strike,
+};
 use crate::generalize::sequence::{Curve, Path, pinned};
 use crate::generalize::walk_data::WalkData;
 
@@ -31,6 +33,8 @@ pub struct Target {
     pub step_length: f64,
     /// The previous step's length (m).
     pub step_length_before: f64,
+    /// The walk's pelvic rotation and step width.
+    pub pelvis: Pelvis,
 }
 
 impl Target {
@@ -40,11 +44,13 @@ impl Target {
             body: w.body,
             step_length: w.step_length,
             step_length_before: w.step_length_before,
+            pelvis: w.pelvis,
         }
     }
 
     fn check(&self) -> Result<(), GeneralizeError> {
         self.body.check()?;
+        self.pelvis.check()?;
         for (name, v) in [
             ("step length", self.step_length),
             ("previous step length", self.step_length_before),
@@ -68,6 +74,7 @@ pub fn generalize(w: &WalkData, target: &Target) -> Result<WalkData, GeneralizeE
         body,
         step_length: sl,
         step_length_before: before,
+        pelvis,
     } = *target;
     let c = &w.character;
     let ll = body.leg_length();
@@ -77,8 +84,8 @@ pub fn generalize(w: &WalkData, target: &Target) -> Result<WalkData, GeneralizeE
     let tom = w.phases.tom;
 
     // H: the hips at the two heel strikes, in the stance foot's frame
-    let start = hip_at_strike(&body, c, before)?;
-    let end = hip_at_strike(&body, c, sl)?;
+    let start = hip_at_strike(&body, c, &pelvis, before)?;
+    let end = hip_at_strike(&body, c, &pelvis, sl)?;
     let hip = moved(&w.hip, [start[0] - before, start[1]], end, scale, |t| t);
 
     // A: Lemma 1 of the target, the trailing foot's N at −sl_before
@@ -117,6 +124,7 @@ pub fn generalize(w: &WalkData, target: &Target) -> Result<WalkData, GeneralizeE
         body,
         step_length: sl,
         step_length_before: before,
+        pelvis,
         character: w.character,
         phases: w.phases,
         hip,
@@ -165,7 +173,8 @@ pub fn phi(w: &WalkData, rho: f64) -> Result<WalkData, GeneralizeError> {
     )
 }
 
-/// ψ_S^S' (eq. 129): the body `body`, both step lengths scaled by α = ll(S') / ll(S).
+/// ψ_S^S' (eq. 129): the body `body`, both step lengths (and the step width) scaled by
+/// α = ll(S') / ll(S).
 pub fn psi(w: &WalkData, body: &BodyCondition) -> Result<WalkData, GeneralizeError> {
     let alpha = body.leg_length() / w.body.leg_length();
     generalize(
@@ -174,6 +183,10 @@ pub fn psi(w: &WalkData, body: &BodyCondition) -> Result<WalkData, GeneralizeErr
             body: *body,
             step_length: alpha * w.step_length,
             step_length_before: alpha * w.step_length_before,
+            pelvis: Pelvis {
+                step_width: alpha * w.pelvis.step_width,
+                ..w.pelvis
+            },
         },
     )
 }
@@ -190,10 +203,11 @@ pub fn combined(
 }
 
 /// A step of steady walking of the body `body` at step length `step_length` (the step before
-/// it as long): what the kinematic walk repeats.
+/// it as long) with the pelvis `pelvis`: what the kinematic walk repeats.
 pub fn steady(
     w: &WalkData,
     body: &BodyCondition,
+    pelvis: &Pelvis,
     step_length: f64,
 ) -> Result<WalkData, GeneralizeError> {
     generalize(
@@ -202,6 +216,7 @@ pub fn steady(
             body: *body,
             step_length,
             step_length_before: step_length,
+            pelvis: *pelvis,
         },
     )
 }

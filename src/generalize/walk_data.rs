@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::generalize::condition::BodyCondition;
 use crate::generalize::error::GeneralizeError;
-use crate::generalize::geometry::{Character, Mu};
+use crate::generalize::geometry::{Character, Mu, Pelvis};
 use crate::generalize::sequence::{Curve, Path, interpolate};
 
 /// The phase moments (normalized step time).
@@ -21,6 +21,10 @@ use crate::generalize::sequence::{Curve, Path, interpolate};
 pub struct Phases {
     /// FGM: the stance foot flat, in [0, 1).
     pub fgm: f64,
+    /// \[ours\] Heel-off: the stance foot's heel leaves the floor, in [FGM, 1 + TOM] (a phase
+    /// moment inside F2 that the paper does not name: the gait events report it, and the
+    /// sampling keeps F2's corner there).
+    pub heel_off: f64,
     /// MOM: the stance foot's toes start to turn about their tip, in [FGM, 1 + TOM] (1 + TOM:
     /// never, a foot without toes).
     pub mom: f64,
@@ -102,6 +106,8 @@ pub struct WalkData {
     pub step_length: f64,
     /// sl_before: from the trailing foot's N to the stance foot's (m; eq. 15).
     pub step_length_before: f64,
+    /// \[ours\] The walk's pelvic rotation and step width (eq. 11's leading hip joint).
+    pub pelvis: Pelvis,
     /// What every generalization of the data keeps.
     pub character: Character,
     /// FGM, MOM, TOM.
@@ -192,6 +198,7 @@ impl WalkData {
     /// in order and every sequence over its interval with strictly increasing times.
     pub fn check(&self) -> Result<(), GeneralizeError> {
         self.body.check()?;
+        self.pelvis.check()?;
         self.character.check()?;
         for (name, v) in [
             ("step_length", self.step_length),
@@ -204,21 +211,25 @@ impl WalkData {
                 ));
             }
         }
-        let Phases { fgm, mom, tom } = self.phases;
-        let ordered = fgm.is_finite()
-            && mom.is_finite()
-            && tom.is_finite()
+        let Phases {
+            fgm,
+            heel_off,
+            mom,
+            tom,
+        } = self.phases;
+        let ordered = [fgm, heel_off, mom, tom].iter().all(|x| x.is_finite())
             && (0.0..1.0).contains(&fgm)
             && tom > 0.0
             && tom < 1.0
-            && fgm <= mom
+            && fgm <= heel_off
+            && heel_off <= mom
             && mom <= 1.0 + tom;
         if !ordered {
             return Err(GeneralizeError::invalid(
                 "phases",
                 format!(
-                    "fgm {fgm}, mom {mom}, tom {tom}: 0 ≤ fgm < 1, 0 < tom < 1 and fgm ≤ mom ≤ \
-                     1 + tom are required"
+                    "fgm {fgm}, heel_off {heel_off}, mom {mom}, tom {tom}: 0 ≤ fgm < 1, \
+                     0 < tom < 1 and fgm ≤ heel_off ≤ mom ≤ 1 + tom are required"
                 ),
             ));
         }
