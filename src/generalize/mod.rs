@@ -23,3 +23,5 @@ pub mod extract;
 pub mod pose;
 pub mod walk;
 pub use walk::KinematicWalk;
+pub mod measured;
+pub mod text;
