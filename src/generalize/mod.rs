@@ -25,3 +25,12 @@ pub mod walk;
 pub use walk::KinematicWalk;
 pub mod measured;
 pub mod text;
+
+/// The bundled prototype: step 8 of klaw's default walk (10 steps at 1.4 m/s, H 1.8 m, M 80 kg,
+/// the default attributes), made by `klaw prototype --from-walk --out models/prototype-default.csv`.
+pub const DEFAULT_PROTOTYPE: &str = include_str!("../../models/prototype-default.csv");
+
+/// The bundled prototype ([`DEFAULT_PROTOTYPE`]), read.
+pub fn default_prototype() -> WalkData {
+    text::from_csv(DEFAULT_PROTOTYPE).expect("the bundled prototype reads (tested)")
+}

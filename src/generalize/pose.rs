@@ -15,18 +15,10 @@ use crate::kinematics::pelvis::{Determinants, Side};
 use crate::model::attributes::Attributes;
 use crate::model::body::Body;
 use crate::nrs::pose::{FootPose, Upper, figure, hip_joint};
-use crate::numerics::roots;
 use glam::DVec3;
 
 /// The fraction of the swing by which the toes are straight again: klaw's 80 % of swing1.
 const TOES_STRAIGHT: f64 = 0.8 * crate::control::swing::SWING1_END;
-
-/// How far a grounded foot may turn beyond its walk data's pitch to let its leg reach the hip
-/// (rad).
-const REACH_TURN_MAX: f64 = 0.5;
-/// A grounded foot within this pitch of the floor is flat (rad): it does not turn to let its
-/// leg reach, the hip comes down.
-const FLAT: f64 = 1e-6;
 
 /// A foot on the floor with its N at `n` (x), pitch `p` and toes at `m` from the floor: its
 /// ankle (x, y) and toe dorsiflexion θ6. Toes up (p < 0) it turns about its heel at n − hN;
@@ -51,10 +43,9 @@ pub fn grounded(body: &BodyCondition, n: f64, p: f64, m: f64) -> ([f64; 2], f64)
 
 /// \[ours\] Where a leg cannot reach the hip on H (klaw's own telescopic stance leg is longer
 /// than the anatomical one just after heel strike; eq. 14 raises a shorter step's whole hip path
-/// by its ends' rise, past a straight stance leg at mid-stance), a grounded foot off flat turns
-/// further from flat about its pivot by the least angle (up to 0.5 rad) that lets it reach, as
-/// klaw's heel rocker does, and otherwise the hip comes down until every leg reaches, as non-
-/// rhythmic stepping's centre path does (docs/generalize.md). The walk data stay as they are.
+/// by its ends' rise, past a straight stance leg at mid-stance), the hip comes down until every
+/// leg reaches, as non-rhythmic stepping's centre path does (docs/generalize.md): the feet, the
+/// constraints on the floor, stay where the data put them. The walk data stay as they are.
 /// One generalized step ready to pose: its walk data on the body, the body's foot and the
 /// determinants of gait.
 #[derive(Clone, Debug)]
@@ -129,8 +120,7 @@ impl StepPose {
             distance,
             length: self.body.l1,
         };
-        // the hip comes down as far as the legs need (flat feet, the swing foot, feet turned as
-        // far as they may), then the turning feet turn as little as they need
+        // the hip comes down as far as the legs need
         let half = self.body.l0 / 2.0;
         let mut drop: f64 = 0.0;
         for (s, grounded_at) in [
@@ -141,9 +131,9 @@ impl StepPose {
             let need = match (grounded_at, &swing) {
                 (Some((n, t)), _) => self.on_floor(s, n, t, hip).1,
                 (None, Some(f)) => self.need(hip, f.ankle),
-                (None, None) => Some(0.0),
+                (None, None) => Ok(0.0),
             };
-            drop = drop.max(need.ok_or_else(|| stretched(s, f64::INFINITY))?);
+            drop = drop.max(need.map_err(|d| stretched(s, d))?);
         }
         upper.centre[1] -= drop;
         let stance = self.on_floor(side, n, t, hip_joint(&upper, side, half)).0;
@@ -222,39 +212,27 @@ impl StepPose {
     }
 
     /// How far the hip joint `hip` must come down for its leg to reach `ankle` (m; 0 when it
-    /// does; None when the ankle is farther than the leg across the floor).
-    fn need(&self, hip: DVec3, ankle: [f64; 3]) -> Option<f64> {
+    /// does; Err(the distance) when the ankle is farther than the leg across the floor).
+    fn need(&self, hip: DVec3, ankle: [f64; 3]) -> Result<f64, f64> {
         let l1 = self.body.l1;
         let d = hip - DVec3::from_array(ankle);
         if d.length() <= l1 {
-            return Some(0.0);
+            return Ok(0.0);
         }
         let across = d.x * d.x + d.z * d.z;
-        (across < l1 * l1).then(|| d.y - (l1 * l1 - across).sqrt())
+        if across < l1 * l1 {
+            Ok(d.y - (l1 * l1 - across).sqrt())
+        } else {
+            Err(d.length())
+        }
     }
 
     /// The grounded foot of `s` with its N at `n` at t of its timeline, for a leg hanging from
-    /// `hip`: a foot off flat turns on about its pivot as little as lets the leg reach (up to
-    /// [`REACH_TURN_MAX`]); and how far the hip must still come down.
-    fn on_floor(&self, s: Side, n: f64, t: f64, hip: DVec3) -> (FootPose, Option<f64>) {
+    /// `hip`, and how far the hip must come down for the leg to reach it.
+    fn on_floor(&self, s: Side, n: f64, t: f64, hip: DVec3) -> (FootPose, Result<f64, f64>) {
         let w = &self.data;
-        let body = &w.body;
-        let m = w.stance_meta(t);
-        let ankle = |p: f64| {
-            let (a, _) = grounded(body, n, p, m);
-            [a[0], a[1], self.determinants.ankle_z(s)]
-        };
-        let reaches = |p: f64| (hip - DVec3::from_array(ankle(p))).length() <= self.body.l1;
-        let mut p = w.stance_pitch(t);
-        if p.abs() > FLAT && !reaches(p) {
-            let far = p + REACH_TURN_MAX.copysign(p);
-            p = if reaches(far) {
-                roots::bisect(reaches, far, p, 1e-12).0
-            } else {
-                far
-            };
-        }
-        let (a, t6) = grounded(body, n, p, m);
+        let p = w.stance_pitch(t);
+        let (a, t6) = grounded(&w.body, n, p, w.stance_meta(t));
         let pose = self.foot_at(s, a, p, t6);
         (pose, self.need(hip, pose.ankle))
     }

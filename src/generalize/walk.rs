@@ -18,6 +18,11 @@ use crate::model::attributes::Attributes;
 use crate::model::body::Body;
 use crate::plan::Gait;
 
+/// The frames of a walk of `duration` s at `fps` (t = 0 to the last heel strike, inclusive).
+pub fn frame_count(duration: f64, fps: f64) -> usize {
+    last_frame(duration, fps) + 1
+}
+
 /// A walk of `steps` steady generalized steps of one gait.
 #[derive(Clone, Debug)]
 pub struct KinematicWalk {

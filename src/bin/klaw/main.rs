@@ -6,12 +6,15 @@ mod animate;
 mod args;
 mod bench;
 mod failure;
+mod generalize;
+mod kinematic;
 mod merge;
 mod one_action;
 mod outputs;
 mod plot;
 mod plot_sweep;
 mod progress;
+mod prototype;
 mod scenario;
 mod signals;
 mod sweep;
@@ -208,6 +211,27 @@ enum Command {
             Example: klaw turn --angle 180 --side right --kind stationary --out turn.csv --events turn-events.csv"
     )]
     Turn(one_action::TurnArgs),
+    /// Walk data of one step (Ko & Badler 1992) from a simulated walk or a measured one
+    #[command(
+        long_about = "Write the walk data W = {H, F1, F2, F3, M, A} of one step (Ko & Badler 1992,\n\
+            docs/generalize.md): with --from-walk, step K of a walk the engine simulates (the gait,\n\
+            body and attribute flags of `klaw walk`); with --from-csv, the first whole step of a\n\
+            measured walk in the sagittal-landmark layout of docs/generalize.md. JSON or CSV by the\n\
+            extension of --out, written whole or not at all.\n\
+            \n\
+            Example: klaw prototype --from-walk --out prototype.json"
+    )]
+    Prototype(prototype::PrototypeArgs),
+    /// A prototype generalized to a body and a step length (Ko & Badler 1992)
+    #[command(
+        long_about = "Generalize a prototype (the bundled one by default) to a body and a step length (Ko &\n\
+            Badler 1992 §5: ψ then φ; docs/generalize.md), pose it to check that no leg stretches and\n\
+            no foot goes under the floor, and write the walk data. A step too long or too short for\n\
+            the body exits 2 naming the longest or shortest that works.\n\
+            \n\
+            Example: klaw generalize --step-length 0.7 --height 1.6 --out short.json"
+    )]
+    Generalize(generalize::GeneralizeArgs),
 }
 
 fn main() -> ExitCode {
@@ -228,6 +252,8 @@ fn main() -> ExitCode {
         Command::Scenario(args) => scenario::run(&args),
         Command::Step(args) => one_action::step(&args),
         Command::Turn(args) => one_action::turn(&args),
+        Command::Prototype(args) => prototype::run(&args),
+        Command::Generalize(args) => generalize::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
