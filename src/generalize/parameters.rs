@@ -109,7 +109,7 @@ mod tests {
         let p = GeneralizeParameters::default();
         assert!((p.flat_angle - 2f64.to_radians()).abs() < 1e-15);
         assert_eq!(p.alpha1, 0.0);
-        let bad = TABLE.replace("contact_height = 0.005", "contact_height = -1");
+        let bad = TABLE.replace("contact_height = 0.001", "contact_height = -1");
         let e = GeneralizeParameters::parse(&bad, Path::new("g.toml"))
             .unwrap_err()
             .to_string();
