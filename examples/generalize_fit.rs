@@ -39,23 +39,37 @@ fn main() -> klaw::Result<()> {
             ]);
         }
     }
-    println!("{} walks (H 1.5–1.95 m, v 0.6 m/s up to the walk–run transition)", rows.len());
-    println!("| μ | α (deg / leg length) | intercept at sl/ll = 0 (deg) | R² | RMS residual (deg) |");
+    println!(
+        "{} walks (H 1.5–1.95 m, v 0.6 m/s up to the walk–run transition)",
+        rows.len()
+    );
+    println!(
+        "| μ | α (deg / leg length) | intercept at sl/ll = 0 (deg) | R² | RMS residual (deg) |"
+    );
     println!("|---|---|---|---|---|");
     let x: Vec<f64> = rows.iter().map(|r| r[0]).collect();
     let n = x.len() as f64;
     let mx = x.iter().sum::<f64>() / n;
     let sxx: f64 = x.iter().map(|a| (a - mx).powi(2)).sum();
-    for (j, name) in ["μ1 knee at heel strike", "μ2 foot at heel strike", "μ3 foot at toe-off", "μ4 toes at toe-off"]
-        .iter()
-        .enumerate()
+    for (j, name) in [
+        "μ1 knee at heel strike",
+        "μ2 foot at heel strike",
+        "μ3 foot at toe-off",
+        "μ4 toes at toe-off",
+    ]
+    .iter()
+    .enumerate()
     {
         let y: Vec<f64> = rows.iter().map(|r| r[j + 1].to_degrees()).collect();
         let my = y.iter().sum::<f64>() / n;
         let sxy: f64 = x.iter().zip(&y).map(|(a, b)| (a - mx) * (b - my)).sum();
         let slope = sxy / sxx;
         let icpt = my - slope * mx;
-        let res: f64 = x.iter().zip(&y).map(|(a, b)| (b - icpt - slope * a).powi(2)).sum();
+        let res: f64 = x
+            .iter()
+            .zip(&y)
+            .map(|(a, b)| (b - icpt - slope * a).powi(2))
+            .sum();
         let tot: f64 = y.iter().map(|b| (b - my).powi(2)).sum();
         let r2 = if tot > 0.0 { 1.0 - res / tot } else { 1.0 };
         println!(
