@@ -1,5 +1,5 @@
 //! A prototype from a klaw walk (docs/generalize.md, "Extraction"): one steady step of a walk
-//! simulated by the dynamic engine, read from its figure ([`crate::figure::landmarks`]) and its
+//! simulated by the dynamic engine, read from its figure ([`crate::figure::landmarks()`]) and its
 //! gait events, as walk data made consistent with its own walk condition.
 use crate::analysis::events::step_events;
 use crate::engine::walker::Walk;
