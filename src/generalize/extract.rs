@@ -84,6 +84,8 @@ pub(crate) fn adaptive<const K: usize>(
 /// whose double support the stance foot rolls to its toe-off), made consistent with its own
 /// walk condition ([`generalize`] onto it: its ends on eq. 11's hip and Lemma 1's ankles; a
 /// steady walk moves them by well under a millimetre). The α slopes are `params`'.
+/// (Longer than 80 lines: it reads the step's sequences in the order of eq. 4 from one set of
+/// closures over the walk; split, each part would take them all as arguments.)
 pub fn from_walk(
     walk: &Walk,
     k: usize,

@@ -408,6 +408,8 @@ pub fn from_csv(text: &str, p: &GeneralizeParameters) -> Result<WalkData, Genera
 }
 
 /// The raw walk data of `step` (its ends not yet on their constraints).
+/// (Longer than 80 lines: the phase moments, the feet's places and the sequences of eq. 4 in
+/// order, from one set of closures over the clip.)
 fn step_data(
     s: &Step,
     body: &BodyCondition,

@@ -139,6 +139,7 @@ pub fn to_csv(w: &WalkData) -> Result<String, GeneralizeError> {
 }
 
 /// Walk data from the CSV of [`to_csv`], checked. Errors name the line.
+/// (Longer than 80 lines: most of it is the walk data's fields, named one by one.)
 pub fn from_csv(text: &str) -> Result<WalkData, GeneralizeError> {
     let bad =
         |line: usize, reason: String| GeneralizeError::invalid(format!("line {line}"), reason);
