@@ -9,6 +9,7 @@ use crate::analysis::cycle::CycleError;
 use crate::engine::SimulationError;
 use crate::export::error::ExportError;
 use crate::figure::FigureError;
+use crate::generalize::GeneralizeError;
 use crate::model::InputError;
 use crate::plot::error::DrawError;
 use crate::scenario::{ScenarioError, ScenarioFileError};
@@ -37,6 +38,9 @@ pub enum Error {
     /// A scenario file that cannot be read into a scenario (boxed: the union stays small).
     #[error(transparent)]
     ScenarioFile(Box<ScenarioFileError>),
+    /// Walk data that cannot be read, generalized or posed (Ko & Badler 1992).
+    #[error(transparent)]
+    Generalize(#[from] GeneralizeError),
     /// Reading or writing a file failed.
     #[error("{action} {path}: {source}")]
     Io {

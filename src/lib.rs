@@ -54,6 +54,8 @@ pub mod analysis;
 pub mod figure;
 // 7, non-rhythmic stepping: single steps and turnarounds (Ko & Badler 1993).
 pub mod nrs;
+// 8, walk data and its generalization to other step lengths and bodies (Ko & Badler 1992).
+pub mod generalize;
 // 8, motion files: clinical-angle CSV, OpenSim .mot / .sto, BVH, gait-cycle curves.
 pub mod export;
 // 8, figures: the walk, the gait cycle, the animated GIF, sweep heat maps.

@@ -21,6 +21,7 @@ const LEVELS: &[&[&str]] = &[
     &["figure"],
     &["analysis"],
     &["nrs"],
+    &["generalize"],
     &["export", "input", "ik"],
     &["simulation", "sweep", "scenario"],
     &["plot", "poulaine"],

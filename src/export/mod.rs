@@ -22,6 +22,7 @@ pub mod report;
 mod rows;
 mod spool;
 pub mod state;
+pub mod walk_data;
 
 use std::cell::OnceCell;
 use std::io::{self, Write};
@@ -33,6 +34,7 @@ pub use events::{write_events_csv, write_rows_csv};
 pub use opensim::OpenSimModel;
 pub use report::write_report_json;
 pub use state::write_frames_csv;
+pub use walk_data::write_walk_data;
 
 use crate::error::{Error, Result};
 use crate::figure::Landmarks;

@@ -137,11 +137,12 @@ fn place_leg(
     }
 }
 
-/// An arm following the opposite thigh's sagittal angle `thigh` (knee forward +): shoulder
-/// flexion half the attribute `arm_swing` when the thigh is at `reference`, abduction 5°, elbow
-/// 20° + ½ max(0, shoulder flexion).
+/// An arm following the opposite thigh's sagittal angle `thigh` (knee forward +; spec §7):
+/// shoulder flexion half the attribute `arm_swing` when the thigh is at `reference` (the
+/// leading thigh's angle at heel strike, −θ3*; at least 1e-3 rad), abduction 5°, elbow 20° +
+/// ½ max(0, shoulder flexion).
 pub(crate) fn arm_swing(thigh: f64, reference: f64, attrs: &Attributes) -> ArmAngles {
-    let flexion = 0.5 * attrs.arm_swing * thigh / reference;
+    let flexion = 0.5 * attrs.arm_swing * thigh / reference.max(1e-3);
     ArmAngles {
         shoulder_flexion: flexion,
         shoulder_abduction: 5f64.to_radians(),
@@ -196,11 +197,7 @@ pub fn landmarks(step: &Step, t: f64, attrs: &Attributes) -> Result<Landmarks, F
     };
     let theta2 = state[2];
     let tilt = attrs.pelvis_tilt + theta2 - attrs.trunk_lean;
-    // each arm follows the opposite thigh's sagittal angle (knee forward +), scaled so that the
-    // thigh at heel strike (−θ3*) swings the arm to half the range
-    let thigh = |leg: &LegPoints| atan2(leg.knee[0] - leg.hip[0], leg.hip[1] - leg.knee[1]);
-    let reference = (-c.theta3).max(1e-3);
-    let arm = |opposite: &LegPoints| arm_swing(thigh(opposite), reference, attrs);
+    let arm = |opposite: &LegPoints| arm_swing(thigh_angle(opposite), -c.theta3, attrs);
     Ok(Landmarks {
         time: t,
         step: step.index,
@@ -217,6 +214,11 @@ pub fn landmarks(step: &Step, t: f64, attrs: &Attributes) -> Result<Landmarks, F
         right,
         left,
     })
+}
+
+/// A thigh's sagittal angle from the downward vertical, the knee forward +.
+pub(crate) fn thigh_angle(leg: &LegPoints) -> f64 {
+    atan2(leg.knee[0] - leg.hip[0], leg.hip[1] - leg.knee[1])
 }
 
 fn shifted(f: &FootPoints, dx: f64) -> FootPoints {

@@ -38,6 +38,8 @@ pub(crate) fn exit_code(e: &Error) -> u8 {
         Error::Ik(e) | Error::Poulaine(PoulaineError::Ik(e)) => ik(e),
         Error::Poulaine(PoulaineError::Fit { .. }) => FAILED,
         Error::Poulaine(_) => BAD_INPUT,
+        // walk data that cannot be read, or a walk condition it cannot be generalized to
+        Error::Generalize(_) => BAD_INPUT,
         Error::Simulation(SimulationError::Plan(_)) => BAD_INPUT,
         Error::Simulation(
             SimulationError::NotConverged { .. }

@@ -7,7 +7,9 @@ mod args;
 mod bench;
 mod evaluate;
 mod failure;
+mod generalize;
 mod ik;
+mod kinematic;
 mod merge;
 mod one_action;
 mod outputs;
@@ -15,6 +17,7 @@ mod plot;
 mod plot_sweep;
 mod poulaine;
 mod progress;
+mod prototype;
 mod scenario;
 mod signals;
 mod sweep;
@@ -266,6 +269,27 @@ enum Command {
             Example: klaw ik --db db.json --height 1.75 --step-length 0.7 --out ik.bvh"
     )]
     Ik(ik::IkArgs),
+    /// Walk data of one step (Ko & Badler 1992) from a simulated walk or a measured one
+    #[command(
+        long_about = "Write the walk data W = {H, F1, F2, F3, M, A} of one step (Ko & Badler 1992,\n\
+            docs/generalize.md): with --from-walk, step K of a walk the engine simulates (the gait,\n\
+            body and attribute flags of `klaw walk`); with --from-csv, the first whole step of a\n\
+            measured walk in the sagittal-landmark layout of docs/generalize.md. JSON or CSV by the\n\
+            extension of --out, written whole or not at all.\n\
+            \n\
+            Example: klaw prototype --from-walk --out prototype.json"
+    )]
+    Prototype(prototype::PrototypeArgs),
+    /// A prototype generalized to a body and a step length (Ko & Badler 1992)
+    #[command(
+        long_about = "Generalize a prototype (the bundled one by default) to a body and a step length (Ko &\n\
+            Badler 1992 §5: ψ then φ; docs/generalize.md), pose it to check that no leg stretches and\n\
+            no foot goes under the floor, and write the walk data. A step too long or too short for\n\
+            the body exits 2 naming the longest or shortest that works.\n\
+            \n\
+            Example: klaw generalize --step-length 0.7 --height 1.6 --out short.json"
+    )]
+    Generalize(generalize::GeneralizeArgs),
 }
 
 fn main() -> ExitCode {
@@ -290,6 +314,8 @@ fn main() -> ExitCode {
         Command::Poulaine(command) => poulaine::run(&command),
         Command::PoulaineDb(command) => poulaine::run_db(&command),
         Command::Ik(args) => ik::run(&args),
+        Command::Prototype(args) => prototype::run(&args),
+        Command::Generalize(args) => generalize::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -21,7 +21,7 @@ const MAX_FRAMES: f64 = 5_000_000.0;
 #[derive(Args)]
 pub(crate) struct WalkArgs {
     #[command(flatten)]
-    gait: GaitArgs,
+    pub(crate) gait: GaitArgs,
 
     /// Output frame rate in frames/s, range [0.001, 10000]
     #[arg(
@@ -33,7 +33,7 @@ pub(crate) struct WalkArgs {
             are sampled from t = 0 to the last heel strike, so a walk of duration T has\n\
             round(T · fps) + 1 rows."
     )]
-    fps: f64,
+    pub(crate) fps: f64,
 
     /// Motion of the whole figure: .csv, .mot/.sto (OpenSim) or .bvh by the extension
     #[arg(
@@ -50,29 +50,29 @@ pub(crate) struct WalkArgs {
             Frames are streamed: a walk of any length runs in bounded memory. docs/export.md has\n\
             the column and sign tables. Written whole or not at all."
     )]
-    out: PathBuf,
+    pub(crate) out: PathBuf,
 
     /// BVH: keep the root over the origin in the walking direction (only with a .bvh --out)
     #[arg(long)]
-    in_place: bool,
+    pub(crate) in_place: bool,
 
     /// .mot/.sto: the OpenSim model whose coordinates are written [default: gait2392] (only
     /// with a .mot or .sto --out)
     #[arg(long, value_name = "MODEL", value_parser = ["gait2392", "rajagopal2015"])]
-    opensim_model: Option<String>,
+    pub(crate) opensim_model: Option<String>,
 
     /// The engine's state per frame (θ1..θ4, w, hip and swing-leg points) as CSV [default: none]
     #[arg(long, value_name = "FILE.csv")]
-    state_out: Option<PathBuf>,
+    pub(crate) state_out: Option<PathBuf>,
 
     /// Gait events (HS, FGM, heel_off, MOM, TO of each foot) at their exact times, as CSV
     #[arg(long, value_name = "FILE.csv")]
-    events: Option<PathBuf>,
+    pub(crate) events: Option<PathBuf>,
 
     /// Joint angles over the gait cycle (0..100 %, right heel strike at 0), averaged over the
     /// steady cycles (all but the first), as CSV
     #[arg(long, value_name = "FILE.csv")]
-    cycle_out: Option<PathBuf>,
+    pub(crate) cycle_out: Option<PathBuf>,
 
     /// Figure of the walk to write: PNG or SVG by the extension [default: --out with .png]
     #[arg(
@@ -89,11 +89,28 @@ pub(crate) struct WalkArgs {
             (/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf); without one the figure is drawn\n\
             without text. Written whole or not at all, after the CSV and the report."
     )]
-    plot: Option<PathBuf>,
+    pub(crate) plot: Option<PathBuf>,
 
     /// Do not write the figure
     #[arg(long, conflicts_with = "plot")]
-    no_plot: bool,
+    pub(crate) no_plot: bool,
+
+    /// How the walk is made: dynamic (the engine) or kinematic (a prototype generalized)
+    #[arg(
+        long,
+        value_name = "MODE",
+        default_value = "dynamic",
+        value_parser = ["dynamic", "kinematic"],
+        long_help = "How the walk is made: dynamic, the engine's simulation (KLAW 1989); or kinematic, a\n\
+            prototype step generalized to the body and the step length (Ko & Badler 1992,\n\
+            docs/generalize.md) and repeated: no shooting, every output but --report (exit 2), one\n\
+            gait for every step (a --schedule of different gaits: exit 2)."
+    )]
+    pub(crate) mode: String,
+
+    /// The kinematic mode's prototype: walk data (.json or .csv) [default: the bundled one, klaw's default walk]
+    #[arg(long, value_name = "FILE.json|FILE.csv")]
+    pub(crate) prototype: Option<PathBuf>,
 
     /// Per-step report to write as JSON [default: none]
     #[arg(
@@ -103,10 +120,17 @@ pub(crate) struct WalkArgs {
             the shooting solves (iterations, residual) of every step. Written whole or not at all.\n\
             [default: not written]"
     )]
-    report: Option<PathBuf>,
+    pub(crate) report: Option<PathBuf>,
 }
 
 pub(crate) fn run(args: &WalkArgs) -> Result<()> {
+    if args.mode == "kinematic" {
+        return crate::kinematic::run(args);
+    }
+    if args.prototype.is_some() {
+        let reason = "applies to --mode kinematic only (the dynamic mode walks no prototype)";
+        return Err(InputError::bad_value("prototype", reason).into());
+    }
     let fps = InputError::check_range("fps", args.fps, MIN_FPS, MAX_FPS, "frames/s")?;
     let body = args.gait.body()?;
     let attrs = args.gait.attributes()?;
@@ -156,7 +180,7 @@ pub(crate) fn run(args: &WalkArgs) -> Result<()> {
 /// Refuse, before anything is simulated, a cycle output of too short a walk and any output
 /// that could not be written ([`outputs::check`]); the figure's path unless --no-plot (by
 /// default the motion file's with `.png`).
-fn check_outputs(args: &WalkArgs, steps: usize) -> Result<Option<PathBuf>> {
+pub(crate) fn check_outputs(args: &WalkArgs, steps: usize) -> Result<Option<PathBuf>> {
     let least = klaw::analysis::cycle::min_steps(false);
     if args.cycle_out.is_some() && steps < least {
         let reason = format!(
@@ -193,7 +217,7 @@ fn check_outputs(args: &WalkArgs, steps: usize) -> Result<Option<PathBuf>> {
 }
 
 /// The export choices of the flags; a choice the motion file's format does not use is refused.
-fn options(args: &WalkArgs, format: export::Format) -> Result<export::Options> {
+pub(crate) fn options(args: &WalkArgs, format: export::Format) -> Result<export::Options> {
     use export::Format::{Bvh, Mot, Sto};
     if args.in_place && format != Bvh {
         let reason = "applies to a .bvh --out only (the root kept over the origin)";

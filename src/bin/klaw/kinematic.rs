@@ -1,0 +1,132 @@
+//! `klaw walk --mode kinematic`: a prototype generalized to the body and the gait (Ko & Badler
+//! 1992, docs/generalize.md) and walked, written as `klaw walk` writes a simulated walk.
+use std::io::Write;
+use std::path::Path;
+
+use klaw::figure::clinical::clinical;
+use klaw::generalize::{GeneralizeParameters, KinematicWalk, WalkData, default_prototype, text};
+use klaw::model::{InputError, Shown};
+use klaw::{Result, export, plot};
+
+use crate::walk::{WalkArgs, check_outputs, options};
+use crate::{MAX_FPS, MIN_FPS, count, font_note};
+
+/// Walk data from a file, JSON or CSV by its extension.
+pub(crate) fn read_walk_data(path: &Path) -> Result<WalkData> {
+    let text = std::fs::read_to_string(path).map_err(|source| klaw::Error::Io {
+        action: "reading",
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    let read = match ext.as_deref() {
+        Some("json") => text::from_json(&text),
+        Some("csv") => text::from_csv(&text),
+        _ => {
+            let reason = format!("{}: walk data are .json or .csv", path.display());
+            return Err(InputError::bad_value("prototype", reason).into());
+        }
+    };
+    read.map_err(|e| InputError::malformed("walk data", path, e.to_string()).into())
+}
+
+pub(crate) fn run(args: &WalkArgs) -> Result<()> {
+    let fps = InputError::check_range("fps", args.fps, MIN_FPS, MAX_FPS, "frames/s")?;
+    if args.report.is_some() {
+        let reason = "the report records the engine's shooting solves; the kinematic mode has \
+                      none (use --mode dynamic)";
+        return Err(InputError::bad_value("report", reason).into());
+    }
+    let body = args.gait.body()?;
+    let attrs = args.gait.attributes()?;
+    let gaits = args.gait.gaits(&body, &attrs)?;
+    if gaits.windows(2).any(|w| w[0] != w[1]) {
+        let reason = "the kinematic mode walks one gait, the same every step; a schedule of \
+                      different gaits needs --mode dynamic";
+        return Err(InputError::bad_value("schedule", reason).into());
+    }
+    let plot = check_outputs(args, gaits.len())?;
+    let format = export::Format::from_path(&args.out)?;
+    let options = options(args, format)?;
+    let prototype = match &args.prototype {
+        Some(p) => read_walk_data(p)?,
+        None => default_prototype(),
+    };
+    let params = GeneralizeParameters::default();
+    let walk = KinematicWalk::new(&prototype, body, attrs, gaits[0], gaits.len(), &params)?;
+    let (mut clinical_rows, mut state) = (Vec::new(), Vec::new());
+    let keep_state = |step: usize| match (&args.state_out, &plot) {
+        (Some(_), _) => true,
+        (None, Some(_)) => step < plot::walk::FIGURE_STEPS,
+        (None, None) => false,
+    };
+    let frames = walk.frames(fps).map(|frame| -> Result<_> {
+        let lm = frame?;
+        if args.cycle_out.is_some() {
+            clinical_rows.push(clinical(&lm, &body)?);
+        }
+        if keep_state(lm.step) {
+            state.push(walk.state_frame(&lm));
+        }
+        Ok(lm)
+    });
+    export::try_write(&args.out, format, &body, fps, frames, &options)?;
+    if let Some(path) = &args.state_out {
+        export::write_frames_csv(path, &state)?;
+    }
+    if let Some(path) = &args.events {
+        export::write_events_csv(path, &walk.events())?;
+    }
+    if let Some(path) = &args.cycle_out {
+        let curves =
+            klaw::analysis::cycle::cycle_average(&clinical_rows, &walk.right_heel_strikes(), 1)?;
+        export::write_cycle_csv(path, &curves)?;
+    }
+    if let Some(path) = &plot {
+        plot::walk::walk_figure(&state, walk.steps, path)?;
+    }
+    print_summary(args, &walk, &prototype, fps, plot.as_deref());
+    Ok(())
+}
+
+fn print_summary(
+    args: &WalkArgs,
+    walk: &KinematicWalk,
+    prototype: &WalkData,
+    fps: f64,
+    plot: Option<&Path>,
+) {
+    let frames = klaw::generalize::walk::frame_count(walk.duration(), fps);
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(
+        out,
+        "walked {} kinematically: {:.3} s, {} at {} frames/s",
+        count(walk.steps, "step"),
+        walk.duration(),
+        count(frames, "frame"),
+        Shown(fps)
+    );
+    let _ = writeln!(
+        out,
+        "prototype: {}; step length {:.4} m; the hip comes down {:.1} mm at most to let the legs reach",
+        prototype.source,
+        walk.step.data.step_length,
+        1e3 * walk.hip_drop
+    );
+    let _ = writeln!(out, "motion: {}", args.out.display());
+    for (path, what) in [
+        (&args.state_out, "state rows"),
+        (&args.events, "events"),
+        (&args.cycle_out, "gait cycle"),
+    ] {
+        if let Some(p) = path {
+            let _ = writeln!(out, "{what}: {}", p.display());
+        }
+    }
+    if let Some(path) = plot {
+        let _ = writeln!(out, "plot: {}{}", path.display(), font_note());
+    }
+}

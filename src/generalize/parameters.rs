@@ -1,0 +1,120 @@
+//! The constants of the generalization and their defaults, from `models/generalize.toml`: the α
+//! slopes of eqs. 5, 6, 21 and 24, and the tolerances of reading a measured walk and of posing.
+use std::path::Path;
+
+use serde::Deserialize;
+
+use crate::model::InputError;
+
+const TABLE: &str = include_str!("../../models/generalize.toml");
+
+/// The generalization's constants (angles in rad; `models/generalize.toml` documents each).
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GeneralizeParameters {
+    /// α1: knee flexion at heel strike per leg length of step length (eq. 5).
+    pub alpha1: f64,
+    /// α2: the foot's toes-up angle at heel strike per leg length (eq. 6).
+    pub alpha2: f64,
+    /// α3: the foot's heel-up angle at toe-off per leg length (eq. 21).
+    pub alpha3: f64,
+    /// α4: the toes' angle at toe-off per leg length (eq. 24).
+    pub alpha4: f64,
+    /// A foot point touches the floor within this height of it (m).
+    pub contact_height: f64,
+    /// A foot is flat, or its toes down, within this angle of the floor (rad).
+    pub flat_angle: f64,
+    /// The largest relative difference of a measured segment's length from its median.
+    pub length_tolerance: f64,
+    /// The fewest frames of a measured step.
+    pub min_frames_per_step: usize,
+    /// Samples per unit of normalized time of an extracted timed sequence to start from.
+    pub samples_per_step: usize,
+    /// An extracted angle sequence reproduces its prototype to this (rad) between samples.
+    pub sample_angle: f64,
+    /// An extracted position sequence reproduces its prototype to this (m) between samples.
+    pub sample_length: f64,
+    /// How far below the floor a posed foot point may be (m).
+    pub floor_tolerance: f64,
+    /// The most the hip may come down from the walk data's H to let the legs reach (m).
+    pub hip_drop_max: f64,
+    /// Instants of a step checked before it is walked.
+    pub check_samples: usize,
+}
+
+impl Default for GeneralizeParameters {
+    fn default() -> Self {
+        Self::parse(TABLE, Path::new("models/generalize.toml"))
+            .expect("the bundled generalization table parses (tested)")
+    }
+}
+
+impl GeneralizeParameters {
+    /// The α slopes α1…α4.
+    pub fn alphas(&self) -> [f64; 4] {
+        [self.alpha1, self.alpha2, self.alpha3, self.alpha4]
+    }
+
+    /// Parse the table's TOML text (angles in degrees); `path` names the source in errors.
+    pub fn parse(text: &str, path: &Path) -> Result<Self, InputError> {
+        let mut p: GeneralizeParameters = toml::from_str(text)
+            .map_err(|e| InputError::malformed("generalization table", path, Box::new(e)))?;
+        for a in [
+            &mut p.alpha1,
+            &mut p.alpha2,
+            &mut p.alpha3,
+            &mut p.alpha4,
+            &mut p.flat_angle,
+            &mut p.sample_angle,
+        ] {
+            *a = a.to_radians();
+        }
+        let bad = |name: &str, e: InputError| {
+            InputError::malformed("generalization table", path, format!("{name}: {e}"))
+        };
+        for (name, v, lo, hi) in [
+            ("alpha1", p.alpha1, -3.0, 3.0),
+            ("alpha2", p.alpha2, -3.0, 3.0),
+            ("alpha3", p.alpha3, -3.0, 3.0),
+            ("alpha4", p.alpha4, -3.0, 3.0),
+            ("contact_height", p.contact_height, 0.0, 0.1),
+            ("flat_angle", p.flat_angle, 0.0, 0.3),
+            ("length_tolerance", p.length_tolerance, 0.0, 0.5),
+            (
+                "min_frames_per_step",
+                p.min_frames_per_step as f64,
+                3.0,
+                1e6,
+            ),
+            ("samples_per_step", p.samples_per_step as f64, 2.0, 1e5),
+            ("sample_angle", p.sample_angle, 1e-9, 0.1),
+            ("sample_length", p.sample_length, 1e-9, 0.01),
+            ("floor_tolerance", p.floor_tolerance, 0.0, 0.01),
+            ("hip_drop_max", p.hip_drop_max, 0.0, 0.5),
+            ("check_samples", p.check_samples as f64, 2.0, 1e6),
+        ] {
+            InputError::check_range(name, v, lo, hi, "").map_err(|e| bad(name, e))?;
+        }
+        Ok(p)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The bundled table parses, in radians; a value out of range names itself.
+    #[test]
+    fn the_bundled_table_parses_and_bad_values_are_named() {
+        let p = GeneralizeParameters::default();
+        assert!((p.flat_angle - 2f64.to_radians()).abs() < 1e-15);
+        assert_eq!(p.alpha1, 0.0);
+        let bad = TABLE.replace("contact_height = 0.001", "contact_height = -1");
+        let e = GeneralizeParameters::parse(&bad, Path::new("g.toml"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("contact_height"), "{e}");
+        let e = GeneralizeParameters::parse("alpha1 = 0", Path::new("g.toml")).unwrap_err();
+        assert!(matches!(e, InputError::Malformed { .. }));
+    }
+}

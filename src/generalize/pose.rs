@@ -1,0 +1,278 @@
+//! The whole figure of a generalized step (Ko & Badler 1992 §1, §6; docs/generalize.md,
+//! "Posing"): the pelvis centre on H, the stance foot turned about its heel (F1) and then its
+//! ball and its toe tip (F2, M), the hind foot rolling to its toe-off (F2, M on its timeline past
+//! 1), the swing foot's ankle on A at the pitch F3; the legs two-link chains from the hip joints;
+//! the pelvis's rotation, list and lateral displacement from the determinants of gait, its tilt
+//! from the trunk sequence, and the trunk and arms by klaw's rules — posed by the figure of
+//! non-rhythmic stepping ([`crate::nrs::pose::figure`]).
+use crate::figure::landmarks::{arm_swing, thigh_angle};
+use crate::figure::{Landmarks, LegPoints};
+use crate::generalize::condition::BodyCondition;
+use crate::generalize::error::GeneralizeError;
+use crate::generalize::walk_data::WalkData;
+use crate::kinematics::foot::Foot;
+use crate::kinematics::pelvis::{Determinants, Side};
+use crate::model::attributes::Attributes;
+use crate::model::body::Body;
+use crate::nrs::pose::{FootPose, Upper, figure, hip_joint};
+use glam::DVec3;
+
+/// The fraction of the swing by which the toes are straight again: klaw's 80 % of swing1.
+const TOES_STRAIGHT: f64 = 0.8 * crate::control::swing::SWING1_END;
+
+/// A foot on the floor with its N at `n` (x), pitch `p` and toes at `m` from the floor: its
+/// ankle (x, y) and toe dorsiflexion θ6. Toes up (p < 0) it turns about its heel at n − hN;
+/// heel up about its toe tip at n + bN + bt, the toes at m, the ball–ankle line at θb + p
+/// (before meta-off m = 0: about the ball). Neither pivot slides.
+pub fn grounded(body: &BodyCondition, n: f64, p: f64, m: f64) -> ([f64; 2], f64) {
+    if p <= 0.0 {
+        let (s, c) = (body.heel_angle() - p).sin_cos();
+        let ah = body.heel_to_ankle();
+        ([n - body.heel_to_n + ah * c, ah * s], 0.0)
+    } else {
+        let bt = body.ball_to_toe;
+        let (s4, c4) = m.sin_cos();
+        let (s, c) = (body.ball_angle() + p).sin_cos();
+        let ab = body.ankle_to_ball();
+        (
+            [n + body.ball_to_n + bt - bt * c4 - ab * c, bt * s4 + ab * s],
+            p - m,
+        )
+    }
+}
+
+/// \[ours\] Where a leg cannot reach the hip on H (klaw's own telescopic stance leg is longer
+/// than the anatomical one just after heel strike; eq. 14 raises a shorter step's whole hip path
+/// by its ends' rise, past a straight stance leg at mid-stance), the hip comes down until every
+/// leg reaches, as non-rhythmic stepping's centre path does (docs/generalize.md): the feet, the
+/// constraints on the floor, stay where the data put them. The walk data stay as they are.
+/// One generalized step ready to pose: its walk data on the body, the body's foot and the
+/// determinants of gait.
+#[derive(Clone, Debug)]
+pub struct StepPose {
+    /// The walk data (on `body`).
+    pub data: WalkData,
+    /// The body.
+    pub body: Body,
+    /// The locomotion attributes (determinants, tilt, lean, arm swing, step width).
+    pub attrs: Attributes,
+    /// Step duration (s).
+    pub duration: f64,
+    determinants: Determinants,
+    foot: Foot,
+    /// The leading thigh's sagittal angle at heel strike, for the arms.
+    strike_thigh: f64,
+}
+
+impl StepPose {
+    /// The step of `data` (already on `body`) lasting `duration` s.
+    pub fn new(
+        data: WalkData,
+        body: Body,
+        attrs: Attributes,
+        duration: f64,
+    ) -> Result<Self, GeneralizeError> {
+        let mut pose = StepPose {
+            determinants: Determinants::new(&attrs, body.l0),
+            foot: Foot::new(&body),
+            data,
+            body,
+            attrs,
+            duration,
+            strike_thigh: 1.0,
+        };
+        let end = pose.figure(0, Side::Right, 0.0, 1.0, 0.0)?;
+        pose.strike_thigh = thigh_angle(&end.left);
+        Ok(pose)
+    }
+
+    /// The figure at normalized time t ∈ [0, 1] of step `index` standing on `side`, whose stance
+    /// foot's N is at world x `n`; `time` is the frame's time (s).
+    pub fn figure(
+        &self,
+        index: usize,
+        side: Side,
+        n: f64,
+        t: f64,
+        time: f64,
+    ) -> Result<Landmarks, GeneralizeError> {
+        Ok(self.posed(index, side, n, t, time)?.0)
+    }
+
+    /// [`Self::figure`] and how far the hip came down from H to let the legs reach (m).
+    fn posed(
+        &self,
+        index: usize,
+        side: Side,
+        n: f64,
+        t: f64,
+        time: f64,
+    ) -> Result<(Landmarks, f64), GeneralizeError> {
+        let w = &self.data;
+        let tom = w.phases.tom;
+        let mut upper = self.upper(side, n, t);
+        let swing = (t > tom).then(|| self.swing_foot(side.other(), n, t));
+        let hind = (n - w.step_length_before, 1.0 + t);
+        let stretched = |s: Side, distance: f64| GeneralizeError::Stretched {
+            side: s.name(),
+            step: index,
+            t,
+            distance,
+            length: self.body.l1,
+        };
+        // the hip comes down as far as the legs need
+        let half = self.body.l0 / 2.0;
+        let mut drop: f64 = 0.0;
+        for (s, grounded_at) in [
+            (side, Some((n, t))),
+            (side.other(), swing.is_none().then_some(hind)),
+        ] {
+            let hip = hip_joint(&upper, s, half);
+            let need = match (grounded_at, &swing) {
+                (Some((n, t)), _) => self.on_floor(s, n, t, hip).1,
+                (None, Some(f)) => self.need(hip, f.ankle),
+                (None, None) => Ok(0.0),
+            };
+            drop = drop.max(need.map_err(|d| stretched(s, d))?);
+        }
+        upper.centre[1] -= drop;
+        let stance = self.on_floor(side, n, t, hip_joint(&upper, side, half)).0;
+        let other = match swing {
+            Some(f) => f,
+            None => {
+                self.on_floor(
+                    side.other(),
+                    hind.0,
+                    hind.1,
+                    hip_joint(&upper, side.other(), half),
+                )
+                .0
+            }
+        };
+        let feet = match side {
+            Side::Right => [&stance, &other],
+            Side::Left => [&other, &stance],
+        };
+        let mut lm = figure(
+            &upper,
+            feet,
+            (&self.body, &self.foot),
+            f64::INFINITY,
+            time,
+            index,
+        )
+        .map_err(|(s, distance)| stretched(s, distance))?;
+        lm.right_arm = arm_swing(thigh_angle(&lm.left), self.strike_thigh, &self.attrs);
+        lm.left_arm = arm_swing(thigh_angle(&lm.right), self.strike_thigh, &self.attrs);
+        Ok((lm, drop))
+    }
+
+    /// The pelvis and upper body at t of a step standing on `side` with its stance N at `n`: the
+    /// centre on H, the determinants' rotation, list and lateral displacement, the tilt from the
+    /// trunk sequence, klaw's lumbar rules (arms set after the legs).
+    fn upper(&self, side: Side, n: f64, t: f64) -> Upper {
+        let w = &self.data;
+        let pm = self.determinants.at(side, t * self.duration, self.duration);
+        let [hx, hy] = w.hip.at(t);
+        Upper {
+            centre: [n + hx, hy, pm.lateral],
+            heading: pm.rotation,
+            tilt: self.attrs.pelvis_tilt + w.trunk.at(t),
+            list: pm.list,
+            lumbar_extension: self.attrs.pelvis_tilt - self.attrs.trunk_lean,
+            lumbar_bending: -pm.list,
+            lumbar_rotation: -1.8 * pm.rotation,
+            neck_rotation: 0.0,
+            arms: Default::default(),
+        }
+    }
+
+    fn foot_at(&self, s: Side, [x, y]: [f64; 2], pitch: f64, theta6: f64) -> FootPose {
+        FootPose {
+            ankle: [x, y, self.determinants.ankle_z(s)],
+            heading: 0.0,
+            pitch,
+            theta6,
+        }
+    }
+
+    /// The swing foot of `s` at t: its ankle on A, its pitch F3's unless that would put the heel
+    /// or a toe under the floor (klaw's swing rule, `Foot::clear_pitch`), its toes straightening
+    /// by klaw's swing rule (a half cosine over the first 80 % of swing1, engine/pose.rs).
+    fn swing_foot(&self, s: Side, n: f64, t: f64) -> FootPose {
+        let w = &self.data;
+        let tom = w.phases.tom;
+        let [ax, ay] = w.ankle.at(t);
+        let end = 1.0 + tom;
+        let off = w.stance_pitch(end) - w.stance_meta(end);
+        let x = ((t - tom) / (TOES_STRAIGHT * (1.0 - tom))).clamp(0.0, 1.0);
+        let t6 = off * 0.5 * (1.0 + (std::f64::consts::PI * x).cos());
+        let (pitch, _) = self.foot.clear_pitch(w.f3.at(t), [0.0, ay], t6, 0.0);
+        self.foot_at(s, [n + ax, ay], pitch, t6)
+    }
+
+    /// How far the hip joint `hip` must come down for its leg to reach `ankle` (m; 0 when it
+    /// does; Err(the distance) when the ankle is farther than the leg across the floor).
+    fn need(&self, hip: DVec3, ankle: [f64; 3]) -> Result<f64, f64> {
+        let l1 = self.body.l1;
+        let d = hip - DVec3::from_array(ankle);
+        if d.length() <= l1 {
+            return Ok(0.0);
+        }
+        let across = d.x * d.x + d.z * d.z;
+        if across < l1 * l1 {
+            Ok(d.y - (l1 * l1 - across).sqrt())
+        } else {
+            Err(d.length())
+        }
+    }
+
+    /// The grounded foot of `s` with its N at `n` at t of its timeline, for a leg hanging from
+    /// `hip`, and how far the hip must come down for the leg to reach it.
+    fn on_floor(&self, s: Side, n: f64, t: f64, hip: DVec3) -> (FootPose, Result<f64, f64>) {
+        let w = &self.data;
+        let p = w.stance_pitch(t);
+        let (a, t6) = grounded(&w.body, n, p, w.stance_meta(t));
+        let pose = self.foot_at(s, a, p, t6);
+        (pose, self.need(hip, pose.ankle))
+    }
+
+    /// Pose the step at `samples` + 1 instants on either side and check that no foot point is
+    /// below the floor by more than `tolerance` (a leg too short to reach is an error of the
+    /// pose itself). Returns the most the hip came down from H (m).
+    pub fn check(&self, samples: usize, tolerance: f64) -> Result<f64, GeneralizeError> {
+        let mut most: f64 = 0.0;
+        for (index, side) in [(0, Side::Right), (1, Side::Left)] {
+            for i in 0..=samples {
+                let t = i as f64 / samples as f64;
+                let (lm, drop) = self.posed(index, side, 0.0, t, 0.0)?;
+                most = most.max(drop);
+                for (leg, name) in [(&lm.right, "right"), (&lm.left, "left")] {
+                    below_floor(leg, name, index, t, tolerance)?;
+                }
+            }
+        }
+        Ok(most)
+    }
+}
+
+fn below_floor(
+    leg: &LegPoints,
+    side: &str,
+    step: usize,
+    t: f64,
+    tolerance: f64,
+) -> Result<(), GeneralizeError> {
+    for (p, point) in [(leg.heel, "heel"), (leg.mtp, "ball"), (leg.toe, "toe tip")] {
+        if p[1] < -tolerance {
+            return Err(GeneralizeError::BelowFloor {
+                point: format!("{side} {point}"),
+                step,
+                t,
+                depth: -p[1],
+                tolerance,
+            });
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,213 @@
+//! The kinematic walk mode (issue 17): a prototype extracted from klaw's own walk and posed
+//! again reproduces klaw's joint angles; generalized to other step lengths and to bodies of other
+//! proportions, its feet do not slide, no leg stretches, nothing goes under the floor, the
+//! figure is continuous from step to step, and a step too long for the body is the typed error
+//! naming the limit.
+mod common;
+
+use klaw::figure::clinical::clinical;
+use klaw::generalize::extract::from_walk;
+use klaw::generalize::{
+    BodyCondition, GeneralizeError, GeneralizeParameters, KinematicWalk, WalkData,
+};
+use klaw::{Body, Gait, GaitRequest, Landmarks};
+
+fn params() -> GeneralizeParameters {
+    GeneralizeParameters::default()
+}
+
+/// The default walk (10 steps at 1.4 m/s, H 1.8 m) and its step 4 as the prototype.
+fn prototype() -> (klaw::Walk, WalkData) {
+    let walk = klaw::Simulation::default().steps(10).run().unwrap();
+    let data = from_walk(walk.engine(), 4, &params()).unwrap();
+    (walk, data)
+}
+
+/// Winter's body of height `h` with its thigh and shank scaled by `thigh` and `shank`: a body
+/// of other proportions than the table's.
+fn proportioned(h: f64, thigh: f64, shank: f64) -> Body {
+    let b = Body::standard(h, 23.0 * h * h).unwrap();
+    let (l3, l4) = (b.l3 * thigh, b.l4 * shank);
+    Body {
+        l3,
+        l4,
+        l1: l3 + l4,
+        ..b
+    }
+}
+
+/// The gait of `step_length` at the default walk's cadence.
+fn gait(body: &Body, step_length: f64) -> Gait {
+    let sf = common::gait(&common::default_body(), 1.4).step_frequency;
+    GaitRequest {
+        step_length: Some(step_length),
+        step_frequency: Some(sf),
+        ..Default::default()
+    }
+    .complete(body, &common::default_attributes())
+    .unwrap()
+}
+
+fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+/// At ρ = 1 on the prototype's own body the kinematic walk reproduces klaw's hip, knee and
+/// ankle flexion within 0.5° RMS over the steady steps (2…9), and its events within 2 ms.
+#[test]
+fn the_prototype_reposed_reproduces_klaws_joint_angles() {
+    let (walk, data) = prototype();
+    let g = walk.gaits()[0];
+    let kin = KinematicWalk::new(
+        &data,
+        *walk.body(),
+        walk.attributes().clone(),
+        g,
+        10,
+        &params(),
+    )
+    .unwrap();
+    assert!((kin.duration() - walk.duration()).abs() < 1e-9);
+    let fps = 200.0;
+    let a = walk.clinical_angles(fps).unwrap();
+    let b: Vec<Landmarks> = kin.frames(fps).collect::<Result<_, _>>().unwrap();
+    assert_eq!(a.len(), b.len());
+    let mut sq = [0.0; 3];
+    let mut n = 0.0;
+    for (ca, lb) in a.iter().zip(&b) {
+        if ca.step < 2 {
+            continue;
+        }
+        let cb = clinical(lb, walk.body()).unwrap();
+        for (x, y) in [(ca.right, cb.right), (ca.left, cb.left)] {
+            let d = [
+                x.hip.flexion - y.hip.flexion,
+                x.knee.flexion - y.knee.flexion,
+                x.ankle.flexion - y.ankle.flexion,
+            ];
+            for j in 0..3 {
+                sq[j] += d[j] * d[j];
+            }
+            n += 1.0;
+        }
+    }
+    let rms = sq.map(|s| (s / n).sqrt().to_degrees());
+    eprintln!(
+        "RMS hip {:.3}°, knee {:.3}°, ankle {:.3}°",
+        rms[0], rms[1], rms[2]
+    );
+    assert!(rms.iter().all(|&r| r <= 0.5), "{rms:?}");
+    // the events of the steady steps
+    let ours = kin.events();
+    for e in walk.events().iter().filter(|e| e.step >= 2) {
+        let m = ours
+            .iter()
+            .find(|o| o.step == e.step && o.event == e.event)
+            .unwrap_or_else(|| panic!("{e:?} missing"));
+        assert!((m.time_s - e.time_s).abs() < 2e-3, "{e:?} vs {m:?}");
+    }
+}
+
+/// The constraints of a walking figure, frame by frame: a foot point on the floor stays where it
+/// touched (≤ 1 mm over its contact), no hip–ankle distance exceeds thigh + shank, no point is
+/// under the floor, and the figure is continuous through every heel strike.
+fn assert_walks(kin: &KinematicWalk, body: &Body) {
+    let fps = 500.0;
+    let frames: Vec<Landmarks> = kin.frames(fps).collect::<Result<_, _>>().unwrap();
+    // contact: (first x, z) of each foot point while it stays on the floor
+    let mut contact: [Option<[f64; 2]>; 6] = [None; 6];
+    let mut slide: f64 = 0.0;
+    for lm in &frames {
+        for (i, leg) in [lm.right, lm.left].iter().enumerate() {
+            assert!(
+                distance(leg.hip, leg.ankle) <= body.l1 + 1e-9,
+                "stretched at {}",
+                lm.time
+            );
+            for (j, p) in [leg.heel, leg.mtp, leg.toe].iter().enumerate() {
+                assert!(p[1] >= -1e-6, "under the floor at {}: {p:?}", lm.time);
+                let c = &mut contact[3 * i + j];
+                if p[1] <= 1e-7 {
+                    let at = *c.get_or_insert([p[0], p[2]]);
+                    slide = slide.max((p[0] - at[0]).hypot(p[2] - at[1]));
+                } else {
+                    *c = None;
+                }
+            }
+        }
+    }
+    assert!(slide <= 1e-3, "a foot slides {slide} m");
+    for k in 1..kin.steps {
+        let t = k as f64 * kin.step.duration;
+        let (a, b) = (
+            kin.figure_at(t - 1e-9).unwrap(),
+            kin.figure_at(t + 1e-9).unwrap(),
+        );
+        for (x, y) in [(a.right, b.right), (a.left, b.left)] {
+            for (p, q) in [
+                (x.hip, y.hip),
+                (x.knee, y.knee),
+                (x.ankle, y.ankle),
+                (x.toe, y.toe),
+            ] {
+                assert!(distance(p, q) < 1e-6, "jump at step {k}: {p:?} {q:?}");
+            }
+        }
+    }
+}
+
+/// Other step lengths (0.7–1.3 × the prototype's) on the prototype's body, and bodies of other
+/// heights and proportions (the thigh and the shank scaled apart) walk without breaking a
+/// constraint.
+#[test]
+fn generalized_walks_keep_the_walking_constraints() {
+    let (walk, data) = prototype();
+    let attrs = walk.attributes().clone();
+    let sl = data.step_length;
+    for (body, k) in [
+        (*walk.body(), 0.7),
+        (*walk.body(), 1.3),
+        (proportioned(1.6, 1.1, 0.92), 0.9),
+        (proportioned(1.95, 0.9, 1.08), 1.1),
+    ] {
+        let s = k * sl * body.l1 / walk.body().l1;
+        let kin = KinematicWalk::new(&data, body, attrs.clone(), gait(&body, s), 6, &params())
+            .unwrap_or_else(|e| panic!("{k} {}: {e}", body.height));
+        assert!((kin.step.data.step_length - s).abs() < 1e-12);
+        eprintln!(
+            "H {} × {k}: the hip comes down {:.1} mm at most",
+            body.height,
+            1e3 * kin.hip_drop
+        );
+        // the feet stand a step length apart: the stance foot's flat ankle at k sl
+        let lm = kin
+            .figure_at(2.0 * kin.step.duration + 0.3 * kin.step.duration)
+            .unwrap();
+        let c = BodyCondition::of(&body);
+        let n = lm.right.heel[0] + c.heel_to_n;
+        assert!((n - 2.0 * s).abs() < 1e-9, "{n} vs {}", 2.0 * s);
+        assert_walks(&kin, &body);
+    }
+}
+
+/// A step too long for the body is refused before anything is posed, naming the longest step
+/// the prototype generalizes to on it.
+#[test]
+fn too_long_a_step_names_the_limit() {
+    let (walk, data) = prototype();
+    let body = *walk.body();
+    let attrs = walk.attributes().clone();
+    let g = Gait {
+        step_length: 1.6 * body.l1,
+        ..walk.gaits()[0]
+    };
+    match KinematicWalk::new(&data, body, attrs, g, 4, &params()) {
+        Err(GeneralizeError::TooLong {
+            limit, step_length, ..
+        }) => {
+            assert!(limit < step_length && limit > 0.8 * body.l1, "{limit}");
+        }
+        Err(e) => panic!("{e}"),
+        Ok(_) => panic!("walked a step of 1.6 leg lengths"),
+    }
+}
