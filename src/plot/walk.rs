@@ -420,6 +420,18 @@ fn time_ranges(series: &[Series], legend: bool) -> ((f64, f64), (f64, f64)) {
     (t, (y_lo, y_hi))
 }
 
+/// The decimals that tell apart the ticks of an axis spanning `span` (about ten ticks), at least
+/// `least`: a 4.5 cm range of hip heights in metres needs three.
+fn tick_decimals(span: f64, least: usize) -> usize {
+    let tick = span / 10.0;
+    let needed = if tick > 0.0 {
+        (-tick.log10().floor()).max(0.0) as usize
+    } else {
+        0
+    };
+    least.max(needed)
+}
+
 /// A panel of curves against time, light vertical lines at the heel strikes.
 fn time_plot<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
@@ -499,6 +511,21 @@ fn time_plot<DB: DrawingBackend>(
 mod tests {
     use super::*;
     use crate::error::Error;
+
+    /// Ticks about a tenth of the span apart, each label distinct: a 0.045 m span ticks every
+    /// 0.005 m (three decimals), a 120° span every 10–20° (none), never fewer than asked.
+    #[test]
+    fn tick_labels_tell_the_ticks_apart() {
+        assert_eq!(tick_decimals(0.045, 2), 3);
+        assert_eq!(tick_decimals(120.0, 0), 0);
+        assert_eq!(tick_decimals(120.0, 1), 1);
+        assert_eq!(tick_decimals(0.5, 2), 2);
+        for span in [0.0031, 0.045, 0.7, 13.0] {
+            let d = tick_decimals(span, 0);
+            let (a, b) = (1.0, 1.0 + span / 10.0);
+            assert_ne!(format!("{a:.d$}"), format!("{b:.d$}"), "{span}");
+        }
+    }
 
     fn frame(t: f64, step: usize) -> StateFrame {
         StateFrame {
