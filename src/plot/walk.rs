@@ -448,15 +448,7 @@ fn time_plot<DB: DrawingBackend>(
     let mut chart = builder(&area, text)
         .build_cartesian_2d(t_lo..t_hi, y_lo..y_hi)
         .map_err(msg)?;
-    // enough decimals to tell the ticks apart (about ten over the range: a 4.5 cm range of hip
-    // heights in metres needs three)
-    let tick = (y_hi - y_lo) / 10.0;
-    let needed = if tick > 0.0 {
-        (-tick.log10().floor()).max(0.0) as usize
-    } else {
-        0
-    };
-    let decimals = y_decimals.max(needed);
+    let decimals = tick_decimals(y_hi - y_lo, y_decimals);
     let y_label = |v: &f64| format!("{v:.decimals$}");
     let mut mesh = chart.configure_mesh();
     mesh.light_line_style(RGBColor(240, 240, 240));
