@@ -33,6 +33,7 @@ pub(crate) fn read_walk_data(path: &Path) -> Result<WalkData> {
     read.map_err(|e| InputError::malformed("walk data", path, e.to_string()).into())
 }
 
+/// `klaw walk --mode kinematic`: the prototype generalized to the walk's body and gait, written out.
 pub(crate) fn run(args: &WalkArgs) -> Result<()> {
     let fps = InputError::check_range("fps", args.fps, MIN_FPS, MAX_FPS, "frames/s")?;
     if args.report.is_some() {

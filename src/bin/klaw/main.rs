@@ -297,6 +297,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     signals::clean_up_on_interruption();
     let result = match cli.command {
+        Command::Walk(args) if args.mode == "kinematic" => kinematic::run(&args),
         Command::Walk(args) => walk::run(&args),
         Command::Bench(args) => bench::run(&args),
         Command::Sweep(args) => match sweep::run(&args) {

@@ -123,10 +123,8 @@ pub(crate) struct WalkArgs {
     pub(crate) report: Option<PathBuf>,
 }
 
+/// `klaw walk --mode dynamic`: the engine's simulated walk, written out.
 pub(crate) fn run(args: &WalkArgs) -> Result<()> {
-    if args.mode == "kinematic" {
-        return crate::kinematic::run(args);
-    }
     if args.prototype.is_some() {
         let reason = "applies to --mode kinematic only (the dynamic mode walks no prototype)";
         return Err(InputError::bad_value("prototype", reason).into());
