@@ -177,7 +177,11 @@ fn lengths(f: &Frames, p: &GeneralizeParameters) -> Result<[f64; 6], GeneralizeE
 /// the lowest value + `c`, linear between the frames.
 fn contacts(time: &[f64], y: &[f64], c: f64, down: bool) -> Vec<f64> {
     let low = y.iter().copied().fold(f64::INFINITY, f64::min);
-    let level = low + c;
+    crossings(time, y, low + c, down)
+}
+
+/// The times (s) where `y` falls (`down`) or rises through `level`, linear between the frames.
+fn crossings(time: &[f64], y: &[f64], level: f64, down: bool) -> Vec<f64> {
     (1..y.len())
         .filter(|&i| {
             if down {
@@ -193,12 +197,35 @@ fn contacts(time: &[f64], y: &[f64], c: f64, down: bool) -> Vec<f64> {
         .collect()
 }
 
+/// The toe-offs (s) of a toe tip at (`x`, `y`): where its forward speed between the frames (at
+/// their midpoints, linear between them) rises through `v`, or, if it is then still within `c`
+/// of its lowest height, where it next rises through that. A toe tip pivots on the floor until
+/// it leaves it; one that rises in place still pivots (docs/generalize.md, "toe-off").
+fn toe_offs(time: &[f64], x: &[f64], y: &[f64], c: f64, v: f64) -> Vec<f64> {
+    let mid: Vec<f64> = (1..time.len())
+        .map(|i| 0.5 * (time[i - 1] + time[i]))
+        .collect();
+    let speed: Vec<f64> = (1..time.len())
+        .map(|i| (x[i] - x[i - 1]) / (time[i] - time[i - 1]))
+        .collect();
+    let low = y.iter().copied().fold(f64::INFINITY, f64::min);
+    let rises = crossings(time, y, low + c, false);
+    crossings(&mid, &speed, v, false)
+        .into_iter()
+        .filter_map(|t| match interpolate(time, y, t) > low + c {
+            true => Some(t),
+            false => rises.iter().copied().find(|&r| r >= t),
+        })
+        .collect()
+}
+
 /// The first step: (stance side A, t0 = A's heel strike, B's toe-off, t1 = B's heel strike,
 /// A's toe-off).
-fn first_step(f: &Frames, c: f64) -> Result<(usize, [f64; 4]), GeneralizeError> {
+fn first_step(f: &Frames, c: f64, v: f64) -> Result<(usize, [f64; 4]), GeneralizeError> {
     let ys = |side: usize, m: usize| f.at[side][m].iter().map(|p| p[1]).collect::<Vec<f64>>();
-    let events = |m: usize, down: bool| [0, 1].map(|s| contacts(&f.time, &ys(s, m), c, down));
-    let (hs, to) = (events(HEEL, true), events(TOE, false));
+    let xs = |side: usize, m: usize| f.at[side][m].iter().map(|p| p[0]).collect::<Vec<f64>>();
+    let hs = [0, 1].map(|s| contacts(&f.time, &ys(s, HEEL), c, true));
+    let to = [0, 1].map(|s| toe_offs(&f.time, &xs(s, TOE), &ys(s, TOE), c, v));
     let after = |v: &[f64], t: f64| v.iter().copied().find(|&x| x > t);
     let mut best: Option<(usize, [f64; 4])> = None;
     for a in 0..2 {
@@ -332,16 +359,22 @@ impl Step<'_> {
 }
 
 /// The flat pitch and toes of each foot: their medians over the frames with heel, ball and toe
-/// on the floor (their contact levels), 0 where there are none.
+/// on the floor (their contact levels); where there are none, at the frame where the three are
+/// together least above their contact levels.
 fn flat_offsets(f: &Frames, c: f64) -> [[f64; 2]; 2] {
     [0, 1].map(|side| {
         let y = |m: usize| f.at[side][m].iter().map(|q| q[1]).collect::<Vec<f64>>();
         let lowest = |v: &[f64]| v.iter().copied().fold(f64::INFINITY, f64::min);
         let (h, b, t) = (y(HEEL), y(BALL), y(TOE));
         let (lh, lb, lt) = (lowest(&h) + c, lowest(&b) + c, lowest(&t) + c);
-        let on: Vec<usize> = (0..f.time.len())
+        let mut on: Vec<usize> = (0..f.time.len())
             .filter(|&i| h[i] <= lh && b[i] <= lb && t[i] <= lt)
             .collect();
+        if on.is_empty() {
+            // a foot that never rests on all three: the frame it comes closest
+            let above = |i: usize| h[i] - lh + b[i] - lb + t[i] - lt;
+            on.extend((0..f.time.len()).min_by(|&i, &j| above(i).total_cmp(&above(j))));
+        }
         let angle = |p: usize, q: usize| {
             let mut v: Vec<f64> = on
                 .iter()
@@ -375,7 +408,7 @@ pub fn from_csv(text: &str, p: &GeneralizeParameters) -> Result<WalkData, Genera
     let toeless = bt <= c;
     let bt = if toeless { 0.0 } else { bt };
     let body = BodyCondition::from_triangle(thigh, shin, [ah, ab, hb, bt], 0.0)?;
-    let (a, events) = first_step(&f, c)?;
+    let (a, events) = first_step(&f, c, p.lift_speed)?;
     let [t0, _, t1, _] = events;
     let frames = f.time.iter().filter(|&&t| t >= t0 && t <= t1).count();
     if frames < p.min_frames_per_step {
