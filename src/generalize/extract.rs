@@ -103,6 +103,8 @@ pub(crate) struct Condition {
     pub(crate) before: f64,
     pub(crate) pelvis: Pelvis,
     pub(crate) knee_at_strike: f64,
+    /// A foot that lands flat lands flat at every step length: μ2 = 0.
+    pub(crate) lands_flat: bool,
     pub(crate) alpha: [f64; 4],
     pub(crate) phases: Phases,
 }
@@ -117,7 +119,7 @@ pub(crate) fn assemble(c: Condition, s: Sequences) -> Result<WalkData, Generaliz
     let mut character = Character {
         step_length: sl / ll,
         knee_at_strike: c.knee_at_strike,
-        foot_at_strike: -last(&s.f3.v),
+        foot_at_strike: if c.lands_flat { 0.0 } else { -last(&s.f3.v) },
         foot_at_toe_off: last(&s.f2.1),
         meta_at_toe_off: last(&s.meta.1),
         alpha: c.alpha,
@@ -292,6 +294,7 @@ pub fn from_walk(
             step_width: attrs.step_width,
         },
         knee_at_strike: knee_flexion(&leg(&pose(1.0)?, step.side.other())),
+        lands_flat: false,
         alpha: params.alphas(),
         phases,
     };
