@@ -57,6 +57,24 @@ fn falls(t: &[f64], y: &[f64], level: f64) -> Vec<f64> {
         .collect()
 }
 
+/// A column of the clip by name.
+fn column(name: &str) -> Vec<f64> {
+    let (h, rows) = frames();
+    let j = h.iter().position(|c| c == name).unwrap();
+    rows.iter().map(|r| r[j]).collect()
+}
+
+/// The clip's heel strikes of the right and the left foot (s): where each heel comes down to
+/// 1 mm above its lowest, computed here from the columns.
+fn strikes() -> [Vec<f64>; 2] {
+    let t = column("time_s");
+    ["r", "l"].map(|side| {
+        let y = column(&format!("heel_{side}_y_m"));
+        let low = y.iter().copied().fold(f64::INFINITY, f64::min);
+        falls(&t, &y, low + 1e-3)
+    })
+}
+
 /// The clip reads: its step is half its stride, the heel strikes are where each heel comes
 /// down to 1 mm above its lowest (computed here from the columns), and the toe-off of the hind
 /// foot comes after the stance foot's heel strike (a double support), as the foot's toe tip
@@ -64,19 +82,9 @@ fn falls(t: &[f64], y: &[f64], level: f64) -> Vec<f64> {
 #[test]
 fn the_clip_reads_as_a_step_with_its_own_events() {
     let w = prototype();
-    let (h, rows) = frames();
-    let col = |name: &str| {
-        let j = h.iter().position(|c| c == name).unwrap();
-        rows.iter().map(|r| r[j]).collect::<Vec<f64>>()
-    };
-    assert_eq!(h, columns());
-    let t = col("time_s");
-    let strikes = |side: &str| {
-        let y = col(&format!("heel_{side}_y_m"));
-        let low = y.iter().copied().fold(f64::INFINITY, f64::min);
-        falls(&t, &y, low + 1e-3)
-    };
-    let (r, l) = (strikes("r"), strikes("l"));
+    assert_eq!(frames().0, columns());
+    let t = column("time_s");
+    let [r, l] = strikes();
     let period = l[0] - r[0];
     assert!(
         w.source
@@ -93,7 +101,7 @@ fn the_clip_reads_as_a_step_with_its_own_events() {
     let tom = w.phases.tom;
     assert!(tom > 0.0 && tom < 0.1, "TOM {tom}");
     // the hind (left) toe tip stands still until its toe-off and moves on after it
-    let x = col("toe_l_x_m");
+    let x = column("toe_l_x_m");
     let at = |s: f64| klaw::generalize::sequence::interpolate(&t, &x, s);
     let off = r[0] + tom * period;
     assert!((at(off) - at(r[0])).abs() < 2e-3, "{}", at(off) - at(r[0]));
@@ -160,22 +168,8 @@ fn at_its_own_step_the_knee_keeps_the_clips_curve() {
     let col = |name: &str| h.iter().position(|c| c == name).unwrap();
     let marker =
         |r: &[f64], m: &str| [r[col(&format!("{m}_r_x_m"))], r[col(&format!("{m}_r_y_m"))]];
-    let strike: f64 = w
-        .source
-        .split("strike at ")
-        .nth(1)
-        .and_then(|s| s.split(' ').next())
-        .unwrap()
-        .parse()
-        .unwrap();
-    let end: f64 = w
-        .source
-        .split(" s to ")
-        .nth(1)
-        .and_then(|s| s.split(' ').next())
-        .unwrap()
-        .parse()
-        .unwrap();
+    let [right, left] = strikes();
+    let (strike, end) = (right[0], left[0]);
     let period = end - strike;
     // the clip's right knee over its first stride, at the stride's phase
     let clip: Vec<(f64, f64)> = rows
