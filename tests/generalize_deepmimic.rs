@@ -157,10 +157,9 @@ fn generalized_to_klaw_bodies_it_keeps_the_walking_constraints() {
 }
 
 /// At ρ = 1 on each body, the right knee's flexion over a stride follows the clip's own (the
-/// angle between the thigh and the shank of the clip's markers, computed here) to 9° RMS
-/// (measured 7.6°, 8.0° and 8.5°: through the swing to 4°, but klaw's figure straightens the
-/// knee in mid-stance and late swing where the clip keeps 12° and 3–5°; docs/generalize.md),
-/// and closer than at 1.2 × the clip's step.
+/// angle between the thigh and the shank of the clip's markers, computed here) to 5° RMS
+/// (measured 4.0°, 4.2° and 4.2°: the bodies' thigh : shank ratios and feet are not the
+/// clip's), and closer than at 1.2 × the clip's step (7.9–10.1°).
 #[test]
 fn at_its_own_step_the_knee_keeps_the_clips_curve() {
     let w = prototype();
@@ -199,7 +198,7 @@ fn at_its_own_step_the_knee_keeps_the_clips_curve() {
             "H {} ({} leg): knee RMS {one:.2}° at ρ 1, {longer:.2}° at 1.2",
             body.height, body.l1
         );
-        assert!(one < 9.0, "{one}");
+        assert!(one < 5.0, "{one}");
         assert!(longer > one, "{longer} vs {one}");
     }
 }

@@ -6,6 +6,7 @@ use crate::generalize::error::GeneralizeError;
 use crate::generalize::extract::{Condition, Sequences, assemble};
 use crate::generalize::geometry::Pelvis;
 use crate::generalize::parameters::GeneralizeParameters;
+use crate::generalize::pose::grounded;
 use crate::generalize::sequence::{Curve, Path, interpolate};
 use crate::generalize::walk_data::{Phases, WalkData};
 
@@ -490,7 +491,7 @@ fn places(s: &Step, body: &BodyCondition) -> [f64; 3] {
 }
 
 /// The sequences of eq. 4 read from `s` at its frames, x from the stance foot's N at `n_a`.
-fn sequences(s: &Step, ph: &Phases, n_a: f64) -> Sequences {
+fn sequences(s: &Step, body: &BodyCondition, ph: &Phases, n_a: f64) -> Sequences {
     let (a, b) = (s.a, 1 - s.a);
     let end = 1.0 + ph.tom;
     let sampled = |lo: f64, hi: f64, g: &dyn Fn(f64) -> f64| {
@@ -508,6 +509,21 @@ fn sequences(s: &Step, ph: &Phases, n_a: f64) -> Sequences {
         })
         .collect();
     let hip = |t: f64, k: usize| 0.5 * (s.at(0, HIP, t)[k] + s.at(1, HIP, t)[k]);
+    // H over the stance ankle: the clip's ankle height less the one its foot's pose puts it at
+    // (a foot that hovers over the floor lifts the whole clip by as much)
+    let pitch = |t: f64| match (t < ph.fgm, t < ph.heel_off) {
+        (true, _) => s.pitch(a, t).min(0.0),
+        (false, true) => 0.0,
+        _ => s.pitch(a, t).max(0.0),
+    };
+    let meta = |t: f64| {
+        if t >= ph.mom {
+            s.meta(a, t).max(0.0)
+        } else {
+            0.0
+        }
+    };
+    let hover = |t: f64| s.at(a, ANKLE, t)[1] - grounded(body, 0.0, pitch(t), meta(t)).0[1];
     let (th, hx) = sampled(0.0, 1.0, &|t| hip(t, 0) - n_a);
     let (ts, f3) = sampled(ph.tom, 1.0, &|t| s.pitch(b, t));
     Sequences {
@@ -526,7 +542,7 @@ fn sequences(s: &Step, ph: &Phases, n_a: f64) -> Sequences {
         hip: Path {
             t: th.clone(),
             x: hx,
-            y: sampled(0.0, 1.0, &|t| hip(t, 1)).1,
+            y: sampled(0.0, 1.0, &|t| hip(t, 1) - hover(t)).1,
         },
         trunk: Curve {
             t: vec![0.0, 1.0],
@@ -544,7 +560,7 @@ fn step_data(
     let [t0, _, t1, _] = s.events;
     let (phases, flat_landing) = phase_moments(s, p)?;
     let [n_a, n_b, n_before] = places(s, body);
-    let seq = sequences(s, &phases, n_a);
+    let seq = sequences(s, body, &phases, n_a);
     let knee = {
         let b = 1 - s.a;
         let (h, k, an) = (s.at(b, HIP, 1.0), s.at(b, KNEE, 1.0), s.at(b, ANKLE, 1.0));
