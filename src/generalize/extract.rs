@@ -224,8 +224,8 @@ fn sample(
 
 /// The walk data of step `k` of `walk` (a steady step: 1 ≤ k, and step k + 1 simulated, through
 /// whose double support the stance foot rolls to its toe-off), made consistent with its own
-/// walk condition ([`assemble`]; a steady walk's ends move by well under a millimetre). The α
-/// slopes are `params`'.
+/// walk condition (its ends on eq. 11's hip and Lemma 1's ankles; a steady walk's ends move by
+/// well under a millimetre). The α slopes are `params`'.
 pub fn from_walk(
     walk: &Walk,
     k: usize,
