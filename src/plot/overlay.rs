@@ -13,7 +13,8 @@ use crate::analysis::cycle::{GaitCycle, Panel};
 use crate::error::Result;
 use crate::figure::skeleton::Side;
 use crate::plot::{
-    self, Draw, DrawError, Drawn, FONT, LEFT_COLOR, Png, RIGHT_COLOR, TITLE_SIZE, msg, titled,
+    self, Draw, DrawError, Drawn, FONT, FigureFormat, LEFT_COLOR, Png, RIGHT_COLOR, TITLE_SIZE,
+    msg, titled,
 };
 
 /// Figure size in pixels (width, height).
@@ -35,11 +36,18 @@ pub fn write_overlay(
     path: &Path,
 ) -> Result<()> {
     let format = plot::figure_format(path)?;
-    let mut figure = Overlay {
-        walks: [first, second],
-        title,
-        text: plot::text_available(),
-    };
+    render([first, second], title, path, format, plot::text_available())
+}
+
+/// [`write_overlay`] in `format`, with text or without.
+fn render(
+    walks: [(&str, &GaitCycle); 2],
+    title: &str,
+    path: &Path,
+    format: FigureFormat,
+    text: bool,
+) -> Result<()> {
+    let mut figure = Overlay { walks, title, text };
     plot::write_figure(
         &mut figure,
         path,
@@ -102,8 +110,11 @@ impl Overlay<'_> {
         let lo = values.clone().fold(f64::INFINITY, f64::min);
         let hi = values.fold(f64::NEG_INFINITY, f64::max);
         let (lo, hi) = plot::padded((lo, hi), 0.08, 5.0);
-        let mut chart = plot::builder(area, self.text)
-            .caption(if self.text { name } else { "" }, (FONT, 18))
+        let mut builder = plot::builder(area, self.text);
+        if self.text {
+            builder.caption(name, (FONT, 18));
+        }
+        let mut chart = builder
             .build_cartesian_2d(0.0..100.0, lo..hi)
             .map_err(msg)?;
         if self.text {
@@ -168,8 +179,8 @@ mod tests {
         }
     }
 
-    /// The right leg's curve of a panel at 0…100 %; a PNG is written, a bad extension refused
-    /// with nothing written.
+    /// The right leg's curve of a panel at 0…100 %; a PNG and an SVG are written, a bad
+    /// extension refused with nothing written.
     #[test]
     fn overlays_are_written_and_a_bad_extension_refused() {
         let c = cycle(1.0);
@@ -179,9 +190,12 @@ mod tests {
         assert!((p[50].1 - (1.0 + 3f64.sin())).abs() < 1e-12);
         assert!(points(&c, Panel::PelvisList).is_empty());
         let dir = tempfile::tempdir().unwrap();
-        let png = dir.path().join("o.png");
-        write_overlay(("a", &c), ("b", &cycle(0.0)), "t", &png).unwrap();
-        assert!(std::fs::metadata(&png).unwrap().len() > 1000);
+        // without text: this test binary registers no font (plot::walk's tests rely on it)
+        for (name, format) in [("o.png", FigureFormat::Png), ("o.svg", FigureFormat::Svg)] {
+            let p = dir.path().join(name);
+            render([("a", &c), ("b", &cycle(0.0))], "t", &p, format, false).unwrap();
+            assert!(std::fs::metadata(&p).unwrap().len() > 1000);
+        }
         let bad = dir.path().join("o.jpg");
         assert!(write_overlay(("a", &c), ("b", &c), "t", &bad).is_err());
         assert!(!bad.exists());
