@@ -1,6 +1,6 @@
 //! The kinematic walk mode (Ko & Badler 1992, the bundled prototype) side by side with the
-//! dynamic mode (issue 17): over step lengths 0.6–1.4 × the prototype's (in leg lengths) and
-//! heights 1.5–2.0 m (Winter's table), the RMS difference of the hip, knee and ankle flexion
+//! dynamic mode (issue 17): over step lengths 0.6–1.4 × the prototype's (in leg lengths),
+//! heights 1.5–2.0 m and the body tables (Winter's, de Leva's male and female), the RMS difference of the hip, knee and ankle flexion
 //! between the two modes (steps 2–9 of 10, 100 frames/s, both legs), how many of
 //! `models/gait-norms.toml`'s ranges each mode's averaged gait cycle meets, and the most the
 //! kinematic hip comes down; then the speed, alternating the two modes in one run, medians: the
@@ -8,7 +8,9 @@
 //! and in process without output (the walk's motion plus every frame's figure and clinical
 //! angles), with the share of generalizing the step.
 //!
-//! Run: cargo build --release && cargo run --release --example compare_modes
+//! Run: cargo build --release && cargo run --release --example compare_modes [OVERLAY.png]
+//! With a path it also draws the right leg's hip, knee and ankle cycles of both modes at one
+//! point of the table (de Leva female, H 1.65 m, 1.2 × the prototype's step) over each other.
 //! The cadence of every walk is the prototype's scaled for dynamic similarity,
 //! sf = 108.0 · √(ll* / ll) steps/min (the same Froude number at the same step length in leg
 //! lengths).
@@ -19,6 +21,7 @@ use klaw::analysis::cycle::GaitCycle;
 use klaw::analysis::norms::{NormTable, WalkSpeed, check};
 use klaw::figure::clinical::{Clinical, clinical};
 use klaw::generalize::{GeneralizeParameters, KinematicWalk, default_prototype};
+use klaw::plot::overlay::write_overlay;
 use klaw::{Attributes, Body, Gait, GaitRequest, Simulation};
 
 const STEPS: usize = 10;
@@ -117,59 +120,96 @@ fn main() -> klaw::Result<()> {
     let attrs = klaw::AttributeTable::builtin().defaults();
     let norms = NormTable::builtin();
     println!(
-        "| H (m) | sl / sl* | sl (m) | v (m/s) | RMS hip / knee / ankle (°) | norms met, dynamic | norms met, kinematic | hip lowered (mm) |"
+        "| table | H (m) | sl / sl* | sl (m) | v (m/s) | RMS hip / knee / ankle (°) | norms met, dynamic | norms met, kinematic | hip lowered (mm) |"
     );
-    println!("|---|---|---|---|---|---|---|---|");
-    for h in [1.5, 1.65, 1.8, 2.0] {
-        let body = Body::standard(h, 23.0 * h * h)?;
-        for k in [0.6, 0.8, 1.0, 1.2, 1.4] {
-            let gait = gait_for(&body, k);
-            let speed = WalkSpeed {
-                velocity: gait.velocity,
-                leg_length: body.l1,
-            };
-            let dyn_ = dynamic(body, gait);
-            let kin = kinematic(body, &attrs, gait);
-            let cells = match (&dyn_, &kin) {
-                (Ok((a, s)), Ok((b, w))) => {
-                    let [x, y, z] = rms(a, b);
-                    let (dm, dn) = norms_met(a, s, &norms, speed);
-                    let kt: Vec<f64> = (0..STEPS).map(|i| i as f64 * w.step.duration).collect();
-                    let (km, kn) = norms_met(b, &kt, &norms, speed);
-                    format!(
-                        "{x:.2} / {y:.2} / {z:.2} | {dm}/{dn} | {km}/{kn} | {:.1}",
-                        1e3 * w.hip_drop
-                    )
-                }
-                (Err(e), Ok((b, w))) => {
-                    let kt: Vec<f64> = (0..STEPS).map(|i| i as f64 * w.step.duration).collect();
-                    let (km, kn) = norms_met(b, &kt, &norms, speed);
-                    format!(
-                        "— | dynamic fails: {} | {km}/{kn} | {:.1}",
-                        short(&e.to_string()),
-                        1e3 * w.hip_drop
-                    )
-                }
-                (Ok((a, s)), Err(e)) => {
-                    let (dm, dn) = norms_met(a, s, &norms, speed);
-                    format!(
-                        "— | {dm}/{dn} | kinematic refuses: {} | —",
-                        short(&e.to_string())
-                    )
-                }
-                (Err(e), Err(f)) => format!(
-                    "— | {} | {} | —",
-                    short(&e.to_string()),
-                    short(&f.to_string())
-                ),
-            };
-            println!(
-                "| {h} | {k} | {:.3} | {:.2} | {cells} |",
-                gait.step_length, gait.velocity
-            );
+    println!("|---|---|---|---|---|---|---|---|---|");
+    for table in ["winter", "deleva-male", "deleva-female"] {
+        for h in [1.5, 1.65, 1.8, 2.0] {
+            let body = Body::from_table(table, h, 23.0 * h * h)?;
+            for k in [0.6, 0.8, 1.0, 1.2, 1.4] {
+                let gait = gait_for(&body, k);
+                let cells = row(body, &attrs, gait, &norms);
+                println!(
+                    "| {table} | {h} | {k} | {:.3} | {:.2} | {cells} |",
+                    gait.step_length, gait.velocity
+                );
+            }
         }
     }
+    if let Some(path) = std::env::args().nth(1) {
+        overlay(&attrs, std::path::Path::new(&path))?;
+    }
     speed(&attrs)
+}
+
+/// The cells of one point of the table: both modes walked, compared and checked.
+fn row(body: Body, attrs: &Attributes, gait: Gait, norms: &NormTable) -> String {
+    let speed = WalkSpeed {
+        velocity: gait.velocity,
+        leg_length: body.l1,
+    };
+    let kin_norms = |b: &[Clinical], w: &KinematicWalk| {
+        let kt: Vec<f64> = (0..STEPS).map(|i| i as f64 * w.step.duration).collect();
+        norms_met(b, &kt, norms, speed)
+    };
+    match (dynamic(body, gait), kinematic(body, attrs, gait)) {
+        (Ok((a, s)), Ok((b, w))) => {
+            let [x, y, z] = rms(&a, &b);
+            let (dm, dn) = norms_met(&a, &s, norms, speed);
+            let (km, kn) = kin_norms(&b, &w);
+            format!(
+                "{x:.2} / {y:.2} / {z:.2} | {dm}/{dn} | {km}/{kn} | {:.1}",
+                1e3 * w.hip_drop
+            )
+        }
+        (Err(e), Ok((b, w))) => {
+            let (km, kn) = kin_norms(&b, &w);
+            format!(
+                "— | dynamic fails: {} | {km}/{kn} | {:.1}",
+                short(&e.to_string()),
+                1e3 * w.hip_drop
+            )
+        }
+        (Ok((a, s)), Err(e)) => {
+            let (dm, dn) = norms_met(&a, &s, norms, speed);
+            format!(
+                "— | {dm}/{dn} | kinematic refuses: {} | —",
+                short(&e.to_string())
+            )
+        }
+        (Err(e), Err(f)) => format!(
+            "— | {} | {} | —",
+            short(&e.to_string()),
+            short(&f.to_string())
+        ),
+    }
+}
+
+/// The right leg's averaged cycles of both modes at one point (de Leva female, H 1.65 m,
+/// 1.2 × the prototype's step) drawn over each other to `path`.
+fn overlay(attrs: &Attributes, path: &std::path::Path) -> klaw::Result<()> {
+    let (h, k) = (1.65, 1.2);
+    let body = Body::from_table("deleva-female", h, 23.0 * h * h)?;
+    let gait = gait_for(&body, k);
+    let (a, s) = dynamic(body, gait)?;
+    let (b, w) = kinematic(body, attrs, gait)?;
+    let kt: Vec<f64> = (0..STEPS).map(|i| i as f64 * w.step.duration).collect();
+    let cycle = |frames: &[Clinical], strikes_at: &[f64]| {
+        let (r, l) = strikes(strikes_at);
+        GaitCycle::from_clinical(frames, &r, &l, 1).map_err(klaw::Error::from)
+    };
+    let title = format!(
+        "de Leva female, H {h} m, sl {:.3} m ({k} × the prototype's), sf {:.1} steps/min: right leg, the steady cycles averaged",
+        gait.step_length, gait.step_frequency
+    );
+    write_overlay(
+        ("dynamic mode", &cycle(&a, &s)?),
+        ("kinematic mode", &cycle(&b, &kt)?),
+        &title,
+        path,
+    )?;
+    println!("overlay: {}", path.display());
+    Ok(())
 }
 
 fn short(s: &str) -> String {

@@ -4,6 +4,9 @@
 //! figure is continuous from step to step, and a step too long for the body is the typed error
 //! naming the limit.
 mod common;
+mod generalize_support;
+
+use generalize_support::assert_walks;
 
 use klaw::figure::clinical::clinical;
 use klaw::generalize::extract::from_walk;
@@ -46,10 +49,6 @@ fn gait(body: &Body, step_length: f64) -> Gait {
     }
     .complete(body, &common::default_attributes())
     .unwrap()
-}
-
-fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
 /// At ρ = 1 on the prototype's own body the kinematic walk reproduces klaw's hip, knee and
@@ -105,54 +104,6 @@ fn the_prototype_reposed_reproduces_klaws_joint_angles() {
             .find(|o| o.step == e.step && o.event == e.event)
             .unwrap_or_else(|| panic!("{e:?} missing"));
         assert!((m.time_s - e.time_s).abs() < 2e-3, "{e:?} vs {m:?}");
-    }
-}
-
-/// The constraints of a walking figure, frame by frame: a foot point on the floor stays where it
-/// touched (≤ 1 mm over its contact), no hip–ankle distance exceeds thigh + shank, no point is
-/// under the floor, and the figure is continuous through every heel strike.
-fn assert_walks(kin: &KinematicWalk, body: &Body) {
-    let fps = 500.0;
-    let frames: Vec<Landmarks> = kin.frames(fps).collect::<Result<_, _>>().unwrap();
-    // contact: (first x, z) of each foot point while it stays on the floor
-    let mut contact: [Option<[f64; 2]>; 6] = [None; 6];
-    let mut slide: f64 = 0.0;
-    for lm in &frames {
-        for (i, leg) in [lm.right, lm.left].iter().enumerate() {
-            assert!(
-                distance(leg.hip, leg.ankle) <= body.l1 + 1e-9,
-                "stretched at {}",
-                lm.time
-            );
-            for (j, p) in [leg.heel, leg.mtp, leg.toe].iter().enumerate() {
-                assert!(p[1] >= -1e-6, "under the floor at {}: {p:?}", lm.time);
-                let c = &mut contact[3 * i + j];
-                if p[1] <= 1e-7 {
-                    let at = *c.get_or_insert([p[0], p[2]]);
-                    slide = slide.max((p[0] - at[0]).hypot(p[2] - at[1]));
-                } else {
-                    *c = None;
-                }
-            }
-        }
-    }
-    assert!(slide <= 1e-3, "a foot slides {slide} m");
-    for k in 1..kin.steps {
-        let t = k as f64 * kin.step.duration;
-        let (a, b) = (
-            kin.figure_at(t - 1e-9).unwrap(),
-            kin.figure_at(t + 1e-9).unwrap(),
-        );
-        for (x, y) in [(a.right, b.right), (a.left, b.left)] {
-            for (p, q) in [
-                (x.hip, y.hip),
-                (x.knee, y.knee),
-                (x.ankle, y.ankle),
-                (x.toe, y.toe),
-            ] {
-                assert!(distance(p, q) < 1e-6, "jump at step {k}: {p:?} {q:?}");
-            }
-        }
     }
 }
 

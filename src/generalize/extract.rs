@@ -3,7 +3,7 @@
 //! gait events, as walk data made consistent with its own walk condition.
 use crate::analysis::events::step_events;
 use crate::engine::walker::Walk;
-use crate::figure::{LegPoints, landmarks};
+use crate::figure::{Landmarks, LegPoints, landmarks};
 use crate::generalize::condition::BodyCondition;
 use crate::generalize::error::GeneralizeError;
 use crate::generalize::geometry::{Character, Pelvis, hip_at_strike};
@@ -80,12 +80,152 @@ pub(crate) fn adaptive<const K: usize>(
     Ok((out_t, out_v))
 }
 
+/// The sequences of one step as read from a walk, before they are made walk data: F1, F2 and M
+/// as (times, values) of the stance foot's timeline, F3 and A of the swing foot's, H and the
+/// trunk of the step.
+pub(crate) struct Sequences {
+    pub(crate) f1: (Vec<f64>, Vec<f64>),
+    pub(crate) f2: (Vec<f64>, Vec<f64>),
+    pub(crate) meta: (Vec<f64>, Vec<f64>),
+    pub(crate) f3: Curve,
+    pub(crate) ankle: Path,
+    pub(crate) hip: Path,
+    pub(crate) trunk: Curve,
+}
+
+/// What a read step is besides its sequences: where it came from, the body, its step length
+/// and the one before it (m), the pelvis, the swing knee's flexion at heel strike (rad), the α
+/// slopes and the phase moments.
+pub(crate) struct Condition {
+    pub(crate) source: String,
+    pub(crate) body: BodyCondition,
+    pub(crate) step_length: f64,
+    pub(crate) before: f64,
+    pub(crate) pelvis: Pelvis,
+    pub(crate) knee_at_strike: f64,
+    /// A foot that lands flat lands flat at every step length: μ2 = 0.
+    pub(crate) lands_flat: bool,
+    pub(crate) alpha: [f64; 4],
+    pub(crate) phases: Phases,
+}
+
+/// The walk data of a read step: its character from the sequences' ends (μ2 = −F3 at heel
+/// strike, μ3 = F2 and μ4 = M at toe-off, the hip's lead over the step and its height over
+/// eq. 11's), checked and made consistent with its own walk condition ([`generalize`] onto it:
+/// its ends on eq. 11's hip and Lemma 1's ankles).
+pub(crate) fn assemble(c: Condition, s: Sequences) -> Result<WalkData, GeneralizeError> {
+    let (sl, ll) = (c.step_length, c.body.leg_length());
+    let last = |v: &[f64]| v[v.len() - 1];
+    let mut character = Character {
+        step_length: sl / ll,
+        knee_at_strike: c.knee_at_strike,
+        foot_at_strike: if c.lands_flat { 0.0 } else { -last(&s.f3.v) },
+        foot_at_toe_off: last(&s.f2.1),
+        meta_at_toe_off: last(&s.meta.1),
+        alpha: c.alpha,
+        hip_lead: s.hip.last()[0] / sl,
+        hip_offset: 0.0,
+    };
+    let strike = hip_at_strike(&c.body, &character, &c.pelvis, sl)?;
+    character.hip_offset = (s.hip.last()[1] - strike[1]) / ll;
+    let raw = WalkData {
+        source: c.source,
+        body: c.body,
+        step_length: sl,
+        step_length_before: c.before,
+        pelvis: c.pelvis,
+        character,
+        phases: c.phases,
+        hip: s.hip,
+        f1: Piece::new(s.f1.0, &s.f1.1, false, AMPLITUDE_EPSILON),
+        f2: Piece::new(s.f2.0, &s.f2.1, true, AMPLITUDE_EPSILON),
+        f3: s.f3,
+        meta: Piece::new(s.meta.0, &s.meta.1, true, AMPLITUDE_EPSILON),
+        ankle: s.ankle,
+        trunk: s.trunk,
+    };
+    raw.check()?;
+    generalize(&raw, &Target::of(&raw))
+}
+
+/// A leg of a figure.
+fn leg(lm: &Landmarks, s: Side) -> LegPoints {
+    match s {
+        Side::Right => lm.right,
+        Side::Left => lm.left,
+    }
+}
+
+/// The sequences of a step whose figure at the stance foot's normalized time is `pose`, standing
+/// on `side` with its flat ankle at x0, sampled by [`adaptive`] (F2 piecewise, so that its
+/// corners at heel-off and at MOM are samples); the trunk less the pelvis tilt `tilt`.
+fn sample(
+    pose: &dyn Fn(f64) -> Result<Landmarks, GeneralizeError>,
+    side: Side,
+    x0: f64,
+    tilt: f64,
+    ph: &Phases,
+    params: &GeneralizeParameters,
+) -> Result<Sequences, GeneralizeError> {
+    let (ang, len) = (params.sample_angle, params.sample_length);
+    let min = params.samples_per_step;
+    let end = 1.0 + ph.tom;
+    let stance = |t: f64| pose(t).map(|lm| leg(&lm, side));
+    let swing = |t: f64| pose(t).map(|lm| leg(&lm, side.other()));
+    let first = |(t, v): Sampled<1>| (t, v.iter().map(|r| r[0]).collect::<Vec<f64>>());
+    let f1 = first(adaptive(0.0, ph.fgm, min, [ang], &|t| {
+        stance(t).map(|l| [foot_pitch(&l).min(0.0)])
+    })?);
+    let mut f2 = (Vec::new(), Vec::new());
+    for (a, b) in [(ph.fgm, ph.heel_off), (ph.heel_off, ph.mom), (ph.mom, end)] {
+        if b > a || (f2.0.is_empty() && b == end) {
+            let (t, v) = first(adaptive(a, b, min, [ang], &|t| {
+                stance(t).map(|l| [foot_pitch(&l)])
+            })?);
+            let skip = usize::from(!f2.0.is_empty());
+            f2.0.extend_from_slice(&t[skip..]);
+            f2.1.extend_from_slice(&v[skip..]);
+        }
+    }
+    let meta = first(adaptive(ph.mom, end, min, [ang], &|t| {
+        stance(t).map(|l| [toe_angle(&l).max(0.0)])
+    })?);
+    let (ts, sw) = adaptive(ph.tom, 1.0, min, [ang, len, len], &|t| {
+        swing(t).map(|l| [foot_pitch(&l), l.ankle[0] - x0, l.ankle[1]])
+    })?;
+    let (th, up) = adaptive(0.0, 1.0, min, [len, len, ang], &|t| {
+        pose(t).map(|f| [f.pelvis[0] - x0, f.pelvis[1], f.pelvis_tilt - tilt])
+    })?;
+    let column = |v: &[[f64; 3]], j: usize| v.iter().map(|r| r[j]).collect::<Vec<f64>>();
+    Ok(Sequences {
+        f1,
+        f2,
+        meta,
+        f3: Curve {
+            t: ts.clone(),
+            v: column(&sw, 0),
+        },
+        ankle: Path {
+            t: ts,
+            x: column(&sw, 1),
+            y: column(&sw, 2),
+        },
+        hip: Path {
+            t: th.clone(),
+            x: column(&up, 0),
+            y: column(&up, 1),
+        },
+        trunk: Curve {
+            t: th,
+            v: column(&up, 2),
+        },
+    })
+}
+
 /// The walk data of step `k` of `walk` (a steady step: 1 ≤ k, and step k + 1 simulated, through
 /// whose double support the stance foot rolls to its toe-off), made consistent with its own
-/// walk condition ([`generalize`] onto it: its ends on eq. 11's hip and Lemma 1's ankles; a
-/// steady walk moves them by well under a millimetre). The α slopes are `params`'.
-/// (Longer than 80 lines: it reads the step's sequences in the order of eq. 4 from one set of
-/// closures over the walk; split, each part would take them all as arguments.)
+/// walk condition (its ends on eq. 11's hip and Lemma 1's ankles; a steady walk's ends move by
+/// well under a millimetre). The α slopes are `params`'.
 pub fn from_walk(
     walk: &Walk,
     k: usize,
@@ -127,13 +267,6 @@ pub fn from_walk(
         let s = if t <= 1.0 { step } else { next };
         landmarks(s, world(t), attrs).map_err(|e| GeneralizeError::invalid("walk", e.to_string()))
     };
-    let side = step.side;
-    let leg = |lm: &crate::figure::Landmarks, s: Side| match s {
-        Side::Right => lm.right,
-        Side::Left => lm.left,
-    };
-    let x0 = step.x_ankle;
-
     let events = step_events(&walk.steps[k..k + 2], walk.duration());
     let at = |name: &str| events.iter().find(|e| e.event == name).map(|e| e.time_s);
     let fgm = normalized(at("FGM").unwrap_or(step.t_start + step.stance_leg.t_fgm));
@@ -145,100 +278,25 @@ pub fn from_walk(
         mom,
         tom,
     };
-
-    let (ang, len) = (params.sample_angle, params.sample_length);
-    let min = params.samples_per_step;
-    let stance = |t: f64| pose(t).map(|lm| leg(&lm, side));
-    let swing = |t: f64| pose(t).map(|lm| leg(&lm, side.other()));
-    let (t1, f1) = adaptive(0.0, fgm, min, [ang], &|t| {
-        stance(t).map(|l| [foot_pitch(&l).min(0.0)])
-    })?;
-    // F2 sampled piecewise, so that its corners at heel-off and at MOM are samples
-    let mut t2 = Vec::new();
-    let mut f2 = Vec::new();
-    for (a, b) in [(fgm, heel_off), (heel_off, mom), (mom, 1.0 + tom)] {
-        if b > a || (t2.is_empty() && b == 1.0 + tom) {
-            let (t, v) = adaptive(a, b, min, [ang], &|t| stance(t).map(|l| [foot_pitch(&l)]))?;
-            let skip = usize::from(!t2.is_empty());
-            t2.extend_from_slice(&t[skip..]);
-            f2.extend_from_slice(&v[skip..]);
-        }
-    }
-    let (tm, meta) = adaptive(mom, 1.0 + tom, min, [ang], &|t| {
-        stance(t).map(|l| [toe_angle(&l).max(0.0)])
-    })?;
-    let (ts, sw) = adaptive(tom, 1.0, min, [ang, len, len], &|t| {
-        swing(t).map(|l| [foot_pitch(&l), l.ankle[0] - x0, l.ankle[1]])
-    })?;
-    let (th, up) = adaptive(0.0, 1.0, min, [len, len, ang], &|t| {
-        pose(t).map(|f| {
-            [
-                f.pelvis[0] - x0,
-                f.pelvis[1],
-                f.pelvis_tilt - attrs.pelvis_tilt,
-            ]
-        })
-    })?;
-    let column = |v: &[[f64; 3]], j: usize| v.iter().map(|r| r[j]).collect::<Vec<f64>>();
-    let first = |v: &[[f64; 1]]| v.iter().map(|r| r[0]).collect::<Vec<f64>>();
-    let (f1, f2, meta, f3) = (first(&f1), first(&f2), first(&meta), column(&sw, 0));
-    let hip = Path {
-        t: th.clone(),
-        x: column(&up, 0),
-        y: column(&up, 1),
-    };
-    let trunk = Curve {
-        t: th,
-        v: column(&up, 2),
-    };
-    let (ax, ay) = (column(&sw, 1), column(&sw, 2));
-
-    let body = BodyCondition::of(&walk.body);
+    let x0 = step.x_ankle;
+    let sequences = sample(&pose, step.side, x0, attrs.pelvis_tilt, &phases, params)?;
     let sl = next.x_ankle - x0;
-    let before = x0 - prev.x_ankle;
-    let landing = swing(1.0)?;
-    let ll = body.leg_length();
-    let pelvis = Pelvis {
-        rotation: attrs.pelvic_rotation,
-        step_width: attrs.step_width,
-    };
-    let mut character = Character {
-        step_length: sl / ll,
-        knee_at_strike: knee_flexion(&landing),
-        foot_at_strike: -f3[f3.len() - 1],
-        foot_at_toe_off: f2[f2.len() - 1],
-        meta_at_toe_off: meta[meta.len() - 1],
-        alpha: params.alphas(),
-        hip_lead: hip.last()[0] / sl,
-        hip_offset: 0.0,
-    };
-    character.hip_offset = (hip.last()[1] - hip_at_strike(&body, &character, &pelvis, sl)?[1]) / ll;
-    let raw = WalkData {
+    let condition = Condition {
         source: format!(
             "klaw walk, step {k} of {n}: H {} m, M {} kg, sl {sl:.4} m, sf {:.2} steps/min",
             walk.body.height, walk.body.mass, step.constraints.gait.step_frequency
         ),
-        body,
+        body: BodyCondition::of(&walk.body),
         step_length: sl,
-        step_length_before: before,
-        pelvis,
-        character,
+        before: x0 - prev.x_ankle,
+        pelvis: Pelvis {
+            rotation: attrs.pelvic_rotation,
+            step_width: attrs.step_width,
+        },
+        knee_at_strike: knee_flexion(&leg(&pose(1.0)?, step.side.other())),
+        lands_flat: false,
+        alpha: params.alphas(),
         phases,
-        hip,
-        f1: Piece::new(t1, &f1, false, AMPLITUDE_EPSILON),
-        f2: Piece::new(t2, &f2, true, AMPLITUDE_EPSILON),
-        f3: Curve {
-            t: ts.clone(),
-            v: f3,
-        },
-        meta: Piece::new(tm, &meta, true, AMPLITUDE_EPSILON),
-        ankle: Path {
-            t: ts,
-            x: ax,
-            y: ay,
-        },
-        trunk,
     };
-    raw.check()?;
-    generalize(&raw, &Target::of(&raw))
+    assemble(condition, sequences)
 }

@@ -3,12 +3,12 @@
 //! condition. Every error names the column, the frame or the limit.
 use crate::generalize::condition::BodyCondition;
 use crate::generalize::error::GeneralizeError;
-use crate::generalize::extract::AMPLITUDE_EPSILON;
-use crate::generalize::geometry::{Character, Pelvis, hip_at_strike};
+use crate::generalize::extract::{Condition, Sequences, assemble};
+use crate::generalize::geometry::Pelvis;
 use crate::generalize::parameters::GeneralizeParameters;
+use crate::generalize::pose::grounded;
 use crate::generalize::sequence::{Curve, Path, interpolate};
-use crate::generalize::transform::{Target, generalize};
-use crate::generalize::walk_data::{Phases, Piece, WalkData};
+use crate::generalize::walk_data::{Phases, WalkData};
 
 /// The markers of each side, in the columns' order.
 pub const MARKERS: [&str; 6] = ["hip", "knee", "ankle", "heel", "ball", "toe"];
@@ -177,7 +177,11 @@ fn lengths(f: &Frames, p: &GeneralizeParameters) -> Result<[f64; 6], GeneralizeE
 /// the lowest value + `c`, linear between the frames.
 fn contacts(time: &[f64], y: &[f64], c: f64, down: bool) -> Vec<f64> {
     let low = y.iter().copied().fold(f64::INFINITY, f64::min);
-    let level = low + c;
+    crossings(time, y, low + c, down)
+}
+
+/// The times (s) where `y` falls (`down`) or rises through `level`, linear between the frames.
+fn crossings(time: &[f64], y: &[f64], level: f64, down: bool) -> Vec<f64> {
     (1..y.len())
         .filter(|&i| {
             if down {
@@ -193,12 +197,35 @@ fn contacts(time: &[f64], y: &[f64], c: f64, down: bool) -> Vec<f64> {
         .collect()
 }
 
+/// The toe-offs (s) of a toe tip at (`x`, `y`): where its forward speed between the frames (at
+/// their midpoints, linear between them) rises through `v`, or, if it is then still within `c`
+/// of its lowest height, where it next rises through that. A toe tip pivots on the floor until
+/// it leaves it; one that rises in place still pivots (docs/generalize.md, "toe-off").
+fn toe_offs(time: &[f64], x: &[f64], y: &[f64], c: f64, v: f64) -> Vec<f64> {
+    let mid: Vec<f64> = (1..time.len())
+        .map(|i| 0.5 * (time[i - 1] + time[i]))
+        .collect();
+    let speed: Vec<f64> = (1..time.len())
+        .map(|i| (x[i] - x[i - 1]) / (time[i] - time[i - 1]))
+        .collect();
+    let low = y.iter().copied().fold(f64::INFINITY, f64::min);
+    let rises = crossings(time, y, low + c, false);
+    crossings(&mid, &speed, v, false)
+        .into_iter()
+        .filter_map(|t| match interpolate(time, y, t) > low + c {
+            true => Some(t),
+            false => rises.iter().copied().find(|&r| r >= t),
+        })
+        .collect()
+}
+
 /// The first step: (stance side A, t0 = A's heel strike, B's toe-off, t1 = B's heel strike,
 /// A's toe-off).
-fn first_step(f: &Frames, c: f64) -> Result<(usize, [f64; 4]), GeneralizeError> {
+fn first_step(f: &Frames, c: f64, v: f64) -> Result<(usize, [f64; 4]), GeneralizeError> {
     let ys = |side: usize, m: usize| f.at[side][m].iter().map(|p| p[1]).collect::<Vec<f64>>();
-    let events = |m: usize, down: bool| [0, 1].map(|s| contacts(&f.time, &ys(s, m), c, down));
-    let (hs, to) = (events(HEEL, true), events(TOE, false));
+    let xs = |side: usize, m: usize| f.at[side][m].iter().map(|p| p[0]).collect::<Vec<f64>>();
+    let hs = [0, 1].map(|s| contacts(&f.time, &ys(s, HEEL), c, true));
+    let to = [0, 1].map(|s| toe_offs(&f.time, &xs(s, TOE), &ys(s, TOE), c, v));
     let after = |v: &[f64], t: f64| v.iter().copied().find(|&x| x > t);
     let mut best: Option<(usize, [f64; 4])> = None;
     for a in 0..2 {
@@ -332,16 +359,22 @@ impl Step<'_> {
 }
 
 /// The flat pitch and toes of each foot: their medians over the frames with heel, ball and toe
-/// on the floor (their contact levels), 0 where there are none.
+/// on the floor (their contact levels); where there are none, at the frame where the three are
+/// together least above their contact levels.
 fn flat_offsets(f: &Frames, c: f64) -> [[f64; 2]; 2] {
     [0, 1].map(|side| {
         let y = |m: usize| f.at[side][m].iter().map(|q| q[1]).collect::<Vec<f64>>();
         let lowest = |v: &[f64]| v.iter().copied().fold(f64::INFINITY, f64::min);
         let (h, b, t) = (y(HEEL), y(BALL), y(TOE));
         let (lh, lb, lt) = (lowest(&h) + c, lowest(&b) + c, lowest(&t) + c);
-        let on: Vec<usize> = (0..f.time.len())
+        let mut on: Vec<usize> = (0..f.time.len())
             .filter(|&i| h[i] <= lh && b[i] <= lb && t[i] <= lt)
             .collect();
+        if on.is_empty() {
+            // a foot that never rests on all three: the frame it comes closest
+            let above = |i: usize| h[i] - lh + b[i] - lb + t[i] - lt;
+            on.extend((0..f.time.len()).min_by(|&i, &j| above(i).total_cmp(&above(j))));
+        }
         let angle = |p: usize, q: usize| {
             let mut v: Vec<f64> = on
                 .iter()
@@ -375,7 +408,7 @@ pub fn from_csv(text: &str, p: &GeneralizeParameters) -> Result<WalkData, Genera
     let toeless = bt <= c;
     let bt = if toeless { 0.0 } else { bt };
     let body = BodyCondition::from_triangle(thigh, shin, [ah, ab, hb, bt], 0.0)?;
-    let (a, events) = first_step(&f, c)?;
+    let (a, events) = first_step(&f, c, p.lift_speed)?;
     let [t0, _, t1, _] = events;
     let frames = f.time.iter().filter(|&&t| t >= t0 && t <= t1).count();
     if frames < p.min_frames_per_step {
@@ -402,24 +435,15 @@ pub fn from_csv(text: &str, p: &GeneralizeParameters) -> Result<WalkData, Genera
             "the pelvis does not advance over the step: x must point forward",
         ));
     }
-    let raw = step_data(&step, &body, p)?;
-    raw.check()?;
-    generalize(&raw, &Target::of(&raw))
+    step_data(&step, &body, p)
 }
 
-/// The raw walk data of `step` (its ends not yet on their constraints).
-/// (Longer than 80 lines: the phase moments, the feet's places and the sequences of eq. 4 in
-/// order, from one set of closures over the clip.)
-fn step_data(
-    s: &Step,
-    body: &BodyCondition,
-    p: &GeneralizeParameters,
-) -> Result<WalkData, GeneralizeError> {
-    let (a, b) = (s.a, 1 - s.a);
-    let [t0, _, t1, _] = s.events;
-    let (period, tom) = (s.period(), s.tom());
+/// The phase moments of `s`'s stance foot (the foot comes flat, its heel and its toes rise
+/// through their flat values) and whether it lands flat (within `flat_angle`: FGM = 0).
+fn phase_moments(s: &Step, p: &GeneralizeParameters) -> Result<(Phases, bool), GeneralizeError> {
+    let a = s.a;
+    let tom = s.tom();
     let end = 1.0 + tom;
-    // the phase moments: the foot comes flat, its heel and its toes rise (through 0)
     let flat_landing = -s.pitch(a, 0.0) <= p.flat_angle;
     let fgm = if flat_landing {
         0.0
@@ -440,108 +464,135 @@ fn step_data(
             .unwrap_or(heel_off),
         false => end,
     };
-    // where the feet stand: a landing foot's heel at its lowest over its heel rocker (a quarter
-    // step), the trailing foot's toe tip at t0
+    let phases = Phases {
+        fgm,
+        heel_off,
+        mom,
+        tom,
+    };
+    Ok((phases, flat_landing))
+}
+
+/// Where the feet of `s` stand (x of their flat ankles' N, m): the stance foot's, the swing
+/// foot's after its heel strike and before its toe-off. A landing foot's heel at its lowest
+/// over its heel rocker (a quarter step) + hN; the trailing foot's toe tip at t0 − (bN + bt).
+fn places(s: &Step, body: &BodyCondition) -> [f64; 3] {
+    let (a, b) = (s.a, 1 - s.a);
+    let [t0, _, t1, _] = s.events;
     let landed = |side: usize, hs: f64| {
         let heel = &s.f.at[side][HEEL];
         let near = (0..s.f.time.len())
-            .filter(|&i| s.f.time[i] >= hs && s.f.time[i] <= hs + 0.25 * period)
+            .filter(|&i| s.f.time[i] >= hs && s.f.time[i] <= hs + 0.25 * s.period())
             .min_by(|&i, &j| heel[i][1].total_cmp(&heel[j][1]));
         near.map_or(s.at(side, HEEL, s.normalized(hs))[0], |i| heel[i][0]) + body.heel_to_n
     };
-    let (n_a, n_b) = (landed(a, t0), landed(b, t1));
-    let n_before = s.at(b, TOE, 0.0)[0] - body.ball_to_n - body.ball_to_toe;
-    let (sl, before) = (n_b - n_a, n_a - n_before);
-    let values = |t: &[f64], g: &dyn Fn(f64) -> f64| t.iter().map(|&x| g(x)).collect::<Vec<f64>>();
-    let t1s = s.samples(0.0, fgm);
-    let f1 = values(&t1s, &|t| s.pitch(a, t).min(0.0));
-    let mut t2s = s.samples(fgm, heel_off);
-    t2s.extend(s.samples(heel_off, end).into_iter().skip(1));
-    let f2 = values(&t2s, &|t| {
-        if t < heel_off {
-            0.0
-        } else {
-            s.pitch(a, t).max(0.0)
-        }
-    });
-    let tms = s.samples(mom, end);
-    let m = values(&tms, &|t| s.meta(a, t).max(0.0));
-    let tss = s.samples(tom, 1.0);
-    let ths = s.samples(0.0, 1.0);
-    let hip = |t: f64| {
-        let (r, l) = (s.at(0, HIP, t), s.at(1, HIP, t));
-        [0.5 * (r[0] + l[0]) - n_a, 0.5 * (r[1] + l[1])]
+    let before = s.at(b, TOE, 0.0)[0] - body.ball_to_n - body.ball_to_toe;
+    [landed(a, t0), landed(b, t1), before]
+}
+
+/// The sequences of eq. 4 read from `s` at its frames, x from the stance foot's N at `n_a`.
+fn sequences(s: &Step, body: &BodyCondition, ph: &Phases, n_a: f64) -> Sequences {
+    let (a, b) = (s.a, 1 - s.a);
+    let end = 1.0 + ph.tom;
+    let sampled = |lo: f64, hi: f64, g: &dyn Fn(f64) -> f64| {
+        let t = s.samples(lo, hi);
+        let v = t.iter().map(|&x| g(x)).collect::<Vec<f64>>();
+        (t, v)
     };
+    let mut t2 = s.samples(ph.fgm, ph.heel_off);
+    t2.extend(s.samples(ph.heel_off, end).into_iter().skip(1));
+    let f2 = t2
+        .iter()
+        .map(|&t| match t < ph.heel_off {
+            true => 0.0,
+            false => s.pitch(a, t).max(0.0),
+        })
+        .collect();
+    let hip = |t: f64, k: usize| 0.5 * (s.at(0, HIP, t)[k] + s.at(1, HIP, t)[k]);
+    // H over the stance ankle: the clip's ankle height less the one its foot's pose puts it at
+    // (a foot that hovers over the floor lifts the whole clip by as much)
+    let pitch = |t: f64| match (t < ph.fgm, t < ph.heel_off) {
+        (true, _) => s.pitch(a, t).min(0.0),
+        (false, true) => 0.0,
+        _ => s.pitch(a, t).max(0.0),
+    };
+    let meta = |t: f64| {
+        if t >= ph.mom {
+            s.meta(a, t).max(0.0)
+        } else {
+            0.0
+        }
+    };
+    let hover = |t: f64| s.at(a, ANKLE, t)[1] - grounded(body, 0.0, pitch(t), meta(t)).0[1];
+    let (th, hx) = sampled(0.0, 1.0, &|t| hip(t, 0) - n_a);
+    let (ts, f3) = sampled(ph.tom, 1.0, &|t| s.pitch(b, t));
+    Sequences {
+        f1: sampled(0.0, ph.fgm, &|t| s.pitch(a, t).min(0.0)),
+        f2: (t2, f2),
+        meta: sampled(ph.mom, end, &|t| s.meta(a, t).max(0.0)),
+        f3: Curve {
+            t: ts.clone(),
+            v: f3,
+        },
+        ankle: Path {
+            t: ts.clone(),
+            x: sampled(ph.tom, 1.0, &|t| s.at(b, ANKLE, t)[0] - n_a).1,
+            y: sampled(ph.tom, 1.0, &|t| s.at(b, ANKLE, t)[1]).1,
+        },
+        hip: Path {
+            t: th.clone(),
+            x: hx,
+            y: sampled(0.0, 1.0, &|t| hip(t, 1) - hover(t)).1,
+        },
+        trunk: Curve {
+            t: vec![0.0, 1.0],
+            v: vec![0.0, 0.0],
+        },
+    }
+}
+
+/// The walk data of `step` on `body` ([`assemble`]d: its ends on their constraints).
+fn step_data(
+    s: &Step,
+    body: &BodyCondition,
+    p: &GeneralizeParameters,
+) -> Result<WalkData, GeneralizeError> {
+    let [t0, _, t1, _] = s.events;
+    let (phases, flat_landing) = phase_moments(s, p)?;
+    let [n_a, n_b, n_before] = places(s, body);
+    let seq = sequences(s, body, &phases, n_a);
     let knee = {
+        let b = 1 - s.a;
         let (h, k, an) = (s.at(b, HIP, 1.0), s.at(b, KNEE, 1.0), s.at(b, ANKLE, 1.0));
         let (u, v) = ([k[0] - h[0], k[1] - h[1]], [an[0] - k[0], an[1] - k[1]]);
         (u[0] * v[1] - u[1] * v[0])
             .abs()
             .atan2(u[0] * v[0] + u[1] * v[1])
     };
-    let hip_path = Path {
-        t: ths.clone(),
-        x: values(&ths, &|t| hip(t)[0]),
-        y: values(&ths, &|t| hip(t)[1]),
-    };
-    let f3 = values(&tss, &|t| s.pitch(b, t));
-    let ll = body.leg_length();
     let mut alpha = p.alphas();
     // a rigid foot keeps its toes in line, a flat landing lands flat, at any step length
-    if s.toeless || mom >= end {
+    if s.toeless || phases.mom >= 1.0 + phases.tom {
         alpha[3] = 0.0;
     }
     if flat_landing {
         alpha[1] = 0.0;
     }
-    let point = Pelvis {
-        rotation: 0.0,
-        step_width: 0.0,
-    };
-    let mut character = Character {
-        step_length: sl / ll,
-        knee_at_strike: knee,
-        foot_at_strike: if flat_landing { 0.0 } else { -f3[f3.len() - 1] },
-        foot_at_toe_off: f2[f2.len() - 1],
-        meta_at_toe_off: m[m.len() - 1],
-        alpha,
-        hip_lead: hip_path.last()[0] / sl,
-        hip_offset: 0.0,
-    };
-    character.hip_offset =
-        (hip_path.last()[1] - hip_at_strike(body, &character, &point, sl)?[1]) / ll;
-    Ok(WalkData {
+    let condition = Condition {
         source: format!(
             "measured walk: the step from the {} heel strike at {t0:.4} s to {t1:.4} s",
-            ["right", "left"][a]
+            ["right", "left"][s.a]
         ),
         body: *body,
-        step_length: sl,
-        step_length_before: before,
-        pelvis: point,
-        character,
-        phases: Phases {
-            fgm,
-            heel_off,
-            mom,
-            tom,
+        step_length: n_b - n_a,
+        before: n_a - n_before,
+        pelvis: Pelvis {
+            rotation: 0.0,
+            step_width: 0.0,
         },
-        hip: hip_path,
-        f1: Piece::new(t1s, &f1, false, AMPLITUDE_EPSILON),
-        f2: Piece::new(t2s, &f2, true, AMPLITUDE_EPSILON),
-        f3: Curve {
-            t: tss.clone(),
-            v: f3,
-        },
-        meta: Piece::new(tms, &m, true, AMPLITUDE_EPSILON),
-        ankle: Path {
-            t: tss.clone(),
-            x: values(&tss, &|t| s.at(b, ANKLE, t)[0] - n_a),
-            y: values(&tss, &|t| s.at(b, ANKLE, t)[1]),
-        },
-        trunk: Curve {
-            t: vec![0.0, 1.0],
-            v: vec![0.0, 0.0],
-        },
-    })
+        knee_at_strike: knee,
+        lands_flat: flat_landing,
+        alpha,
+        phases,
+    };
+    assemble(condition, seq)
 }

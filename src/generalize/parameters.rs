@@ -22,6 +22,8 @@ pub struct GeneralizeParameters {
     pub alpha4: f64,
     /// A foot point touches the floor within this height of it (m).
     pub contact_height: f64,
+    /// A measured toe tip leaves the floor when its forward speed rises through this (m/s).
+    pub lift_speed: f64,
     /// A foot is flat, or its toes down, within this angle of the floor (rad).
     pub flat_angle: f64,
     /// The largest relative difference of a measured segment's length from its median.
@@ -78,6 +80,7 @@ impl GeneralizeParameters {
             ("alpha3", p.alpha3, -3.0, 3.0),
             ("alpha4", p.alpha4, -3.0, 3.0),
             ("contact_height", p.contact_height, 0.0, 0.1),
+            ("lift_speed", p.lift_speed, 0.0, 10.0),
             ("flat_angle", p.flat_angle, 0.0, 0.3),
             ("length_tolerance", p.length_tolerance, 0.0, 0.5),
             (

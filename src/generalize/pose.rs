@@ -206,8 +206,18 @@ impl StepPose {
         let end = 1.0 + tom;
         let off = w.stance_pitch(end) - w.stance_meta(end);
         let x = ((t - tom) / (TOES_STRAIGHT * (1.0 - tom))).clamp(0.0, 1.0);
-        let t6 = off * 0.5 * (1.0 + (std::f64::consts::PI * x).cos());
-        let (pitch, _) = self.foot.clear_pitch(w.f3.at(t), [0.0, ay], t6, 0.0);
+        let rule = off * 0.5 * (1.0 + (std::f64::consts::PI * x).cos());
+        // the toes bend at least so far that their tip stays at half the ball's height: a
+        // prototype whose foot is shorter (no toes) lifts its ball close over the floor, and
+        // toes straightening there would drag their tip along it
+        let f3 = w.f3.at(t);
+        let ball = self.foot.points([0.0, ay], f3, 0.0).meta[1].max(0.0);
+        let l13 = self.foot.l13;
+        let t6 = match l13 > 0.0 {
+            true => rule.max(f3 - (0.5 * ball / l13).min(1.0).asin()),
+            false => rule,
+        };
+        let (pitch, _) = self.foot.clear_pitch(f3, [0.0, ay], t6, 0.0);
         self.foot_at(s, [n + ax, ay], pitch, t6)
     }
 

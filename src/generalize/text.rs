@@ -138,14 +138,24 @@ pub fn to_csv(w: &WalkData) -> Result<String, GeneralizeError> {
     Ok(out)
 }
 
+/// The numbers and the samples of a sequence, (t, a, b), by name.
+type Rows = (BTreeMap<String, f64>, BTreeMap<&'static str, [Vec<f64>; 3]>);
+
 /// Walk data from the CSV of [`to_csv`], checked. Errors name the line.
-/// (Longer than 80 lines: most of it is the walk data's fields, named one by one.)
 pub fn from_csv(text: &str) -> Result<WalkData, GeneralizeError> {
+    let (source, rows) = read_rows(text)?;
+    let w = from_rows(source, rows)?;
+    w.check()?;
+    Ok(w)
+}
+
+/// The source (the first `#` line's text after ": ") and the rows of the CSV of [`to_csv`].
+fn read_rows(text: &str) -> Result<(String, Rows), GeneralizeError> {
     let bad =
         |line: usize, reason: String| GeneralizeError::invalid(format!("line {line}"), reason);
     let mut source = String::new();
     let mut numbers: BTreeMap<String, f64> = BTreeMap::new();
-    let mut seqs: BTreeMap<&str, [Vec<f64>; 3]> = BTreeMap::new();
+    let mut seqs: BTreeMap<&'static str, [Vec<f64>; 3]> = BTreeMap::new();
     let mut header = false;
     for (i, line) in text.lines().enumerate() {
         let n = i + 1;
@@ -192,6 +202,12 @@ pub fn from_csv(text: &str) -> Result<WalkData, GeneralizeError> {
             }
         }
     }
+    Ok((source, (numbers, seqs)))
+}
+
+/// Walk data from the rows of its CSV: every name known, every number and sequence present.
+/// (Longer than 80 lines: the walk data's fields, named one by one.)
+fn from_rows(source: String, (numbers, mut seqs): Rows) -> Result<WalkData, GeneralizeError> {
     if let Some(k) = numbers.keys().find(|k| !SCALARS.contains(&k.as_str())) {
         return Err(GeneralizeError::invalid(k.clone(), "unknown name"));
     }
@@ -278,6 +294,5 @@ pub fn from_csv(text: &str) -> Result<WalkData, GeneralizeError> {
         },
         trunk: Curve { t: tt, v: vt },
     };
-    w.check()?;
     Ok(w)
 }

@@ -15,6 +15,7 @@ pub mod error;
 pub mod floor;
 pub mod footprints;
 pub mod heat_map;
+pub mod overlay;
 pub mod walk;
 
 pub use error::DrawError;
