@@ -40,7 +40,7 @@ fn refused(dir: &Path, args: &[&str], what: &str, out: &str) {
 fn the_commands_chain_from_a_walk_to_a_figure() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    ok(
+    let said = ok(
         d,
         &[
             "poulaine",
@@ -53,8 +53,11 @@ fn the_commands_chain_from_a_walk_to_a_figure() {
             "p.csv",
         ],
     );
+    assert!(said.contains("(v 1.200 m/s)"), "{said}");
     let text = fs::read_to_string(d.join("p.csv")).unwrap();
-    assert!(text.starts_with("time_s,right_x_m,right_y_m,right_z_m,left_x_m,left_y_m,left_z_m\n"));
+    assert!(text.starts_with(
+        "time_s,right_x_m,right_y_m,right_z_m,left_x_m,left_y_m,left_z_m,pelvis_speed_m_s\n"
+    ));
     let said = ok(d, &["poulaine", "fit", "p.csv", "--out", "m.json"]);
     assert!(said.contains("fit error"), "{said}");
     let m: serde_json::Value =

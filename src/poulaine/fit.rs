@@ -48,6 +48,7 @@ impl Model {
             period: self.period,
             right: phases.iter().map(|&p| self.right.at(p)).collect(),
             left: phases.iter().map(|&p| self.left.at(p)).collect(),
+            pelvis_speed: None,
         }
     }
 
@@ -261,6 +262,7 @@ mod tests {
             period: 1.1,
             right: leg(0.0, 1.0),
             left: leg(0.5, -1.0),
+            pelvis_speed: None,
         }
     }
 
