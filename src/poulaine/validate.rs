@@ -79,10 +79,20 @@ impl Recovery {
 /// Solve `poulaine` (uniform samples, one cycle) and compare with `truth`, the walk's angles
 /// at the same instants.
 pub fn recover(ik: &Ik, poulaine: &Trajectory, truth: &[Angles]) -> Result<Recovery, IkError> {
+    recover_referenced(ik, poulaine, truth, None)
+}
+
+/// [`recover`] with a reference posture per sample in f3 ([`Ik::solve_referenced`]).
+pub fn recover_referenced(
+    ik: &Ik,
+    poulaine: &Trajectory,
+    truth: &[Angles],
+    reference: Option<&[Angles]>,
+) -> Result<Recovery, IkError> {
     let dt = poulaine.uniform_step().ok_or_else(|| {
         crate::model::InputError::bad_value("poulaine", "its samples are not uniform in time")
     })?;
-    let sol = ik.solve(&poulaine.targets(), dt, true)?;
+    let sol = ik.solve_referenced(&poulaine.targets(), dt, true, reference)?;
     let angles: Vec<Angles> = sol.frames.iter().map(|f| f.theta).collect();
     let mut rms = [0.0; DOF];
     for (k, r) in rms.iter_mut().enumerate() {
