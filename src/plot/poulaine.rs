@@ -76,7 +76,7 @@ impl Draw for PoulaineFigure<'_> {
                     .background_style(WHITE.mix(0.8))
                     .border_style(BLACK)
                     .label_font((FONT, 14))
-                    .position(SeriesLabelPosition::LowerRight)
+                    .position(SeriesLabelPosition::UpperMiddle)
                     .draw()
                     .map_err(msg)?;
             }
