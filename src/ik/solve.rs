@@ -103,15 +103,15 @@ impl Ik {
         reference: Option<&[Angles]>,
     ) -> Result<Solution, IkError> {
         InputError::check_range("IK frame period", dt, 1e-4, 1.0, "s")?;
-        if let Some(r) = reference {
-            if r.len() != targets.len() || !r.iter().all(|a| a.iter().all(|v| v.is_finite())) {
-                let reason = format!(
-                    "{} finite reference postures for {} targets: one per target",
-                    r.len(),
-                    targets.len()
-                );
-                return Err(InputError::bad_value("reference", reason).into());
-            }
+        if let Some(r) = reference
+            && (r.len() != targets.len() || !r.iter().all(|a| a.iter().all(|v| v.is_finite())))
+        {
+            let reason = format!(
+                "{} finite reference postures for {} targets: one per target",
+                r.len(),
+                targets.len()
+            );
+            return Err(InputError::bad_value("reference", reason).into());
         }
         // the solver with frame i's reference as its rest posture
         let at = |i: usize| {
