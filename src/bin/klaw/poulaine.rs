@@ -110,6 +110,7 @@ pub(crate) struct BuildArgs {
 struct Fitted<'a> {
     model: &'a klaw::poulaine::Model,
     fit_error: &'a klaw::poulaine::FitError,
+    shape_error: &'a klaw::poulaine::FitError,
 }
 
 pub(crate) fn run(command: &PoulaineCommand) -> Result<()> {
@@ -173,6 +174,7 @@ fn fit_file(a: &FitArgs) -> Result<()> {
     outputs::check(&outs)?;
     let t = Trajectory::read_csv(&a.poulaine)?;
     let (model, error) = fit(&t)?;
+    let shape = model.shape_error(&t);
     if let Some(p) = &a.plot {
         let leg = |samples: &[[f64; 3]], c: &LegCurve| AnklePoulaine {
             samples: samples.to_vec(),
@@ -202,14 +204,17 @@ fn fit_file(a: &FitArgs) -> Result<()> {
             &Fitted {
                 model: &model,
                 fit_error: &error,
+                shape_error: &shape,
             },
         )?,
     }
     println!(
-        "model of {}: fit error {:.4} m RMS, {:.4} m at worst: {}",
+        "model of {}: fit error {:.4} m RMS, {:.4} m at worst (as shapes {:.4}, {:.4}): {}",
         a.poulaine.display(),
         error.rms,
         error.max,
+        shape.rms,
+        shape.max,
         a.out.display()
     );
     Ok(())
