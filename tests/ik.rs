@@ -98,6 +98,33 @@ fn the_posed_figure_carries_the_angles_and_stands_on_the_floor() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// The figure's steps are numbered as klaw's (the right foot's even, the left's odd), so
+/// `klaw evaluate` reads its heel strikes from the step column: each step starts where its
+/// foot's ankle is farthest forward of the pelvis (the support's first frame), and the heel
+/// strikes of one foot come a cycle apart.
+#[test]
+fn the_posed_figures_steps_start_on_their_own_foot() {
+    let (body, poulaine, _, sol) = solved(1.2, 4);
+    let dt = poulaine.uniform_step().unwrap();
+    let angles: Vec<Angles> = sol.frames.iter().map(|f| f.theta).collect();
+    let n = angles.len();
+    let attrs = common::default_attributes();
+    let frames = klaw::ik::figure::frames((&body, &attrs), &angles, dt, 1.2, 3);
+    let clin: Vec<_> = frames.iter().map(|f| clinical(f, &body).unwrap()).collect();
+    let strikes = klaw::analysis::criteria::heel_strikes::from_steps(&clin);
+    let front = |x: &dyn Fn(usize) -> f64| (0..n).fold(0, |b, i| if x(i) > x(b) { i } else { b });
+    let right = front(&|i| poulaine.right[i][0]);
+    let left = front(&|i| poulaine.left[i][0]);
+    for (times, k) in [(&strikes.right, right), (&strikes.left, left)] {
+        let later: Vec<f64> = times.iter().copied().filter(|&t| t > 0.0).collect();
+        assert!(later.len() >= 2, "{strikes:?}");
+        for t in &later {
+            let i = (t / dt).round() as usize % n;
+            assert_eq!(i, k, "{strikes:?}");
+        }
+    }
+}
+
 /// A walk at `v` m/s of the default body (`steps` steps), its poulaine at 60 Hz, the IK and its
 /// solution.
 fn solved(v: f64, steps: usize) -> (klaw::Body, Trajectory, Ik, klaw::ik::Solution) {

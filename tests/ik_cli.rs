@@ -40,7 +40,7 @@ fn refused(dir: &Path, args: &[&str], what: &str, out: &str) {
 fn the_commands_chain_from_a_walk_to_a_figure() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    ok(
+    let said = ok(
         d,
         &[
             "poulaine",
@@ -53,9 +53,31 @@ fn the_commands_chain_from_a_walk_to_a_figure() {
             "p.csv",
         ],
     );
+    assert!(said.contains("(v 1.200 m/s)"), "{said}");
     let text = fs::read_to_string(d.join("p.csv")).unwrap();
-    assert!(text.starts_with("time_s,right_x_m,right_y_m,right_z_m,left_x_m,left_y_m,left_z_m\n"));
-    let said = ok(d, &["poulaine", "fit", "p.csv", "--out", "m.json"]);
+    assert!(text.starts_with(
+        "time_s,right_x_m,right_y_m,right_z_m,left_x_m,left_y_m,left_z_m,pelvis_speed_m_s\n"
+    ));
+    let said = ok(
+        d,
+        &[
+            "poulaine", "fit", "p.csv", "--out", "m.json", "--plot", "p.png",
+        ],
+    );
+    let png = fs::read(d.join("p.png")).unwrap();
+    assert!(
+        png.starts_with(b"\x89PNG") && png.len() > 10_000,
+        "{}",
+        png.len()
+    );
+    refused(
+        d,
+        &[
+            "poulaine", "fit", "p.csv", "--out", "m2.json", "--plot", "p.jpg",
+        ],
+        "plot",
+        "m2.json",
+    );
     assert!(said.contains("fit error"), "{said}");
     let m: serde_json::Value =
         serde_json::from_str(&fs::read_to_string(d.join("m.json")).unwrap()).unwrap();

@@ -151,12 +151,21 @@ pub fn frames(
     let n = cycle.len();
     let total = n * cycles;
     let flat = cycle.flat_places(total);
-    // the steps: a new one at each support's first frame
+    // the steps: a new one at each support's first frame, numbered as klaw numbers a walk's
+    // (the right foot's even, the left's odd), the frames before the first the other foot's
     let starts: Vec<usize> = (0..total)
         .filter(|&k| {
             (0..2).any(|s| cycle.supports[s][k % n] && !cycle.supports[s][(k + n - 1) % n])
         })
         .collect();
+    let first_right = starts
+        .first()
+        .is_some_and(|&k| cycle.supports[0][k % n] && !cycle.supports[0][(k + n - 1) % n]);
+    let shift = match (starts.first(), first_right) {
+        (Some(0), true) => 0,
+        (_, true) => 2,
+        _ => 1,
+    };
     // the thighs' largest forward angle, the arms' reference
     let reference = cycle
         .poses
@@ -167,7 +176,7 @@ pub fn frames(
     (0..total)
         .map(|k| {
             let mut f = pose_frame(&cycle, k, flat[k], (body, attrs, &foot), reference);
-            f.step = starts.partition_point(|&s| s <= k).saturating_sub(1);
+            f.step = starts.partition_point(|&s| s <= k) + shift - 1;
             f
         })
         .collect()

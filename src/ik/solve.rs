@@ -88,7 +88,39 @@ impl Ik {
     /// Solve the trajectory `targets` (one per frame, period `dt` s); `periodic`: the targets
     /// are one cycle whose last frame is followed by its first (module doc).
     pub fn solve(&self, targets: &[Ankles], dt: f64, periodic: bool) -> Result<Solution, IkError> {
+        self.solve_referenced(targets, dt, periodic, None)
+    }
+
+    /// [`Self::solve`] with a reference posture per frame in f3 (eq. 6) instead of the rest
+    /// posture, where `reference` is given (one per target): e.g. a database walk's angles at
+    /// the same phase of its cycle (`docs/ik.md`, Table 2's analysis). The first frame starts
+    /// from the first reference.
+    pub fn solve_referenced(
+        &self,
+        targets: &[Ankles],
+        dt: f64,
+        periodic: bool,
+        reference: Option<&[Angles]>,
+    ) -> Result<Solution, IkError> {
         InputError::check_range("IK frame period", dt, 1e-4, 1.0, "s")?;
+        if let Some(r) = reference
+            && (r.len() != targets.len() || !r.iter().all(|a| a.iter().all(|v| v.is_finite())))
+        {
+            let reason = format!(
+                "{} finite reference postures for {} targets: one per target",
+                r.len(),
+                targets.len()
+            );
+            return Err(InputError::bad_value("reference", reason).into());
+        }
+        // the solver with frame i's reference as its rest posture
+        let at = |i: usize| {
+            let mut ik = *self;
+            if let Some(r) = reference {
+                ik.model.rest = r[i];
+            }
+            ik
+        };
         if targets.is_empty() {
             return Err(InputError::bad_value("targets", "no frame to solve").into());
         }
@@ -99,11 +131,11 @@ impl Ik {
             let reason = format!("frame {i}'s ankle target is not finite");
             return Err(InputError::bad_value("targets", reason).into());
         }
-        let first = self.start(&targets[0])?;
+        let first = at(0).start(&targets[0])?;
         let mut theta = first.theta;
         if periodic && self.params.warm_up {
             for (i, t) in targets.iter().enumerate().skip(1) {
-                theta = self.step(&theta, t, Some(dt), i, dt)?.theta;
+                theta = at(i).step(&theta, t, Some(dt), i, dt)?.theta;
             }
         }
         let mut frames = Vec::with_capacity(targets.len());
@@ -111,7 +143,7 @@ impl Ik {
             let f = if i == 0 && !(periodic && self.params.warm_up) {
                 first
             } else {
-                self.step(&theta, t, Some(dt), i, dt)?
+                at(i).step(&theta, t, Some(dt), i, dt)?
             };
             theta = f.theta;
             frames.push(f);

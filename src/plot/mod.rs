@@ -1,7 +1,8 @@
 //! Figures of walks and sweeps: the walk figure ([`walk`], `klaw walk --plot`), the gait-cycle
 //! figure ([`cycle`], `klaw plot`), sweep heat maps ([`heat_map`], `klaw plot-sweep`), the
 //! stick-figure animation ([`animation`], `klaw animate`) and a scenario's footprints seen from
-//! above ([`footprints`], `klaw scenario --footprints`); here what they share: the font, the
+//! above ([`footprints`], `klaw scenario --footprints`), a poulaine against its model
+//! ([`poulaine`], `klaw poulaine fit --plot`); here what they share: the font, the
 //! colours, the file format by extension, charts with one scale on both axes and the writing of
 //! a drawn figure.
 //!
@@ -16,6 +17,7 @@ pub mod floor;
 pub mod footprints;
 pub mod heat_map;
 pub mod overlay;
+pub mod poulaine;
 pub mod walk;
 
 pub use error::DrawError;

@@ -48,6 +48,7 @@ impl Model {
             period: self.period,
             right: phases.iter().map(|&p| self.right.at(p)).collect(),
             left: phases.iter().map(|&p| self.left.at(p)).collect(),
+            pelvis_speed: None,
         }
     }
 
@@ -59,6 +60,35 @@ impl Model {
             let (r, l) = self.at(time / t.period);
             for (m, s) in [(r, t.right[i]), (l, t.left[i])] {
                 let d2: f64 = (0..3).map(|a| (m[a] - s[a]).powi(2)).sum();
+                sum += d2;
+                max = max.max(d2.sqrt());
+            }
+        }
+        FitError {
+            rms: (sum / (2 * t.time.len()) as f64).sqrt(),
+            max,
+        }
+    }
+}
+
+impl Model {
+    /// The distance of the samples of `t` from the model's curves as shapes: each sample's
+    /// distance to the nearest of 2000 points uniform in phase on its ankle's curve, whatever
+    /// its time (the paper's Figure 3 compares shapes; the speed along them is modelled
+    /// apart, §3.2). At most [`Self::error`] but for the search's spacing.
+    pub fn shape_error(&self, t: &Trajectory) -> FitError {
+        const POINTS: usize = 2000;
+        let mut sum = 0.0;
+        let mut max: f64 = 0.0;
+        for (curve, samples) in [(&self.right, &t.right), (&self.left, &t.left)] {
+            let dense: Vec<[f64; 3]> = (0..POINTS)
+                .map(|i| curve.at(i as f64 / POINTS as f64))
+                .collect();
+            for s in samples {
+                let d2 = dense
+                    .iter()
+                    .map(|m| (0..3).map(|a| (m[a] - s[a]).powi(2)).sum::<f64>())
+                    .fold(f64::INFINITY, f64::min);
                 sum += d2;
                 max = max.max(d2.sqrt());
             }
@@ -261,6 +291,7 @@ mod tests {
             period: 1.1,
             right: leg(0.0, 1.0),
             left: leg(0.5, -1.0),
+            pelvis_speed: None,
         }
     }
 
@@ -320,6 +351,30 @@ mod tests {
             .map(|(&p, y)| (c.at(p) - y).abs())
             .fold(0.0, f64::max);
         assert!(worst < 1e-12, "{worst}");
+    }
+
+    /// The shape error ignores timing: the model's own curve sampled at retimed phases
+    /// (φ + 0.03 sin 2πφ) lies on the model (0 but for the 2000-point search) though far from it
+    /// at the samples' times; and it never exceeds the time-aligned error.
+    #[test]
+    fn the_shape_error_ignores_timing() {
+        let t = trajectory(90);
+        let (model, err) = fit(&t).unwrap();
+        assert!(model.shape_error(&t).rms <= err.rms);
+        let n = 120;
+        let phases: Vec<f64> = (0..n).map(|i| i as f64 / n as f64).collect();
+        let warp = |p: f64| p + 0.03 * (std::f64::consts::TAU * p).sin();
+        let retimed = Trajectory {
+            time: phases.iter().map(|p| p * model.period).collect(),
+            period: model.period,
+            right: phases.iter().map(|&p| model.right.at(warp(p))).collect(),
+            left: phases.iter().map(|&p| model.left.at(warp(p))).collect(),
+            pelvis_speed: None,
+        };
+        let timed = model.error(&retimed);
+        let shape = model.shape_error(&retimed);
+        assert!(timed.rms > 0.02, "{timed:?}");
+        assert!(shape.max < 1e-3, "{shape:?}");
     }
 
     /// The characteristic points of the test curve: highest, forward, under the pelvis, back,

@@ -23,6 +23,9 @@ pub struct Trajectory {
     pub right: Vec<[f64; 3]>,
     /// The left ankle.
     pub left: Vec<[f64; 3]>,
+    /// The pelvis's forward speed at each sample (m/s), where known: the "speed profile" that
+    /// comes with a poulaine (§3.1); a klaw walk's, or the CSV's optional last column.
+    pub pelvis_speed: Option<Vec<f64>>,
 }
 
 /// The CSV header of a poulaine file.
@@ -35,6 +38,9 @@ pub const CSV_HEADER: [&str; 7] = [
     "left_y_m",
     "left_z_m",
 ];
+
+/// The CSV's optional last column: the pelvis's forward speed.
+pub const SPEED_COLUMN: &str = "pelvis_speed_m_s";
 
 /// The figure of `walk`'s last complete gait cycle, right heel strike to right heel strike (a
 /// walk's even steps start on the right), at N = round(T · fps) uniform instants
@@ -58,10 +64,22 @@ pub fn cycle_frames(walk: &Walk, fps: f64) -> crate::Result<(Vec<Landmarks>, f64
 }
 
 impl Trajectory {
-    /// The poulaine of `walk`'s last complete gait cycle ([`cycle_frames`]) and those frames.
+    /// The poulaine of `walk`'s last complete gait cycle ([`cycle_frames`]) and those frames,
+    /// with the pelvis's forward speed at each sample (central differences of its position
+    /// over ±0.1 ms).
     pub fn from_walk(walk: &Walk, fps: f64) -> crate::Result<(Self, Vec<Landmarks>)> {
         let (frames, t0, period) = cycle_frames(walk, fps)?;
-        Ok((Self::from_frames(&frames, t0, t0 + period)?, frames))
+        let mut t = Self::from_frames(&frames, t0, t0 + period)?;
+        let h = 1e-4;
+        let speed = frames
+            .iter()
+            .map(|f| {
+                let at = |t: f64| walk.figure_at(t).map(|lm| lm.pelvis[0]);
+                Ok((at(f.time + h)? - at(f.time - h)?) / (2.0 * h))
+            })
+            .collect::<crate::Result<Vec<f64>>>()?;
+        t.pelvis_speed = Some(speed);
+        Ok((t, frames))
     }
 
     /// The cycle of `frames` from the walk time `start` (inclusive) to `end` (exclusive, the
@@ -86,13 +104,15 @@ impl Trajectory {
             period: end - t0,
             right: kept.iter().map(|f| rel(f.right.ankle, f.pelvis)).collect(),
             left: kept.iter().map(|f| rel(f.left.ankle, f.pelvis)).collect(),
+            pelvis_speed: None,
         };
         t.check(Path::new("(frames)"))?;
         Ok(t)
     }
 
-    /// Read a poulaine CSV file (`docs/ik.md`): the header [`CSV_HEADER`], one row per sample
-    /// of one cycle, uniform in time from 0; the period is the number of rows × the step.
+    /// Read a poulaine CSV file (`docs/ik.md`): the header [`CSV_HEADER`], optionally followed
+    /// by [`SPEED_COLUMN`], one row per sample of one cycle, uniform in time from 0; the period
+    /// is the number of rows × the step.
     pub fn read_csv(path: &Path) -> crate::Result<Self> {
         let text = std::fs::read_to_string(path).map_err(|source| crate::Error::Io {
             action: "reading",
@@ -113,19 +133,28 @@ impl Trajectory {
             .headers()
             .map_err(|e| bad(format!("not a CSV file: {e}")))?
             .clone();
-        if header.iter().ne(CSV_HEADER.iter().copied()) {
-            return Err(bad(format!("the header must be {}", CSV_HEADER.join(","))));
+        let with_speed = header.len() == CSV_HEADER.len() + 1;
+        let names: Vec<&str> = CSV_HEADER
+            .iter()
+            .copied()
+            .chain(with_speed.then_some(SPEED_COLUMN))
+            .collect();
+        if header.iter().ne(names.iter().copied()) {
+            return Err(bad(format!(
+                "the header must be {}[,{SPEED_COLUMN}]",
+                CSV_HEADER.join(",")
+            )));
         }
-        let mut rows: Vec<[f64; 7]> = Vec::new();
+        let mut rows: Vec<[f64; 8]> = Vec::new();
         for (i, record) in reader.records().enumerate() {
             let record = record.map_err(|e| bad(format!("row {}: {e}", i + 2)))?;
-            let mut row = [0.0; 7];
+            let mut row = [0.0; 8];
             for (k, field) in record.iter().enumerate() {
                 row[k] = field.trim().parse().map_err(|_| {
                     bad(format!(
                         "row {}, column {}: `{field}` is not a number",
                         i + 2,
-                        CSV_HEADER[k]
+                        names[k]
                     ))
                 })?;
             }
@@ -143,6 +172,7 @@ impl Trajectory {
             period: step * rows.len() as f64,
             right: rows.iter().map(|r| [r[1], r[2], r[3]]).collect(),
             left: rows.iter().map(|r| [r[4], r[5], r[6]]).collect(),
+            pelvis_speed: with_speed.then(|| rows.iter().map(|r| r[7]).collect()),
         };
         t.check(path)?;
         if t.uniform_step().is_none() {
@@ -153,7 +183,8 @@ impl Trajectory {
         Ok(t)
     }
 
-    /// Write the poulaine as CSV ([`Self::read_csv`]'s layout), whole or not at all.
+    /// Write the poulaine as CSV ([`Self::read_csv`]'s layout, the speed column where the
+    /// pelvis's speed is known), whole or not at all.
     pub fn write_csv(&self, path: &Path) -> crate::Result<()> {
         // the fields name the columns: CSV_HEADER
         #[derive(serde::Serialize)]
@@ -165,6 +196,8 @@ impl Trajectory {
             left_x_m: f64,
             left_y_m: f64,
             left_z_m: f64,
+            #[serde(skip_serializing_if = "Option::is_none")]
+            pelvis_speed_m_s: Option<f64>,
         }
         let rows: Vec<Row> = (0..self.time.len())
             .map(|i| {
@@ -177,17 +210,29 @@ impl Trajectory {
                     left_x_m: l[0],
                     left_y_m: l[1],
                     left_z_m: l[2],
+                    pelvis_speed_m_s: self.pelvis_speed.as_ref().map(|s| s[i]),
                 }
             })
             .collect();
         crate::export::write_rows_csv(path, &CSV_HEADER, &rows)
     }
 
-    /// The walking speed the poulaine implies: the supporting foot stands still, so its ankle
+    /// The walking speed: the mean of the pelvis's speed over the cycle's samples where it is
+    /// known (exact but for the rule's error: the mean of a periodic function at uniform samples
+    /// over a whole period), else [`Self::ankle_speed`].
+    pub fn speed(&self) -> f64 {
+        match &self.pelvis_speed {
+            Some(s) => s.iter().sum::<f64>() / s.len() as f64,
+            None => self.ankle_speed(),
+        }
+    }
+
+    /// The walking speed from the ankles alone: the supporting foot stands still, so its ankle
     /// moves back relative to the pelvis at the body's speed; v is the slope of x against time
     /// (least squares) over the middle half of each ankle's support (most forward to most
-    /// backward sample), the mean of both ankles.
-    pub fn speed(&self) -> f64 {
+    /// backward sample), the mean of both ankles. The pelvis is slowest in mid-stance, so this
+    /// reads low (5–8 % on klaw's walks, `docs/ik.md`).
+    pub fn ankle_speed(&self) -> f64 {
         let one = |leg: &[[f64; 3]]| {
             let n = leg.len();
             let arg = |sign: f64| {
@@ -282,6 +327,19 @@ impl Trajectory {
                 self.time[n - 1],
                 self.period
             )));
+        }
+        if let Some(s) = &self.pelvis_speed {
+            if s.len() != n {
+                return Err(bad(
+                    "the pelvis speeds and the times have different lengths".into(),
+                ));
+            }
+            if let Some(i) = s.iter().position(|v| !v.is_finite()) {
+                return Err(bad(format!(
+                    "row {}: the pelvis speed is not finite",
+                    i + 1
+                )));
+            }
         }
         let finite = |p: &[f64; 3]| p.iter().all(|v| v.is_finite());
         if let Some(i) = (0..n).find(|&i| !finite(&self.right[i]) || !finite(&self.left[i])) {

@@ -1,9 +1,11 @@
 //! How well the inverse kinematics recovers a walk's angles from its poulaine (Pronost et al.
 //! §6.2, Table 2): the chain's angles solved on the poulaine against the walk's own clinical
 //! angles at the same instants, per angle the RMS difference after removing each trajectory's
-//! mean (eq. 7: the captured trajectory "shifted to θᵢ mean value").
+//! mean (eq. 7: the captured trajectory "shifted to θᵢ mean value";
+//! [`crate::analysis::criteria::mean_shifted_rms`]).
 use serde::Serialize;
 
+use crate::analysis::criteria::mean_shifted_rms;
 use crate::figure::Landmarks;
 use crate::figure::clinical::{Clinical, clinical};
 use crate::ik::chain::{Angles, DOF, NAMES};
@@ -48,18 +50,6 @@ pub fn frames_angles(frames: &[Landmarks], body: &Body) -> crate::Result<Vec<Ang
         .collect()
 }
 
-/// Eq. 7: the RMS of (a − mean a) − (b − mean b).
-pub fn mean_shifted_rms(a: &[f64], b: &[f64]) -> f64 {
-    let n = a.len() as f64;
-    let (ma, mb) = (a.iter().sum::<f64>() / n, b.iter().sum::<f64>() / n);
-    (a.iter()
-        .zip(b)
-        .map(|(x, y)| ((x - ma) - (y - mb)).powi(2))
-        .sum::<f64>()
-        / n)
-        .sqrt()
-}
-
 /// The recovery of one walk.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Recovery {
@@ -89,10 +79,20 @@ impl Recovery {
 /// Solve `poulaine` (uniform samples, one cycle) and compare with `truth`, the walk's angles
 /// at the same instants.
 pub fn recover(ik: &Ik, poulaine: &Trajectory, truth: &[Angles]) -> Result<Recovery, IkError> {
+    recover_referenced(ik, poulaine, truth, None)
+}
+
+/// [`recover`] with a reference posture per sample in f3 ([`Ik::solve_referenced`]).
+pub fn recover_referenced(
+    ik: &Ik,
+    poulaine: &Trajectory,
+    truth: &[Angles],
+    reference: Option<&[Angles]>,
+) -> Result<Recovery, IkError> {
     let dt = poulaine.uniform_step().ok_or_else(|| {
         crate::model::InputError::bad_value("poulaine", "its samples are not uniform in time")
     })?;
-    let sol = ik.solve(&poulaine.targets(), dt, true)?;
+    let sol = ik.solve_referenced(&poulaine.targets(), dt, true, reference)?;
     let angles: Vec<Angles> = sol.frames.iter().map(|f| f.theta).collect();
     let mut rms = [0.0; DOF];
     for (k, r) in rms.iter_mut().enumerate() {
@@ -106,23 +106,4 @@ pub fn recover(ik: &Ik, poulaine: &Trajectory, truth: &[Angles]) -> Result<Recov
         within_limits: angles.iter().all(|a| ik.model.within_limits(a)),
         angles,
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Eq. 7 removes a constant offset, and is the RMS of what remains: sin against sin + 0.3 is
-    /// 0; sin against 2 sin is the RMS of sin, 1/√2, over whole periods.
-    #[test]
-    fn the_mean_shifted_rms_removes_an_offset() {
-        let n = 400;
-        let s: Vec<f64> = (0..n)
-            .map(|i| (std::f64::consts::TAU * i as f64 / n as f64).sin())
-            .collect();
-        let shifted: Vec<f64> = s.iter().map(|x| x + 0.3).collect();
-        assert!(mean_shifted_rms(&s, &shifted) < 1e-15);
-        let doubled: Vec<f64> = s.iter().map(|x| 2.0 * x).collect();
-        assert!((mean_shifted_rms(&s, &doubled) - 0.5f64.sqrt()).abs() < 1e-12);
-    }
 }

@@ -6,7 +6,9 @@ use std::path::{Path, PathBuf};
 
 use clap::{Args, Subcommand};
 use klaw::model::InputError;
+use klaw::plot::poulaine::AnklePoulaine;
 use klaw::poulaine::build::{Grid, synthetic};
+use klaw::poulaine::curve::LegCurve;
 use klaw::poulaine::{Database, Entry, Trajectory, fit};
 use klaw::{GaitRequest, Result, Simulation, export};
 
@@ -63,6 +65,9 @@ pub(crate) struct FitArgs {
     /// The entry's label [default: the file's name]
     #[arg(long, value_name = "NAME")]
     label: Option<String>,
+    /// A figure of the samples against the model, sagittal and frontal views (.png or .svg)
+    #[arg(long, value_name = "FILE")]
+    plot: Option<PathBuf>,
 }
 
 #[derive(Subcommand)]
@@ -105,6 +110,7 @@ pub(crate) struct BuildArgs {
 struct Fitted<'a> {
     model: &'a klaw::poulaine::Model,
     fit_error: &'a klaw::poulaine::FitError,
+    shape_error: &'a klaw::poulaine::FitError,
 }
 
 pub(crate) fn run(command: &PoulaineCommand) -> Result<()> {
@@ -161,9 +167,32 @@ fn fit_file(a: &FitArgs) -> Result<()> {
     if let Some(sl) = a.step_length {
         InputError::check_range("step-length", sl, 0.05, 2.0, "m")?;
     }
-    outputs::check(&[Output::new("out", &a.out, outputs::JSON)])?;
+    let mut outs = vec![Output::new("out", &a.out, outputs::JSON)];
+    if let Some(p) = &a.plot {
+        outs.push(Output::new("plot", p, outputs::FIGURE));
+    }
+    outputs::check(&outs)?;
     let t = Trajectory::read_csv(&a.poulaine)?;
     let (model, error) = fit(&t)?;
+    let shape = model.shape_error(&t);
+    if let Some(p) = &a.plot {
+        let leg = |samples: &[[f64; 3]], c: &LegCurve| AnklePoulaine {
+            samples: samples.to_vec(),
+            model: (0..400).map(|i| c.at(f64::from(i) / 400.0)).collect(),
+            points: c.x.phase.map(|phi| c.at(phi)),
+        };
+        let title = format!(
+            "{}: poulaine and its model (fit error {:.1} cm RMS, {:.1} cm at worst)",
+            stem(&a.poulaine),
+            100.0 * error.rms,
+            100.0 * error.max
+        );
+        klaw::plot::poulaine::write(
+            p,
+            &[leg(&t.right, &model.right), leg(&t.left, &model.left)],
+            &title,
+        )?;
+    }
     match (a.leg_length, a.step_length) {
         (Some(leg), Some(step)) => {
             let label = a.label.clone().unwrap_or_else(|| stem(&a.poulaine));
@@ -175,14 +204,17 @@ fn fit_file(a: &FitArgs) -> Result<()> {
             &Fitted {
                 model: &model,
                 fit_error: &error,
+                shape_error: &shape,
             },
         )?,
     }
     println!(
-        "model of {}: fit error {:.4} m RMS, {:.4} m at worst: {}",
+        "model of {}: fit error {:.4} m RMS, {:.4} m at worst (as shapes {:.4}, {:.4}): {}",
         a.poulaine.display(),
         error.rms,
         error.max,
+        shape.rms,
+        shape.max,
         a.out.display()
     );
     Ok(())

@@ -1,0 +1,92 @@
+//! The quality criteria C1–C3 (Pronost et al. §6.2, eqs. 8–11, `src/analysis/criteria`) of the
+//! inverse kinematics' results next to the paper's Table 1, at the validation points of
+//! `examples/ik_validation.rs`: for each klaw walk (H × v) the criteria of the walk itself and of
+//! the IK on its own poulaine (60 Hz, the figure posed at the walk's speed, three cycles, the
+//! first left out as `klaw evaluate` does), and two cyclicities of the IK's sequence itself
+//! (eq. 9: the posture one frame after the last, at the first frame's target, against the first):
+//! of the kept pass (after the warm-up) and of a single pass from the rest posture.
+//!
+//! `cargo run --release --example ik_criteria`
+use klaw::analysis::criteria::heel_strikes::from_steps;
+use klaw::analysis::criteria::{CriteriaParameters, Means, Motion, evaluate};
+use klaw::figure::clinical::clinical;
+use klaw::ik::{Angles, Ik, Solution};
+use klaw::poulaine::Trajectory;
+use klaw::{AttributeTable, Body, Simulation};
+
+/// Eq. 9 of a solved cycle: ‖θ(after the last frame, at the first target) − θ(first frame)‖.
+fn closure(ik: &Ik, sol: &Solution, poulaine: &Trajectory) -> f64 {
+    let targets = poulaine.targets();
+    let n = sol.frames.len();
+    let next = ik
+        .step(
+            &sol.frames[n - 1].theta,
+            &targets[0],
+            Some(sol.dt),
+            n,
+            sol.dt,
+        )
+        .expect("the first frame again");
+    (next.theta - sol.frames[0].theta).norm()
+}
+
+fn cells(m: &Means) -> String {
+    let p = m.power.expect("positioned frames");
+    format!(
+        "{:.2} | {:.4} | {:.2} | {:.2}",
+        m.total_jerk / 1e7,
+        m.cyclicity,
+        p.literal,
+        p.internal
+    )
+}
+
+fn main() {
+    let params = CriteriaParameters::default();
+    let attrs = AttributeTable::builtin().defaults();
+    println!(
+        "| H (m), v (m/s) | walk: C1 (1e7 rad² s⁻⁶) | C2 (rad) | C3 literal (W/kg) | internal (W/kg) \
+         | IK: C1 | C2 repeated | C3 literal | internal | IK C2 kept pass | IK C2 one pass from rest |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("| Table 1 mean (paper) | 7.2 | 0.02 | 6.1 | — | | | | | | |");
+    for h in [1.5, 1.7, 1.9, 2.1] {
+        for v in [0.8, 1.1, 1.4, 1.7] {
+            let body = Body::standard(h, 23.0 * h * h).unwrap();
+            let Ok(walk) = Simulation::new(body).velocity(v).steps(6).run() else {
+                continue;
+            };
+            let own = evaluate(
+                &Motion::from_walk(walk.engine(), 60.0).unwrap(),
+                &body,
+                &params,
+            )
+            .unwrap();
+            let (poulaine, _) = Trajectory::from_walk(&walk, 60.0).unwrap();
+            let dt = poulaine.uniform_step().unwrap();
+            let ik = Ik::new(&body);
+            let (Ok(kept), Ok(single)) = (
+                ik.solve(&poulaine.targets(), dt, true),
+                ik.solve(&poulaine.targets(), dt, false),
+            ) else {
+                println!("| {h}, {v} | IK failed |");
+                continue;
+            };
+            let angles: Vec<Angles> = kept.frames.iter().map(|f| f.theta).collect();
+            let frames = klaw::ik::figure::frames((&body, &attrs), &angles, dt, v, 3);
+            let clin: Vec<_> = frames.iter().map(|f| clinical(f, &body).unwrap()).collect();
+            let motion = Motion {
+                heel_strikes: from_steps(&clin),
+                frames: clin,
+            };
+            let solved = evaluate(&motion, &body, &params).unwrap();
+            println!(
+                "| {h}, {v} | {} | {} | {:.4} | {:.4} |",
+                cells(&own.mean),
+                cells(&solved.mean),
+                closure(&ik, &kept, &poulaine),
+                closure(&ik, &single, &poulaine)
+            );
+        }
+    }
+}
