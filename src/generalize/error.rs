@@ -96,6 +96,25 @@ pub enum GeneralizeError {
         /// The tolerance (m).
         tolerance: f64,
     },
+    /// A swing foot point on the floor away from where it left it or will strike.
+    #[error(
+        "the {point} would slide {} m on the floor at t = {t:.3} of step {step} (at most {} m \
+         allowed): the walk data's swing foot meets the floor before its heel strike or after \
+         its toe-off at this step length",
+        Shown(*distance), Shown(*max)
+    )]
+    Slides {
+        /// Which point, e.g. `left heel`.
+        point: String,
+        /// The step (0-based).
+        step: usize,
+        /// Normalized time in the step.
+        t: f64,
+        /// How far from its contact (m).
+        distance: f64,
+        /// The parameters' bound (m).
+        max: f64,
+    },
     /// A measured walk whose clip does not hold a whole step (docs/generalize.md).
     #[error("measured walk: {0}")]
     Measured(String),

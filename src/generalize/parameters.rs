@@ -42,6 +42,9 @@ pub struct GeneralizeParameters {
     pub hip_drop_max: f64,
     /// Instants of a step checked before it is walked.
     pub check_samples: usize,
+    /// The farthest a swing foot point may move while on the floor (within `floor_tolerance`)
+    /// before its heel strike or after its toe-off (m).
+    pub slide_max: f64,
 }
 
 impl Default for GeneralizeParameters {
@@ -95,6 +98,7 @@ impl GeneralizeParameters {
             ("floor_tolerance", p.floor_tolerance, 0.0, 0.01),
             ("hip_drop_max", p.hip_drop_max, 0.0, 0.5),
             ("check_samples", p.check_samples as f64, 2.0, 1e6),
+            ("slide_max", p.slide_max, 0.0, 0.05),
         ] {
             InputError::check_range(name, v, lo, hi, "").map_err(|e| bad(name, e))?;
         }

@@ -9,6 +9,7 @@ use crate::figure::landmarks::{arm_swing, thigh_angle};
 use crate::figure::{Landmarks, LegPoints};
 use crate::generalize::condition::BodyCondition;
 use crate::generalize::error::GeneralizeError;
+use crate::generalize::parameters::GeneralizeParameters;
 use crate::generalize::walk_data::WalkData;
 use crate::kinematics::foot::Foot;
 use crate::kinematics::pelvis::{Determinants, Side};
@@ -247,10 +248,12 @@ impl StepPose {
         (pose, self.need(hip, pose.ankle))
     }
 
-    /// Pose the step at `samples` + 1 instants on either side and check that no foot point is
-    /// below the floor by more than `tolerance` (a leg too short to reach is an error of the
-    /// pose itself). Returns the most the hip came down from H (m).
-    pub fn check(&self, samples: usize, tolerance: f64) -> Result<f64, GeneralizeError> {
+    /// Pose the step at `params.check_samples` + 1 instants on either side and check that no
+    /// foot point is below the floor by more than `floor_tolerance` (a leg too short to reach is
+    /// an error of the pose itself) and that no swing foot slides ([`Self::check_slides`]).
+    /// Returns the most the hip came down from H (m).
+    pub fn check(&self, params: &GeneralizeParameters) -> Result<f64, GeneralizeError> {
+        let (samples, tolerance) = (params.check_samples, params.floor_tolerance);
         let mut most: f64 = 0.0;
         for (index, side) in [(0, Side::Right), (1, Side::Left)] {
             for i in 0..=samples {
@@ -261,10 +264,83 @@ impl StepPose {
                     below_floor(leg, name, index, t, tolerance)?;
                 }
             }
+            self.check_slides(index, side, params)?;
         }
         Ok(most)
     }
+
+    /// The swing foot of the step with `side` in stance: no point of it, while on the floor
+    /// (within `floor_tolerance`), farther than `slide_max` from where it met it (at toe-off, or
+    /// later); the stance foot is grounded without sliding by construction, the swing foot only
+    /// by the data. Each point is checked at the samples and at the instants it meets or leaves
+    /// the floor between two of them (found by bisection).
+    fn check_slides(
+        &self,
+        index: usize,
+        side: Side,
+        params: &GeneralizeParameters,
+    ) -> Result<(), GeneralizeError> {
+        let tom = self.data.phases.tom;
+        let points = |t: f64| -> Result<[[f64; 3]; 3], GeneralizeError> {
+            let lm = self.posed(index, side, 0.0, t, 0.0)?.0;
+            let leg = if side == Side::Right {
+                lm.left
+            } else {
+                lm.right
+            };
+            Ok([leg.heel, leg.mtp, leg.toe])
+        };
+        let on = |p: [f64; 3]| p[1] <= params.floor_tolerance;
+        let slide = |t: f64, p: [f64; 3], at: [f64; 3], k: usize| {
+            let distance = (p[0] - at[0]).hypot(p[2] - at[2]);
+            match distance > params.slide_max {
+                true => Err(GeneralizeError::Slides {
+                    point: format!("{} {}", side.other().name(), POINT_NAMES[k]),
+                    step: index,
+                    t,
+                    distance,
+                    max: params.slide_max,
+                }),
+                false => Ok(()),
+            }
+        };
+        let n = params.check_samples;
+        let (mut t0, mut before) = (tom, points(tom)?);
+        let mut anchor = before.map(|p| on(p).then_some(p));
+        for i in 1..=n {
+            let t = tom + (1.0 - tom) * i as f64 / n as f64;
+            let now = points(t)?;
+            for k in 0..3 {
+                if on(before[k]) != on(now[k]) {
+                    // the instant between t0 and t where the point meets or leaves the floor
+                    let (mut a, mut b) = (t0, t);
+                    for _ in 0..40 {
+                        let m = 0.5 * (a + b);
+                        match on(points(m)?[k]) == on(before[k]) {
+                            true => a = m,
+                            false => b = m,
+                        }
+                    }
+                    let at = if on(before[k]) { a } else { b };
+                    let p = points(at)?[k];
+                    match anchor[k] {
+                        Some(q) => slide(at, p, q, k)?,
+                        None => anchor[k] = Some(p),
+                    }
+                }
+                match (on(now[k]), anchor[k]) {
+                    (true, Some(q)) => slide(t, now[k], q, k)?,
+                    _ => anchor[k] = None,
+                }
+            }
+            (t0, before) = (t, now);
+        }
+        Ok(())
+    }
 }
+
+/// The foot points in the order `check_slides` reads them.
+const POINT_NAMES: [&str; 3] = ["heel", "ball", "toe tip"];
 
 fn below_floor(
     leg: &LegPoints,

@@ -39,7 +39,8 @@ pub struct KinematicWalk {
 impl KinematicWalk {
     /// `prototype` generalized to `body` at the step length of `gait` (the step before as
     /// long), lasting 60 / sf s, checked at `params.check_samples` instants of either leg's step
-    /// (no leg stretched, no foot under the floor) before anything is walked.
+    /// (no leg stretched, no foot under the floor, no swing foot sliding on it) before anything
+    /// is walked.
     pub fn new(
         prototype: &WalkData,
         body: Body,
@@ -57,7 +58,7 @@ impl KinematicWalk {
         let posed = |sl: f64| -> Result<(StepPose, f64), GeneralizeError> {
             let data = steady(prototype, &condition, &pelvis, sl)?;
             let step = StepPose::new(data, body, attrs.clone(), 60.0 / gait.step_frequency)?;
-            let drop = step.check(params.check_samples, params.floor_tolerance)?;
+            let drop = step.check(params)?;
             if drop > params.hip_drop_max {
                 return Err(GeneralizeError::HipDrop {
                     drop,
