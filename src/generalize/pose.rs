@@ -248,6 +248,16 @@ impl StepPose {
         (pose, self.need(hip, pose.ankle))
     }
 
+    /// The swing foot's heel, ball and toe tip at t of the step with `side` in stance.
+    fn swing_points(
+        &self,
+        index: usize,
+        side: Side,
+        t: f64,
+    ) -> Result<[[f64; 3]; 3], GeneralizeError> {
+        Ok(swing_leg(&self.posed(index, side, 0.0, t, 0.0)?.0, side))
+    }
+
     /// Pose the step at `params.check_samples` + 1 instants on either side and check that no
     /// foot point is below the floor by more than `floor_tolerance` (a leg too short to reach is
     /// an error of the pose itself) and that no swing foot slides ([`Self::check_slides`]).
@@ -255,7 +265,9 @@ impl StepPose {
     pub fn check(&self, params: &GeneralizeParameters) -> Result<f64, GeneralizeError> {
         let (samples, tolerance) = (params.check_samples, params.floor_tolerance);
         let mut most: f64 = 0.0;
+        let tom = self.data.phases.tom;
         for (index, side) in [(0, Side::Right), (1, Side::Left)] {
+            let mut swing = vec![(tom, self.swing_points(index, side, tom)?)];
             for i in 0..=samples {
                 let t = i as f64 / samples as f64;
                 let (lm, drop) = self.posed(index, side, 0.0, t, 0.0)?;
@@ -263,8 +275,11 @@ impl StepPose {
                 for (leg, name) in [(&lm.right, "right"), (&lm.left, "left")] {
                     below_floor(leg, name, index, t, tolerance)?;
                 }
+                if t > tom {
+                    swing.push((t, swing_leg(&lm, side)));
+                }
             }
-            self.check_slides(index, side, params)?;
+            self.check_slides(index, side, &swing, params)?;
         }
         Ok(most)
     }
@@ -272,24 +287,16 @@ impl StepPose {
     /// The swing foot of the step with `side` in stance: no point of it, while on the floor
     /// (within `floor_tolerance`), farther than `slide_max` from where it met it (at toe-off, or
     /// later); the stance foot is grounded without sliding by construction, the swing foot only
-    /// by the data. Each point is checked at the samples and at the instants it meets or leaves
-    /// the floor between two of them (found by bisection).
+    /// by the data. Each point is checked at the `samples` (instant, points; from toe-off on) and
+    /// at the instants it meets or leaves the floor between two of them (found by bisection).
     fn check_slides(
         &self,
         index: usize,
         side: Side,
+        samples: &[(f64, [[f64; 3]; 3])],
         params: &GeneralizeParameters,
     ) -> Result<(), GeneralizeError> {
-        let tom = self.data.phases.tom;
-        let points = |t: f64| -> Result<[[f64; 3]; 3], GeneralizeError> {
-            let lm = self.posed(index, side, 0.0, t, 0.0)?.0;
-            let leg = if side == Side::Right {
-                lm.left
-            } else {
-                lm.right
-            };
-            Ok([leg.heel, leg.mtp, leg.toe])
-        };
+        let points = |t: f64| self.swing_points(index, side, t);
         let on = |p: [f64; 3]| p[1] <= params.floor_tolerance;
         let slide = |t: f64, p: [f64; 3], at: [f64; 3], k: usize| {
             let distance = (p[0] - at[0]).hypot(p[2] - at[2]);
@@ -304,17 +311,14 @@ impl StepPose {
                 false => Ok(()),
             }
         };
-        let n = params.check_samples;
-        let (mut t0, mut before) = (tom, points(tom)?);
+        let (mut t0, mut before) = samples[0];
         let mut anchor = before.map(|p| on(p).then_some(p));
-        for i in 1..=n {
-            let t = tom + (1.0 - tom) * i as f64 / n as f64;
-            let now = points(t)?;
+        for &(t, now) in &samples[1..] {
             for k in 0..3 {
                 if on(before[k]) != on(now[k]) {
                     // the instant between t0 and t where the point meets or leaves the floor
                     let (mut a, mut b) = (t0, t);
-                    for _ in 0..40 {
+                    for _ in 0..20 {
                         let m = 0.5 * (a + b);
                         match on(points(m)?[k]) == on(before[k]) {
                             true => a = m,
@@ -337,6 +341,16 @@ impl StepPose {
         }
         Ok(())
     }
+}
+
+/// The heel, ball and toe tip of the swing leg of the step with `side` in stance.
+fn swing_leg(lm: &Landmarks, side: Side) -> [[f64; 3]; 3] {
+    let leg = if side == Side::Right {
+        lm.left
+    } else {
+        lm.right
+    };
+    [leg.heel, leg.mtp, leg.toe]
 }
 
 /// The foot points in the order `check_slides` reads them.
