@@ -1,0 +1,84 @@
+//! Issue 18 §4: the inverse kinematics on an external walk's poulaine, DeepMimic's walking clip
+//! (pybullet 3.2.7's pybullet_data, zlib licence; `scripts/deepmimic_poulaine.py` wrote both
+//! files from the clip's own forward kinematics, independently of klaw), against the clip's own
+//! clinical angles at the same 38 instants. docs/ik.md has the numbers next to Table 2.
+use std::path::Path;
+
+use klaw::Body;
+use klaw::ik::{Angles, Ik};
+use klaw::poulaine::Trajectory;
+use klaw::poulaine::validate::recover;
+
+const POULAINE: &str = "models/prototypes/deepmimic-walk-poulaine.csv";
+const ANGLES: &str = "models/prototypes/deepmimic-walk-angles.csv";
+/// The clip's leg, hip to ankle (m): its thigh and shank at the URDF's scaling 0.25.
+const CLIP_LEG: f64 = 0.25 * (1.686184 + 1.63948);
+/// The height whose klaw leg (0.48225 H, KLAW Table B-1) is the clip's.
+const HEIGHT: f64 = 1.724;
+
+/// The clip's chain angles (rad) of the first `n` frames of the angles file: its columns in
+/// the chain's order (pelvis tilt, list, rotation, then right and left hip flexion,
+/// adduction, rotation, knee flexion), degrees in the file.
+fn clip_angles(n: usize) -> Vec<Angles> {
+    let text = std::fs::read_to_string(ANGLES).unwrap();
+    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let names = [
+        "pelvis_tilt",
+        "pelvis_list",
+        "pelvis_rotation",
+        "hip_flexion_r",
+        "hip_adduction_r",
+        "hip_rotation_r",
+        "knee_flexion_r",
+        "hip_flexion_l",
+        "hip_adduction_l",
+        "hip_rotation_l",
+        "knee_flexion_l",
+    ];
+    let at: Vec<usize> = names
+        .iter()
+        .map(|n| {
+            header
+                .iter()
+                .position(|h| *h == format!("{n}_deg"))
+                .unwrap()
+        })
+        .collect();
+    lines
+        .take(n)
+        .map(|l| {
+            let row: Vec<f64> = l.split(',').map(|v| v.parse().unwrap()).collect();
+            Angles::from_iterator(at.iter().map(|&k| row[k].to_radians()))
+        })
+        .collect()
+}
+
+/// The IK on the clip's poulaine at the clip's leg length: every frame's ankles within 1 mm of
+/// the poulaine (by the chain's forward kinematics at the solved angles), every angle within
+/// its joint limits, and the hip flexion and knee against the clip's own (eq. 7, mean of both
+/// legs) within the bounds klaw's own walks meet (`tests/ik_validation.rs`: hip flexion 0.07,
+/// knee 0.15 rad; docs/ik.md's 16 walks: 0.038–0.075 and 0.082–0.138). Measured here, sample by
+/// sample: 0.044 and 0.073 rad (Table 2: 0.05 and 0.02).
+#[test]
+fn the_ik_follows_deepmimics_poulaine_and_recovers_its_knee() {
+    let poulaine = Trajectory::read_csv(Path::new(POULAINE)).unwrap();
+    assert_eq!(poulaine.time.len(), 38);
+    let body = Body::standard(HEIGHT, 23.0 * HEIGHT * HEIGHT).unwrap();
+    let ik = Ik::new(&body);
+    assert!((ik.chain.leg_length() - CLIP_LEG).abs() < 1e-3 * CLIP_LEG);
+    let truth = clip_angles(poulaine.time.len());
+    let r = recover(&ik, &poulaine, &truth).unwrap();
+    for (theta, target) in r.angles.iter().zip(poulaine.targets()) {
+        let error = (ik.chain.ankles(theta) - target).amax();
+        assert!(error <= 1e-3, "ankle error {error} m");
+    }
+    assert!(r.within_limits);
+    let (hip, knee) = (r.table2("hip_flexion"), r.table2("knee_flexion"));
+    eprintln!(
+        "DeepMimic: hip flexion {hip:.4}, knee {knee:.4} rad; {:?}",
+        r.rms
+    );
+    assert!(hip <= 0.07, "hip flexion {hip} rad");
+    assert!(knee <= 0.15, "knee {knee} rad");
+}
