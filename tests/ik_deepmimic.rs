@@ -110,3 +110,18 @@ fn the_clips_own_angles_as_reference_come_back() {
     assert!(r.rms.iter().all(|&e| e < 0.01), "{:?}", r.rms);
     assert!(r.within_limits && r.residual <= 1e-3);
 }
+
+/// klaw's frame CSV reader (`klaw evaluate`) reads the angles file, its `#` source lines
+/// skipped, to the same angles as this file's own reader.
+#[test]
+fn klaws_reader_reads_the_commented_angles_file() {
+    use klaw::analysis::criteria::CriteriaParameters;
+    use klaw::export::read::read_motion;
+    use klaw::poulaine::validate::chain_angles;
+    let body = Body::standard(HEIGHT, 23.0 * HEIGHT * HEIGHT).unwrap();
+    let file = read_motion(Path::new(ANGLES), &body, &CriteriaParameters::default()).unwrap();
+    assert_eq!(file.motion.frames.len(), 4 * 38);
+    for (frame, mine) in file.motion.frames.iter().zip(clip_angles(4 * 38)) {
+        assert!((chain_angles(frame) - mine).amax() < 1e-12);
+    }
+}
