@@ -5,6 +5,7 @@
 use std::path::Path;
 
 use klaw::Body;
+use klaw::ik::chain::NAMES;
 use klaw::ik::{Angles, Ik};
 use klaw::poulaine::Trajectory;
 use klaw::poulaine::validate::{recover, recover_referenced};
@@ -17,26 +18,12 @@ const CLIP_LEG: f64 = 0.25 * (1.686184 + 1.63948);
 const HEIGHT: f64 = 1.724;
 
 /// The clip's chain angles (rad) of the first `n` frames of the angles file: its columns in
-/// the chain's order (pelvis tilt, list, rotation, then right and left hip flexion,
-/// adduction, rotation, knee flexion), degrees in the file.
+/// the chain's order ([`NAMES`]), degrees in the file.
 fn clip_angles(n: usize) -> Vec<Angles> {
     let text = std::fs::read_to_string(ANGLES).unwrap();
     let mut lines = text.lines().filter(|l| !l.starts_with('#'));
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let names = [
-        "pelvis_tilt",
-        "pelvis_list",
-        "pelvis_rotation",
-        "hip_flexion_r",
-        "hip_adduction_r",
-        "hip_rotation_r",
-        "knee_flexion_r",
-        "hip_flexion_l",
-        "hip_adduction_l",
-        "hip_rotation_l",
-        "knee_flexion_l",
-    ];
-    let at: Vec<usize> = names
+    let at: Vec<usize> = NAMES
         .iter()
         .map(|n| {
             header
