@@ -110,8 +110,9 @@ impl Trajectory {
         Ok(t)
     }
 
-    /// Read a poulaine CSV file (`docs/ik.md`): the header [`CSV_HEADER`], optionally followed
-    /// by [`SPEED_COLUMN`], one row per sample of one cycle, uniform in time from 0; the period
+    /// Read a poulaine CSV file (`docs/ik.md`): lines starting with `#` skipped (comments: a
+    /// measured poulaine's source), the header [`CSV_HEADER`], optionally followed by
+    /// [`SPEED_COLUMN`], one row per sample of one cycle, uniform in time from 0; the period
     /// is the number of rows × the step.
     pub fn read_csv(path: &Path) -> crate::Result<Self> {
         let text = std::fs::read_to_string(path).map_err(|source| crate::Error::Io {
@@ -128,7 +129,9 @@ impl Trajectory {
             path: path.to_path_buf(),
             reason,
         };
-        let mut reader = csv::ReaderBuilder::new().from_reader(text.as_bytes());
+        let mut reader = csv::ReaderBuilder::new()
+            .comment(Some(b'#'))
+            .from_reader(text.as_bytes());
         let header = reader
             .headers()
             .map_err(|e| bad(format!("not a CSV file: {e}")))?

@@ -1,5 +1,6 @@
 //! klaw's frame CSV read back (`docs/export.md`, "CSV"; a measured walk in the same columns):
-//! a header line, then one row per frame: `time_s` (s), `step`, `pelvis_tx_m`, `pelvis_ty_m`,
+//! lines starting with `#` (comments: a measured file's source) skipped, a header line, then one
+//! row per frame: `time_s` (s), `step`, `pelvis_tx_m`, `pelvis_ty_m`,
 //! `pelvis_tz_m` (m, y up from the ground), the angles `*_deg` in degrees with klaw's clinical
 //! signs. Needed, optional and ignored columns: the parent module's doc.
 use super::{Frames, MotionFileError, Table, absent, set_angle};
@@ -15,6 +16,7 @@ const POSITION: [&str; 3] = ["pelvis_tx_m", "pelvis_ty_m", "pelvis_tz_m"];
 pub(crate) fn parse(text: &str, _body: &Body) -> Result<Frames, MotionFileError> {
     let mut reader = csv::ReaderBuilder::new()
         .has_headers(true)
+        .comment(Some(b'#'))
         .flexible(true)
         .trim(csv::Trim::All)
         .from_reader(text.as_bytes());
