@@ -260,7 +260,7 @@ impl StepPose {
 
     /// Pose the step at `params.check_samples` + 1 instants on either side and check that no
     /// foot point is below the floor by more than `floor_tolerance` (a leg too short to reach is
-    /// an error of the pose itself) and that no swing foot slides ([`Self::check_slides`]).
+    /// an error of the pose itself) and that no swing foot slides on it (`check_slides`).
     /// Returns the most the hip came down from H (m).
     pub fn check(&self, params: &GeneralizeParameters) -> Result<f64, GeneralizeError> {
         let (samples, tolerance) = (params.check_samples, params.floor_tolerance);
