@@ -8,8 +8,8 @@ use klaw::generalize::{GeneralizeParameters, KinematicWalk, WalkData, default_pr
 use klaw::model::{InputError, Shown};
 use klaw::{Result, export, plot};
 
-use crate::walk::{WalkArgs, check_outputs, options};
-use crate::{MAX_FPS, MIN_FPS, count, font_note};
+use crate::walk::{WalkArgs, check_outputs, options, print_files};
+use crate::{MAX_FPS, MIN_FPS, count};
 
 /// Walk data from a file, JSON or CSV by its extension.
 pub(crate) fn read_walk_data(path: &Path) -> Result<WalkData> {
@@ -117,17 +117,5 @@ fn print_summary(
         walk.step.data.step_length,
         1e3 * walk.hip_drop
     );
-    let _ = writeln!(out, "motion: {}", args.out.display());
-    for (path, what) in [
-        (&args.state_out, "state rows"),
-        (&args.events, "events"),
-        (&args.cycle_out, "gait cycle"),
-    ] {
-        if let Some(p) = path {
-            let _ = writeln!(out, "{what}: {}", p.display());
-        }
-    }
-    if let Some(path) = plot {
-        let _ = writeln!(out, "plot: {}{}", path.display(), font_note());
-    }
+    print_files(&mut out, args, "state rows", plot);
 }

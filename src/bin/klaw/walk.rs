@@ -285,18 +285,21 @@ fn print_summary(args: &WalkArgs, stream: &WalkStream, fps: f64, plot: Option<&P
         stream.iterations as f64 / stream.solves.max(1) as f64,
         stream.max_iterations
     );
+    print_files(&mut out, args, "engine state", plot);
+}
+
+/// The files a walk wrote, a line each (`state` names the state rows), for either mode.
+pub(crate) fn print_files(out: &mut impl Write, args: &WalkArgs, state: &str, plot: Option<&Path>) {
     let _ = writeln!(out, "motion: {}", args.out.display());
     for (path, what) in [
-        (&args.state_out, "engine state"),
+        (&args.state_out, state),
         (&args.events, "events"),
         (&args.cycle_out, "gait cycle"),
+        (&args.report, "report"),
     ] {
         if let Some(p) = path {
             let _ = writeln!(out, "{what}: {}", p.display());
         }
-    }
-    if let Some(path) = &args.report {
-        let _ = writeln!(out, "report: {}", path.display());
     }
     if let Some(path) = plot {
         let _ = writeln!(out, "plot: {}{}", path.display(), font_note());
