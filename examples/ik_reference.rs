@@ -14,20 +14,9 @@
 //! `cargo run --release --example ik_reference` (`ENERGY_SCALE=0 cargo run …`)
 use klaw::ik::{Angles, Ik};
 use klaw::poulaine::Trajectory;
+use klaw::poulaine::database::resample;
 use klaw::poulaine::validate::{TABLE2, frames_angles, recover_referenced};
 use klaw::{Body, Simulation};
-
-/// `angles` (one cycle) at `n` uniform phases, linear between samples, cyclic.
-fn resample(angles: &[Angles], n: usize) -> Vec<Angles> {
-    let m = angles.len();
-    (0..n)
-        .map(|i| {
-            let u = i as f64 * m as f64 / n as f64;
-            let (k, f) = (u.floor() as usize % m, u.fract());
-            angles[k] * (1.0 - f) + angles[(k + 1) % m] * f
-        })
-        .collect()
-}
 
 struct Case {
     body: Body,

@@ -8,7 +8,7 @@ use klaw::poulaine::Trajectory;
 use klaw::poulaine::build::{Grid, synthetic};
 use klaw::poulaine::database::clamp_to_reach;
 use klaw::poulaine::trajectory::cycle_frames;
-use klaw::poulaine::validate::{Recovery, TABLE2, frames_angles, recover};
+use klaw::poulaine::validate::{Recovery, TABLE2, frames_angles, recover, recover_referenced};
 use klaw::{AttributeTable, Body, GaitRequest, Simulation};
 
 fn header(first: &str) {
@@ -82,13 +82,21 @@ fn main() {
             .unwrap();
         let (frames, _, period) = cycle_frames(&walk, 60.0).unwrap();
         let truth = frames_angles(&frames, &body).unwrap();
-        let (model, _) = db.without(&e.label).poulaine(&e.axes, body.l1, period);
+        let rest = db.without(&e.label);
+        let (model, selection) = rest.poulaine(&e.axes, body.l1, period);
         let mut poulaine = model.sample(frames.len());
-        let ik = Ik::new(&body);
+        let mut ik = Ik::new(&body);
         clamp_to_reach(&mut poulaine, body.l0 / 2.0, ik.params.reach * body.l1);
         match recover(&ik, &poulaine, &truth) {
-            Ok(r) => row(&e.label, &r),
-            Err(err) => println!("| {} | failed: {err} |", e.label),
+            Ok(r) => row(&format!("{}, rest posture", e.label), &r),
+            Err(err) => println!("| {}, rest posture | failed: {err} |", e.label),
+        }
+        let reference = rest.reference(&selection, frames.len());
+        ik.model.weights.energy = ik.model.weights.energy_with_reference;
+        let x = &rest.entries[selection.x].label;
+        match recover_referenced(&ik, &poulaine, &truth, reference.as_deref()) {
+            Ok(r) => row(&format!("{}, angles of {x}", e.label), &r),
+            Err(err) => println!("| {}, angles of {x} | failed: {err} |", e.label),
         }
     }
 }

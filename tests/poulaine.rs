@@ -155,7 +155,24 @@ fn the_database_file_round_trips_and_damage_is_refused() {
             .zip(&b)
             .all(|(x, y)| (x - y).abs() <= 1e-15 * x.abs().max(1.0))
     );
+    // each entry carries its walk's angles over the cycle (100 Hz), which starts at a heel
+    // strike: one knee there at the attribute heel_strike_knee, 4°
+    for e in &db.entries {
+        let n = (e.model.period * 100.0).round() as usize;
+        assert_eq!(e.angles.len(), n, "{}", e.label);
+        let knees = [e.angles[0][6], e.angles[0][10]].map(|k| (k.to_degrees() - 4.0).abs());
+        assert!(knees[0].min(knees[1]) < 0.05, "{}: {knees:?}", e.label);
+    }
     let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    v["entries"][0]["angles"] = serde_json::json!([vec![0.0; 11]]);
+    let e = Database::parse(&v.to_string(), Path::new("db.json")).unwrap_err();
+    assert!(e.to_string().contains("at least 2 samples"), "{e}");
+    // a measured entry has no angles: the reference is the rest posture's business
+    v["entries"][0].as_object_mut().unwrap().remove("angles");
+    let measured = Database::parse(&v.to_string(), Path::new("db.json")).unwrap();
+    let first = klaw::poulaine::database::Selection { x: 0, y: 0, z: 0 };
+    assert!(measured.reference(&first, 10).is_none());
+    assert_eq!(back.reference(&first, 10).unwrap().len(), 10);
     v["entries"][1]["axes"]["trace"] = serde_json::json!(0.1);
     let e = Database::parse(&v.to_string(), Path::new("db.json")).unwrap_err();
     assert!(e.to_string().contains("entry 1"), "{e}");

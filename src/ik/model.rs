@@ -44,6 +44,9 @@ pub struct Weights {
     pub energy: f64,
     /// w_rest, of f3 (eq. 6).
     pub rest: f64,
+    /// w_energy when f3 pulls towards a per-phase reference posture instead of the rest
+    /// posture (a database entry's angles; docs/ik.md).
+    pub energy_with_reference: f64,
     /// ξ of eq. 4 (1/rad).
     pub xi: f64,
 }
@@ -147,6 +150,7 @@ impl IkModel {
             ("weights.limits", w.limits),
             ("weights.energy", w.energy),
             ("weights.rest", w.rest),
+            ("weights.energy_with_reference", w.energy_with_reference),
             ("weights.xi", w.xi),
         ] {
             if !(v.is_finite() && v >= 0.0) {

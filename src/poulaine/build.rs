@@ -14,6 +14,7 @@ use crate::plan::GaitRequest;
 use crate::poulaine::database::{Database, Entry};
 use crate::poulaine::fit::fit;
 use crate::poulaine::trajectory::Trajectory;
+use crate::poulaine::validate::frames_angles;
 use crate::simulation::Simulation;
 
 /// The steps of each walk: the last complete cycle (steps 4 and 5) is past the start.
@@ -126,7 +127,7 @@ fn entry(p: &Point) -> crate::Result<Entry> {
         })
         .steps(STEPS)
         .run()?;
-    let (poulaine, _) = Trajectory::from_walk(&walk, RATE)?;
+    let (poulaine, frames) = Trajectory::from_walk(&walk, RATE)?;
     let (model, error) = fit(&poulaine)?;
     let gait = walk.gaits()[0];
     let mut e = Entry::new(
@@ -140,6 +141,10 @@ fn entry(p: &Point) -> crate::Result<Entry> {
     e.height = Some(p.height);
     e.velocity = Some(gait.velocity);
     e.attributes = p.attributes.clone();
+    e.angles = frames_angles(&frames, &body)?
+        .iter()
+        .map(|a| (*a).into())
+        .collect();
     Ok(e)
 }
 

@@ -19,6 +19,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use crate::ik::chain::{Angles, DOF};
 use crate::poulaine::curve::{Component, LegCurve};
 use crate::poulaine::error::PoulaineError;
 use crate::poulaine::fit::{FitError, Model};
@@ -99,6 +100,12 @@ pub struct Entry {
     pub fit_error: FitError,
     /// The parameters (computed from the model; checked on reading).
     pub axes: Axes,
+    /// The walk's chain angles (rad, in the order of [`crate::ik::chain::NAMES`]) at uniform phases of
+    /// its cycle from the model's phase 0, a per-phase reference posture for the IK's f3
+    /// (eq. 6; docs/ik.md, "The database's angles as reference"); empty when the entry has none
+    /// (a measured poulaine).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub angles: Vec<[f64; DOF]>,
 }
 
 /// A database of poulaines.
@@ -146,6 +153,7 @@ impl Entry {
             axes: Axes::of(&model, leg_length),
             model,
             fit_error,
+            angles: Vec::new(),
         }
     }
 }
@@ -197,6 +205,12 @@ impl Database {
                 .all(Component::is_valid);
             if !valid {
                 return Err(at("a curve's knots are not distinct phases in [0, 1) in cyclic order, or a value is not finite".into()));
+            }
+            if e.angles.len() == 1 || e.angles.iter().flatten().any(|v| !v.is_finite()) {
+                return Err(at(format!(
+                    "its angles must be none or at least 2 samples of finite values ({} given)",
+                    e.angles.len()
+                )));
             }
             let axes = Axes::of(&e.model, e.leg_length);
             let close = |a: f64, b: f64| (a - b).abs() <= 1e-6 * a.abs().max(1.0);
@@ -282,6 +296,15 @@ impl Database {
         (combine(q.spacing - raw.spacing, q.stance - raw.stance), s)
     }
 
+    /// The per-phase reference posture for a poulaine of `n` samples per cycle made from
+    /// `selection`: the x entry's angles (that entry sets the support phases) at the samples'
+    /// phases ([`resample`]). `None` when that entry carries no angles.
+    pub fn reference(&self, selection: &Selection, n: usize) -> Option<Vec<Angles>> {
+        let e = &self.entries[selection.x];
+        let angles: Vec<Angles> = e.angles.iter().map(|a| Angles::from(*a)).collect();
+        (!angles.is_empty()).then(|| resample(&angles, n))
+    }
+
     /// The database without the entry labelled `label` (leave-one-out).
     pub fn without(&self, label: &str) -> Self {
         Database {
@@ -294,6 +317,19 @@ impl Database {
                 .collect(),
         }
     }
+}
+
+/// `angles`, samples of one cycle at uniform phases from 0, at `n` uniform phases: linear
+/// between samples, cyclic (the last sample is followed by the first).
+pub fn resample(angles: &[Angles], n: usize) -> Vec<Angles> {
+    let m = angles.len();
+    (0..n)
+        .map(|i| {
+            let u = i as f64 * m as f64 / n as f64;
+            let (k, f) = (u.floor() as usize % m, u.fract());
+            angles[k] * (1.0 - f) + angles[(k + 1) % m] * f
+        })
+        .collect()
 }
 
 /// Clamp each ankle of `t` to at most `reach` (m) from its hip at the pelvis's rest position,
@@ -312,4 +348,33 @@ pub fn clamp_to_reach(t: &mut Trajectory, half_width: f64, reach: f64) -> usize 
         }
     }
     moved
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Resampling is exact on a cyclic piecewise-linear curve whose corners are the samples: at
+    /// the samples (n = m: identity), between them, and across the wrap from the last sample
+    /// to the first.
+    #[test]
+    fn resampling_interpolates_linearly_and_wraps() {
+        let m = 5;
+        let value = |k: usize| [0.0, 2.0, 1.0, 4.0, -1.0][k % m];
+        let samples: Vec<Angles> = (0..m).map(|k| Angles::from_element(value(k))).collect();
+        assert_eq!(resample(&samples, m), samples);
+        let n = 20;
+        for (i, a) in resample(&samples, n).iter().enumerate() {
+            let u = i as f64 * m as f64 / n as f64;
+            let (k, f) = (u.floor() as usize, u.fract());
+            let want = value(k) + f * (value(k + 1) - value(k));
+            assert!(
+                a.iter().all(|v| (v - want).abs() < 1e-12),
+                "{i}: {a} vs {want}"
+            );
+        }
+        // the last quarter interval of the wrap: from −1 (sample 4) towards 0 (sample 0)
+        let r = resample(&samples, 4 * m);
+        assert!((r[4 * m - 1][0] - (-1.0 + 0.75)).abs() < 1e-12);
+    }
 }

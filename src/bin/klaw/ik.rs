@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use klaw::ik::{Ik, Optimizer};
+use klaw::ik::{Angles, Ik, Optimizer};
 use klaw::model::InputError;
 use klaw::model::attributes::AttributeTable;
 use klaw::poulaine::database::clamp_to_reach;
@@ -68,6 +68,11 @@ pub(crate) struct IkArgs {
         allow_negative_numbers = true
     )]
     fps: f64,
+    /// --db: f3 (eq. 6) pulls towards the rest posture of models/ik.toml, as in the paper
+    /// [default: towards the selected walk's angles at each phase, where the database carries
+    /// them, with the kinetic weight energy_with_reference]
+    #[arg(long, requires = "db")]
+    rest_posture: bool,
     /// Gait cycles to write, range [1, 1000]
     #[arg(
         long,
@@ -91,6 +96,7 @@ pub(crate) struct IkArgs {
 struct Report {
     source: String,
     selected: Option<[String; 3]>,
+    reference: String,
     query: Option<Query>,
     period_s: f64,
     velocity_m_s: f64,
@@ -102,8 +108,16 @@ struct Report {
     within_limits: bool,
 }
 
-/// The poulaine, speed, source, selection and query of `klaw ik`.
-type Source = (Trajectory, f64, String, Option<[String; 3]>, Option<Query>);
+/// The poulaine of `klaw ik` and where it came from.
+struct Source {
+    poulaine: Trajectory,
+    velocity: f64,
+    name: String,
+    selected: Option<[String; 3]>,
+    query: Option<Query>,
+    /// f3's reference posture per sample (the x entry's angles), if used.
+    reference: Option<(String, Vec<Angles>)>,
+}
 
 /// The database's poulaine for the walker of `a` (docs/ik.md, "Selection").
 fn db_poulaine(a: &IkArgs, db_path: &std::path::Path, body: &Body) -> Result<Source> {
@@ -142,14 +156,18 @@ fn db_poulaine(a: &IkArgs, db_path: &std::path::Path, body: &Body) -> Result<Sou
     let (model, s) = db.poulaine(&q, body.l1, period);
     let n = (period * a.fps).round() as usize;
     let labels = [s.x, s.y, s.z].map(|i| db.entries[i].label.clone());
-    let source = db_path.display().to_string();
-    Ok((
-        model.sample(n),
-        gait.velocity,
-        source,
-        Some(labels),
-        Some(q),
-    ))
+    let reference = match a.rest_posture {
+        true => None,
+        false => db.reference(&s, n).map(|r| (labels[0].clone(), r)),
+    };
+    Ok(Source {
+        poulaine: model.sample(n),
+        velocity: gait.velocity,
+        name: db_path.display().to_string(),
+        selected: Some(labels),
+        query: Some(q),
+        reference,
+    })
 }
 
 pub(crate) fn run(a: &IkArgs) -> Result<()> {
@@ -169,20 +187,37 @@ pub(crate) fn run(a: &IkArgs) -> Result<()> {
         Minimiser::Mds => Optimizer::MultiDirectional,
         Minimiser::NelderMead => Optimizer::NelderMead,
     };
-    let (mut poulaine, velocity, source, selected, query) = match (&a.poulaine, &a.db) {
+    let Source {
+        mut poulaine,
+        velocity,
+        name: source,
+        selected,
+        query,
+        reference,
+    } = match (&a.poulaine, &a.db) {
         (Some(p), _) => {
             let t = Trajectory::read_csv(p)?;
-            let v = a.velocity.unwrap_or_else(|| t.speed());
-            (t, v, p.display().to_string(), None, None)
+            Source {
+                velocity: a.velocity.unwrap_or_else(|| t.speed()),
+                poulaine: t,
+                name: p.display().to_string(),
+                selected: None,
+                query: None,
+                reference: None,
+            }
         }
         (None, Some(db_path)) => db_poulaine(a, db_path, &body)?,
         (None, None) => unreachable!("clap requires --poulaine or --db"),
     };
+    if reference.is_some() {
+        ik.model.weights.energy = ik.model.weights.energy_with_reference;
+    }
     let clamped = clamp_to_reach(&mut poulaine, body.l0 / 2.0, ik.params.reach * body.l1);
     let dt = poulaine
         .uniform_step()
         .ok_or_else(|| InputError::bad_value("poulaine", "its samples are not uniform in time"))?;
-    let sol = ik.solve(&poulaine.targets(), dt, true)?;
+    let per_phase = reference.as_ref().map(|(_, r)| r.as_slice());
+    let sol = ik.solve_referenced(&poulaine.targets(), dt, true, per_phase)?;
     let angles: Vec<_> = sol.frames.iter().map(|f| f.theta).collect();
     let attrs = AttributeTable::builtin().defaults();
     let frames = klaw::ik::figure::frames((&body, &attrs), &angles, dt, velocity, cycles);
@@ -201,6 +236,9 @@ pub(crate) fn run(a: &IkArgs) -> Result<()> {
     let report = Report {
         source,
         selected,
+        reference: reference.map_or("the rest posture".into(), |(label, _)| {
+            format!("the angles of entry {label} at each phase")
+        }),
         query,
         period_s: poulaine.period,
         velocity_m_s: velocity,
@@ -216,7 +254,7 @@ pub(crate) fn run(a: &IkArgs) -> Result<()> {
     }
     println!(
         "ik: {} frames per cycle ({:.3} s, v {:.3} m/s), {cycles} cycles, ankles within {:.1e} m, \
-         angles {} their limits: {}",
+         angles {} their limits, f3 towards {}: {}",
         report.frames_per_cycle,
         report.period_s,
         velocity,
@@ -226,6 +264,7 @@ pub(crate) fn run(a: &IkArgs) -> Result<()> {
         } else {
             "outside"
         },
+        report.reference,
         a.out.display()
     );
     Ok(())
