@@ -100,10 +100,10 @@ pub struct Entry {
     pub fit_error: FitError,
     /// The parameters (computed from the model; checked on reading).
     pub axes: Axes,
-    /// The walk's chain angles (rad, in the order of [`crate::ik::chain::NAMES`]) at uniform phases of
-    /// its cycle from the model's phase 0, a per-phase reference posture for the IK's f3
-    /// (eq. 6; docs/ik.md, "The database's angles as reference"); empty when the entry has none
-    /// (a measured poulaine).
+    /// The walk's chain angles (rad, in the order of [`crate::ik::chain::NAMES`]) at uniform
+    /// phases of its cycle from the model's phase 0, a per-phase reference posture for the IK's
+    /// f3 (eq. 6; docs/ik.md, "The database's angles as reference"); empty when the entry has
+    /// none (a measured poulaine).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub angles: Vec<[f64; DOF]>,
 }
@@ -355,22 +355,21 @@ mod tests {
     use super::*;
 
     /// Resampling is exact on a cyclic piecewise-linear curve whose corners are the samples: at
-    /// the samples (n = m: identity), between them, and across the wrap from the last sample
-    /// to the first.
+    /// the samples (n = m: identity), halfway between them (the neighbours' mean), and across
+    /// the wrap from the last sample to the first.
     #[test]
     fn resampling_interpolates_linearly_and_wraps() {
         let m = 5;
         let value = |k: usize| [0.0, 2.0, 1.0, 4.0, -1.0][k % m];
         let samples: Vec<Angles> = (0..m).map(|k| Angles::from_element(value(k))).collect();
         assert_eq!(resample(&samples, m), samples);
-        let n = 20;
-        for (i, a) in resample(&samples, n).iter().enumerate() {
-            let u = i as f64 * m as f64 / n as f64;
-            let (k, f) = (u.floor() as usize, u.fract());
-            let want = value(k) + f * (value(k + 1) - value(k));
+        let halves = resample(&samples, 2 * m);
+        for k in 0..m {
+            let mean = 0.5 * (value(k) + value(k + 1));
+            assert!(halves[2 * k].iter().all(|v| (v - value(k)).abs() < 1e-12));
             assert!(
-                a.iter().all(|v| (v - want).abs() < 1e-12),
-                "{i}: {a} vs {want}"
+                halves[2 * k + 1].iter().all(|v| (v - mean).abs() < 1e-12),
+                "{k}"
             );
         }
         // the last quarter interval of the wrap: from −1 (sample 4) towards 0 (sample 0)

@@ -156,9 +156,10 @@ fn db_poulaine(a: &IkArgs, db_path: &std::path::Path, body: &Body) -> Result<Sou
     let (model, s) = db.poulaine(&q, body.l1, period);
     let n = (period * a.fps).round() as usize;
     let labels = [s.x, s.y, s.z].map(|i| db.entries[i].label.clone());
-    let reference = match a.rest_posture {
-        true => None,
-        false => db.reference(&s, n).map(|r| (labels[0].clone(), r)),
+    let reference = if a.rest_posture {
+        None
+    } else {
+        db.reference(&s, n).map(|r| (labels[0].clone(), r))
     };
     Ok(Source {
         poulaine: model.sample(n),
