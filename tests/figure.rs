@@ -129,10 +129,18 @@ fn heels_land_on_their_marks() {
 
 /// Across every phase boundary (heel strike, toe-off, the end of each swing subphase, heel-off)
 /// no knee angle, foot pitch or joint position jumps: the values 1 µs either side differ by less
-/// than 0.05° and 0.1 mm.
+/// than 0.05° and 0.1 mm. Also in slow walks, where the hip passes over the stance ankle near
+/// the straight leg's reach (the foot's pitch jumped 2–3° there before the bounce was kept
+/// within that reach).
 #[test]
 fn nothing_jumps_at_a_phase_boundary() {
-    let (_, attrs, w) = walk_of(1.4, 1.8);
+    for (v, h) in [(1.4, 1.8), (0.8, 1.6), (0.6, 2.0)] {
+        no_jump_in(v, h);
+    }
+}
+
+fn no_jump_in(v: f64, h: f64) {
+    let (_, attrs, w) = walk_of(v, h);
     let mut boundaries = Vec::new();
     for s in &w.steps {
         let t = s.constraints.timing;
@@ -156,7 +164,7 @@ fn nothing_jumps_at_a_phase_boundary() {
             let dp = (foot_pitch(la) - foot_pitch(lb)).abs().to_degrees();
             assert!(
                 dk < 0.05 && dp < 0.05,
-                "{name} at {t}: knee {dk}°, foot {dp}°"
+                "v {v} H {h}, {name} at {t}: knee {dk}°, foot {dp}°"
             );
             for (p, q) in [(la.knee, lb.knee), (la.ankle, lb.ankle), (la.toe, lb.toe)] {
                 assert!(d(p, q) < 1e-4, "{name} at {t}: {p:?} → {q:?}");

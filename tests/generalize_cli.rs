@@ -121,7 +121,7 @@ fn refusals_exit_2_and_write_nothing() {
             vec![
                 "generalize",
                 "--step-length",
-                "1.0",
+                "1.05",
                 "--height",
                 "1.5",
                 "--out",

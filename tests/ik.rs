@@ -144,3 +144,35 @@ fn solved(v: f64, steps: usize) -> (klaw::Body, Trajectory, Ik, klaw::ik::Soluti
 fn angles_at(a: &[Angles], k: usize) -> Angles {
     a[k % a.len()]
 }
+
+/// Near the straight knee the damped pseudo-inverse's gain is up to 1 / (2λ): a right ankle
+/// target 2 cm beyond a straight leg's reach asks for a step of radians, and the primary step
+/// (eq. 2) is shortened to `max_step` along its own direction; a small error's step is kept
+/// whole (the step J⁺ ΔX computed here independently of the solver).
+#[test]
+fn the_primary_step_is_bounded_near_the_straight_knee() {
+    let body = common::default_body();
+    let ik = Ik::new(&body);
+    let mut theta = Angles::zeros();
+    theta[6] = 1e-3; // right knee all but straight
+    let pose = ik.chain.pose(&theta);
+    let x = pose.ankles();
+    let inverse = klaw::ik::tasks::pseudo_inverse(&pose.jacobian(), ik.params.damping).unwrap();
+    for (push, clamped) in [(0.02, true), (1e-4, false)] {
+        let mut target = x;
+        target[1] -= push; // the right ankle pulled down, away from its hip
+        let full = inverse * (target - x);
+        let step = ik.problem(&theta, &target, None).base - theta;
+        if clamped {
+            assert!(full.norm() > 5.0 * ik.params.max_step, "{}", full.norm());
+            assert!(
+                (step.norm() - ik.params.max_step).abs() < 1e-12,
+                "{}",
+                step.norm()
+            );
+            assert!((step.normalize() - full.normalize()).amax() < 1e-12);
+        } else {
+            assert!((step - full).amax() < 1e-15, "{step}");
+        }
+    }
+}

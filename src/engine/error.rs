@@ -83,13 +83,19 @@ impl SimulationError {
     /// under the ground: the list lowers the swing hip by (l0/2) sin L at mid-step), or the
     /// stance hip under its heel-strike height (the list raises the stance hip joint by the
     /// same above the pelvis centre at mid-stance, past the straight leg's reach in slow walks
-    /// of tall bodies: docs/coverage.md).
+    /// of tall bodies: docs/coverage.md), or the flat foot out of the straight leg's reach as
+    /// the hip passes over it (the same raised hip joint).
     pub fn is_list_failure(&self) -> bool {
         match self {
             SimulationError::NotConverged { phase, .. }
             | SimulationError::Integration { phase, .. } => phase.starts_with("swing"),
             SimulationError::Invariant { phase, source, .. } => {
-                *phase == "swing" || matches!(source, Invariant::HipDrops { .. })
+                *phase == "swing"
+                    || matches!(
+                        source,
+                        Invariant::HipDrops { .. }
+                            | Invariant::Geometry(GeometryError::FlatFootOutOfReach { .. })
+                    )
             }
             SimulationError::Plan(_) => false,
         }

@@ -18,6 +18,11 @@ pub struct IkParameters {
     pub damping: f64,
     /// Primary-task corrections per frame before the frame fails.
     pub max_corrections: usize,
+    /// The largest primary step J⁺ ΔX (eq. 2), as the norm of its angles (rad); a longer one is
+    /// shortened to it along its direction \[ours\]. Near the straight knee's singularity the
+    /// damped pseudo-inverse's gain reaches 1 / (2λ) = 500 rad/m, and a centimetre of error
+    /// turned the whole chain by radians in one step (docs/ik.md).
+    pub max_step: f64,
     /// The first frame: rounds of primary and secondary steps from the rest posture.
     pub start_rounds: usize,
     /// The secondary minimiser.
@@ -48,6 +53,7 @@ impl Default for IkParameters {
             tolerance: 1e-5,
             damping: 1e-3,
             max_corrections: 50,
+            max_step: 0.25,
             start_rounds: 30,
             optimizer: Optimizer::MultiDirectional,
             simplex: 1e-2,

@@ -225,7 +225,7 @@ impl Ik {
         FrameProblem {
             model: &self.model,
             previous: *previous,
-            base: previous + inverse * e,
+            base: previous + self.primary_step(&inverse, &e),
             basis: tasks::null_basis(&j),
             energy,
             dt,
@@ -277,9 +277,21 @@ impl Ik {
             }
             let inverse = tasks::pseudo_inverse(&pose.jacobian(), self.params.damping)
                 .expect("J Jᵀ + λ² I is positive definite for λ > 0");
-            theta += inverse * e;
+            theta += self.primary_step(&inverse, &e);
         }
         unreachable!("the loop returns at its last round")
+    }
+
+    /// The primary step J⁺ ΔX (eq. 2), shortened to [`IkParameters::max_step`] along its
+    /// direction.
+    fn primary_step(&self, inverse: &tasks::Inverse, e: &Ankles) -> Angles {
+        let step = inverse * e;
+        let norm = step.norm();
+        if norm > self.params.max_step {
+            step * (self.params.max_step / norm)
+        } else {
+            step
+        }
     }
 }
 

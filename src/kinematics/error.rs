@@ -16,4 +16,14 @@ pub enum GeometryError {
         /// The prescribed knee flexion (in rad).
         knee_flexion: f64,
     },
+    /// The hip passes over the stance ankle `gap` (m) beyond the straight leg's reach from the
+    /// flat foot: the foot cannot turn from its heel onto its metatarsal joint without its pitch
+    /// jumping.
+    #[error(
+        "the straight stance leg cannot reach the hip from the flat foot: {gap:.3e} m short as the hip passes over the ankle"
+    )]
+    FlatFootOutOfReach {
+        /// How far the straight leg falls short (in m).
+        gap: f64,
+    },
 }

@@ -74,6 +74,11 @@ const MAX_PITCH: f64 = 1.8;
 /// count as in it (it is then clamped into the range).
 const ROOT_SLACK: f64 = 1e-12;
 
+/// The largest gap (m) between the straight leg and the hip at heel-off that is still a
+/// continuous roll onto the metatarsal joint ([`StanceLeg::find_heel_off`]): the heel-off root is
+/// found to 1e-9 s, and the gap is read 1e-7 s after it, when the hip has moved ≤ 3e-7 m.
+const FLAT_REACH_SLACK: f64 = 1e-6;
+
 /// The ankle of a foot turning rigidly about a pivot on the ground, as a function of the foot
 /// pitch p (heel up +): `ankle + pitch(v, p) = pivot` for the foot-frame vector v from the
 /// ankle to the pivot, i.e. `ankle(p) = pivot + radius · (−cos(p + phase), sin(p + phase))`
@@ -413,6 +418,13 @@ impl StanceLeg {
             }
             t0
         };
+        // a heel-off where the leg falls short of a foot that was not flat just before is a
+        // jump of the foot's pitch from its heel to its metatarsal joint (a root found at a
+        // continuous trigger has a gap of at most the hip's speed × 1e-9 s)
+        let gap = flat(t0 + 1e-7)?.gap;
+        if gap > FLAT_REACH_SLACK {
+            return Err(GeometryError::FlatFootOutOfReach { gap });
+        }
         let h = 1e-6;
         let k0 = flat(t0)?.theta4;
         let rate = (k0 - flat(t0 - h)?.theta4) / h;
@@ -475,6 +487,26 @@ mod tests {
 
     fn dist(u: [f64; 2], v: [f64; 2], dz: f64) -> f64 {
         ((u[0] - v[0]).powi(2) + (u[1] - v[1]).powi(2) + dz * dz).sqrt()
+    }
+
+    /// A hip that passes over the ankle higher than the straight leg reaches from the flat foot
+    /// (l9 + √(l1² − dz²), by hand) is refused, naming the gap; 2 mm lower, the foot goes flat
+    /// and its heel rises as usual.
+    #[test]
+    fn a_hip_out_of_the_flat_foots_reach_is_refused() {
+        let (b, mut l) = leg();
+        let dz = 0.05;
+        let top = l.foot.l9 + (b.l1 * b.l1 - dz * dz).sqrt();
+        let hip = |y: f64| move |t: f64| ([-0.35 + 1.4 * t, y], dz);
+        match l.find_heel_off(hip(top + 0.002), 0.0, 0.55, 0.68, 0.7) {
+            Err(GeometryError::FlatFootOutOfReach { gap }) => {
+                assert!((gap - 0.002).abs() < 1e-5, "{gap}")
+            }
+            other => panic!("{other:?}"),
+        }
+        l.find_heel_off(hip(top - 0.002), 0.0, 0.55, 0.68, 0.7)
+            .unwrap();
+        assert!(l.heel_off.is_some_and(|k| k.t0 > 0.25));
     }
 
     /// In every foot rule the chain closes (|hip − knee| = l3, |knee − ankle| = l4 in the leg's

@@ -67,20 +67,22 @@ fn fit_hind_pitch(state: &WalkerState, plan: &mut Plan) -> Result<(), NrsError> 
             Err(e) if k == 0 => return Err(e),
             Err(_) => break,
         };
-        let at_end = largest_dorsiflexion(&seg, hind, std::iter::once(1.0));
-        let whole = if backward {
-            at_end
+        let whole = largest_dorsiflexion(&seg, hind, (0..=n).map(|i| i as f64 / n as f64));
+        // the landing foot's excess over the whole step: its heel up at the landing also
+        // tilts it in the air before, where its toe tip may already rest on the floor
+        let worst = if backward {
+            whole
         } else {
-            largest_dorsiflexion(&seg, hind, (0..=n).map(|i| i as f64 / n as f64))
+            largest_dorsiflexion(&seg, hind, std::iter::once(1.0))
         };
         let pitch = pitch_of(plan);
         if whole < best.0 {
             best = (whole, pitch);
         }
-        if at_end <= max {
+        if worst <= max {
             break;
         }
-        set_hind_pitch(plan, backward, pitch + (at_end - max));
+        set_hind_pitch(plan, backward, pitch + (worst - max));
     }
     set_hind_pitch(plan, backward, best.1);
     Ok(())

@@ -8,6 +8,7 @@ use crate::model::body::Body;
 use crate::plan::gait::Gait;
 use crate::plan::timing::Timing;
 
+use crate::kinematics::pelvis::Determinants;
 use crate::model::GRAVITY;
 
 /// Everything the lower levels must achieve in one step. Positions are relative to the step's
@@ -40,7 +41,8 @@ pub struct StepConstraints {
     pub ankle: f64,
     /// Height budget E = l1 + l9 − y_hs (m).
     pub height_budget: f64,
-    /// Bounce e = min(ε E, g t_step² / 4π²) (m): the hip's rise above y_hs at mid-stance.
+    /// Bounce e = min(ε E, g t_step² / 4π²) (m): the hip's rise above y_hs at mid-stance,
+    /// then kept within the straight stance leg's reach ([`StepConstraints::within_reach`]).
     pub bounce: f64,
     /// The striking leg's hip joint is (l0/2) sin A ahead of the pelvis centre at heel strike
     /// (pelvic rotation A, spec §7), m.
@@ -128,6 +130,31 @@ impl StepConstraints {
             lateral_offset,
             fold_length,
         })
+    }
+}
+
+/// How far the bounce's mid-stance peak stays below the straight stance leg's reach, as a
+/// fraction of the bounce \[ours\]: the stance hip overshoots its reference there by about
+/// 5.5 % of the bounce (2.2 mm of 40.8 mm at 1.4 m/s, H 1.8 m). The smallest hundredth with
+/// which no walk of the valid range needs a retry for its flat foot; every hundredth more bends
+/// the mid-stance knee by about 1.5° (docs/realism.md).
+pub(crate) const REACH_MARGIN: f64 = 0.07;
+
+impl StepConstraints {
+    /// The bounce limited to the straight stance leg's reach \[ours\]: at mid-stance the stance
+    /// hip joint is (l0/2) sin L above the pelvis centre (list L) and d = l0/2 − b/2 + D to the
+    /// side of its ankle (step width b, lateral displacement D), so a straight leg on a flat foot
+    /// holds the pelvis centre at most at y_r = l9 + √(l1² − d²) − (l0/2) sin L. The reference
+    /// peaks at ȳ + e with ȳ the mean of the step's start height `y_start` and y_hs, so
+    /// e ≤ (y_r − ȳ) / (1 + [`REACH_MARGIN`]). Above that the hip passes over the ankle out of
+    /// the flat foot's reach, and the foot's pitch jumps from its heel to its metatarsal joint
+    /// (in 99 of the 181 walks of the valid range, with the hip midway at heel strike).
+    pub(crate) fn within_reach(mut self, body: &Body, det: &Determinants, y_start: f64) -> Self {
+        let d = det.half_width - det.half_step_width + det.lateral;
+        let top = body.l9 + (body.l1 * body.l1 - d * d).sqrt() - det.half_width * det.list.sin();
+        let mean = 0.5 * (y_start + self.hip[1]);
+        self.bounce = self.bounce.min((top - mean) / (1.0 + REACH_MARGIN));
+        self
     }
 }
 
@@ -282,6 +309,31 @@ mod tests {
         let e = Timing::new(181.9).unwrap_err();
         assert!(e.to_string().contains("181.75"), "{e}");
         assert!(Timing::new(181.7).is_ok());
+    }
+
+    /// Where the straight leg cannot reach the bounce's peak (a slow walk of a tall body: a
+    /// small height budget, the list raising the stance hip joint), the bounce is cut so that
+    /// the stance hip joint, lifted REACH_MARGIN e more, is exactly l1 from the flat foot's
+    /// ankle (by Pythagoras with its lateral offset); with no list the cut is less.
+    #[test]
+    fn the_bounce_stays_within_the_straight_legs_reach() {
+        let body = Body::standard(2.0, 92.0).unwrap();
+        let attrs = Attributes::default();
+        let gait = GaitRequest {
+            velocity: Some(0.4),
+            ..Default::default()
+        }
+        .complete(&body, &attrs)
+        .unwrap();
+        let plain = StepConstraints::new(&body, &attrs, gait).unwrap();
+        let det = Determinants::new(&attrs, body.l0);
+        let c = plain.within_reach(&body, &det, plain.hip[1]);
+        assert!(c.bounce < plain.bounce, "{} {}", c.bounce, plain.bounce);
+        let joint = c.hip[1] + (1.0 + REACH_MARGIN) * c.bounce + det.half_width * det.list.sin();
+        let d = det.half_width - det.half_step_width + det.lateral;
+        assert!(((joint - body.l9).hypot(d) - body.l1).abs() < 1e-12);
+        let flat = Determinants { list: 0.0, ..det };
+        assert!(plain.within_reach(&body, &flat, plain.hip[1]).bounce > c.bounce);
     }
 
     /// The bounce is capped so that the reference never asks for more than g/2 downward:

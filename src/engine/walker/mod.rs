@@ -277,17 +277,20 @@ impl Walker {
 
     /// The step's constraints (the high level, KLAW 1989 §3, spec §3), side, determinants and start.
     fn plan(&self, gait: Gait, list: f64) -> Result<StepPlan, SimulationError> {
+        let det = Determinants {
+            list,
+            ..self.determinants
+        };
         let c = StepConstraints::new(&self.body, &self.attrs, gait)?;
+        let y_start = self.prev.as_ref().map_or(c.hip[1], |(p, _)| p.hip[1]);
+        let c = c.within_reach(&self.body, &det, y_start);
         let index = self.index;
         Ok(StepPlan {
             index,
             gait,
             c,
             side: Side::of_step(index),
-            det: Determinants {
-                list,
-                ..self.determinants
-            },
+            det,
             t0: self.t,
             x0: self.x_ankle,
             startup: Startup {
