@@ -341,7 +341,7 @@ fn malformed_attribute_files_are_rejected() {
         (
             "d.toml",
             "bounciness = 5\n",
-            &["bounciness", "5", "[0.6, 0.88]"],
+            &["bounciness", "5", "[0.7, 0.88]"],
         ),
         ("e.toml", "bounciness = nan\n", &["bounciness", "finite"]),
     ];
@@ -362,7 +362,7 @@ fn attribute_file_is_applied() {
     let dir = tempfile::tempdir().unwrap();
     fs::write(
         dir.path().join("a.toml"),
-        "description = \"calm\"\nbounciness = 0.6\n",
+        "description = \"calm\"\nbounciness = 0.7\n",
     )
     .unwrap();
     let stdout = ok(

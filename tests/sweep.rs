@@ -138,7 +138,7 @@ fn thread_count_does_not_change_the_output() {
             "--velocity",
             "0.8,1.2,2.9",
             "--attr",
-            "bounciness=0.6,0.8",
+            "bounciness=0.7,0.8",
             "--steps",
             "2",
             "--out",
@@ -165,7 +165,7 @@ const SMALL: [&str; 8] = [
     "--height",
     "1.6,1.8",
     "--attr",
-    "bounciness=0.6,0.7",
+    "bounciness=0.7,0.75",
     "--steps",
     "1",
 ];
@@ -194,7 +194,7 @@ fn rows_are_numbered_in_product_order() {
         // row-major: velocity slowest, bounciness fastest
         assert_eq!(r[v], ["0.9", "1.4", "2.9"][k / 4], "{r:?}");
         assert_eq!(r[h], ["1.6", "1.8"][(k / 2) % 2], "{r:?}");
-        assert_eq!(r[b], ["0.6", "0.7"][k % 2], "{r:?}");
+        assert_eq!(r[b], ["0.7", "0.75"][k % 2], "{r:?}");
         let converged = r[col(&header, "converged")] == "true";
         assert_eq!(converged, k < 8, "{r:?}");
         if converged {
@@ -292,7 +292,7 @@ fn merge_reports_missing_duplicate_and_conflicting_rows() {
             "--height",
             "1.6,1.8",
             "--attr",
-            "bounciness=0.6,0.7",
+            "bounciness=0.7,0.75",
             "--steps",
             "1",
             "--shard",
@@ -395,7 +395,7 @@ fn resume_refuses_another_sweeps_rows() {
             "--height",
             "1.6,1.8",
             "--attr",
-            "bounciness=0.6,0.8",
+            "bounciness=0.7,0.8",
             "--steps",
             "1",
             "--out",

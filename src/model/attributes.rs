@@ -133,6 +133,16 @@ impl AttributeTable {
             InputError::check_range(name, value, spec.min, spec.max, unit)?;
             values.insert(name.as_str(), value);
         }
+        if values["hip_lead_slope"] > 0.0 {
+            let name = "heel_off_dorsiflexion with a hip lead (hip_lead_slope > 0)";
+            InputError::check_range(
+                name,
+                values["heel_off_dorsiflexion"],
+                0.0,
+                LEAD_HEEL_OFF_MAX,
+                "deg",
+            )?;
+        }
         let si = |name: &str| {
             let v = values[name];
             match self.0[name].unit.as_str() {
@@ -150,6 +160,11 @@ impl AttributeTable {
             .expect("defaults lie in their ranges (checked at parse)")
     }
 }
+
+/// The largest `heel_off_dorsiflexion` (deg) with a hip lead (`hip_lead_slope` > 0) \[ours\]:
+/// over the valid box (v 0.4 m/s to the walk–run transition × H 1.2–2.2 m) the lead walks every
+/// point at 8° (k_φ 0.595 and 1.5) and fails 19 and 42 of 181 at the default 12°.
+pub const LEAD_HEEL_OFF_MAX: f64 = 8.0;
 
 /// Read an attribute file: a flat TOML table `name = number` (user units; an optional
 /// `description = "…"` is ignored). Later files override earlier ones.
@@ -288,6 +303,25 @@ impl Default for Attributes {
 mod tests {
     use super::*;
 
+    /// A hip lead with the heel rising later than LEAD_HEEL_OFF_MAX is refused up front, naming
+    /// the range; at the bound, or with no lead, the same heel-off resolves.
+    #[test]
+    fn a_hip_lead_needs_an_early_heel_off() {
+        let t = AttributeTable::builtin();
+        let with = |lead: f64, heel_off: f64| {
+            let o = BTreeMap::from([
+                ("hip_lead_slope".to_string(), lead),
+                ("heel_off_dorsiflexion".to_string(), heel_off),
+            ]);
+            t.resolve(&o, "test")
+        };
+        let e = with(0.595, 12.0).unwrap_err();
+        assert!(matches!(e, InputError::OutOfRange { max, .. } if max == LEAD_HEEL_OFF_MAX));
+        assert!(e.to_string().contains("hip_lead_slope > 0"), "{e}");
+        assert!(with(0.595, LEAD_HEEL_OFF_MAX).is_ok());
+        assert!(with(0.0, 12.0).is_ok());
+    }
+
     #[test]
     fn builtin_table_covers_every_attribute_with_a_source() {
         let t = AttributeTable::builtin();
@@ -304,7 +338,7 @@ mod tests {
         o.insert("heel_strike_knee".to_string(), 90.0);
         o.insert("toe_off_knee".to_string(), 30.0);
         let a = t.resolve(&o, "test").unwrap_err();
-        assert!(a.to_string().contains("[3, 15]"), "{a}");
+        assert!(a.to_string().contains("[4, 15]"), "{a}");
         o.insert("heel_strike_knee".to_string(), 6.0);
         let a = t.resolve(&o, "test").unwrap();
         assert!((a.heel_strike_knee - 6.0_f64.to_radians()).abs() < 1e-15);

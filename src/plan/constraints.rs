@@ -42,7 +42,7 @@ pub struct StepConstraints {
     /// Height budget E = l1 + l9 − y_hs (m).
     pub height_budget: f64,
     /// Bounce e = min(ε E, g t_step² / 4π²) (m): the hip's rise above y_hs at mid-stance,
-    /// then kept within the straight stance leg's reach ([`StepConstraints::within_reach`]).
+    /// then kept within the straight stance leg's reach (`StepConstraints::within_reach`).
     pub bounce: f64,
     /// The striking leg's hip joint is (l0/2) sin A ahead of the pelvis centre at heel strike
     /// (pelvic rotation A, spec §7), m.

@@ -137,7 +137,7 @@ mod tests {
         assert!(bad(Axis::Steps, 0.0).contains("steps = 0"));
         let m = bad(Axis::Attribute("bounciness".into()), 5.0);
         assert!(
-            m.contains("bounciness = 5") && m.contains("[0.6, 0.88]"),
+            m.contains("bounciness = 5") && m.contains("[0.7, 0.88]"),
             "{m}"
         );
         // the body table's limits are those of Body::standard
