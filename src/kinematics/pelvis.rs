@@ -129,6 +129,15 @@ impl Determinants {
         [h * cl * sr, h * sl, h * cl * cr]
     }
 
+    /// The stance hip joint at mid-stance relative to its flat foot's ankle, to first order in
+    /// the list (rotation 0 there): how far the list L raises it above the pelvis centre,
+    /// (l0/2) sin L, and its lateral offset from the ankle, l0/2 − b/2 + D (step width b,
+    /// lateral displacement D).
+    pub(crate) fn mid_stance_hip(&self) -> (f64, f64) {
+        let h = self.half_width;
+        (h * self.list.sin(), h - self.half_step_width + self.lateral)
+    }
+
     /// World z of the ankle of `side`.
     pub(crate) fn ankle_z(&self, side: Side) -> f64 {
         side.sign() * self.half_step_width

@@ -150,8 +150,8 @@ impl StepConstraints {
     /// the flat foot's reach, and the foot's pitch jumps from its heel to its metatarsal joint
     /// (in 99 of the 181 walks of the valid range, with the hip midway at heel strike).
     pub(crate) fn within_reach(mut self, body: &Body, det: &Determinants, y_start: f64) -> Self {
-        let d = det.half_width - det.half_step_width + det.lateral;
-        let top = body.l9 + (body.l1 * body.l1 - d * d).sqrt() - det.half_width * det.list.sin();
+        let (rise, d) = det.mid_stance_hip();
+        let top = body.l9 + (body.l1 * body.l1 - d * d).sqrt() - rise;
         let mean = 0.5 * (y_start + self.hip[1]);
         self.bounce = self.bounce.min((top - mean) / (1.0 + REACH_MARGIN));
         self

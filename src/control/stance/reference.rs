@@ -128,10 +128,9 @@ impl TerminalStance {
         (l3, l4, l9, h12): (f64, f64, f64, f64),
         theta5_max: f64,
     ) -> Self {
-        let h = det.half_width;
-        let lateral_hs = h - det.half_step_width;
-        let w0 = y_mid + h * det.list.sin() - l9;
-        let reach = w0.hypot(lateral_hs + det.lateral).min(l3 + l4);
+        let (rise, lateral) = det.mid_stance_hip();
+        let w0 = y_mid + rise - l9;
+        let reach = w0.hypot(lateral).min(l3 + l4);
         let cos_knee = ((reach * reach - l3 * l3 - l4 * l4) / (2.0 * l3 * l4)).clamp(-1.0, 1.0);
         let delta = (l3 * cos_knee.acos().sin() / reach).asin();
         let sin_end = theta1_end.sin();
