@@ -5,6 +5,9 @@
 //! - `neighbour`: per frame, the angles at the same phase of the nearest other walk of the grid
 //!   (same height, the next speed: a database walk's angles, as the paper's distance to the
 //!   rest posture would use them if the database carried angles);
+//! - `between`: per frame, the mean of the two neighbours' angles at the same phase (same
+//!   height, the speeds on either side; interior speeds only): a reference interpolated in the
+//!   walk's parameter, as `Database::reference` blends the entries on either side in trace;
 //! - `own`: per frame, the walk's own angles (a bound: what the secondary tasks reach when f3
 //!   pulls towards the truth, which satisfies the task exactly).
 //!
@@ -53,7 +56,7 @@ fn main() {
         print!("{b:.2} | ");
     }
     println!(" |");
-    for option in ["rest", "mean", "neighbour", "own"] {
+    for option in ["rest", "mean", "neighbour", "between", "own"] {
         let mut all: Vec<[f64; 7]> = Vec::new();
         let mut within = 0;
         for row in &grid {
@@ -68,6 +71,14 @@ fn main() {
                     "neighbour" => {
                         let k = if j + 1 < row.len() { j + 1 } else { j - 1 };
                         Some(resample(&row[k].truth, n))
+                    }
+                    "between" => {
+                        if j == 0 || j + 1 == row.len() {
+                            continue;
+                        }
+                        let a = resample(&row[j - 1].truth, n);
+                        let b = resample(&row[j + 1].truth, n);
+                        Some(a.iter().zip(&b).map(|(x, y)| (x + y) * 0.5).collect())
                     }
                     _ => Some(c.truth.clone()),
                 };

@@ -1,6 +1,7 @@
 //! The larger validation grids of tests/ik_validation.rs: IK on the own poulaines of klaw walks
-//! over heights × speeds, and leave-one-out over a synthetic database; eq. 7 per Table 2 angle
-//! (mean of both legs), as markdown tables.
+//! over heights × speeds, with f3 towards a database's angles and towards the rest posture, and
+//! leave-one-out over a synthetic database; eq. 7 per Table 2 angle (mean of both legs), as
+//! markdown tables.
 //!
 //! `cargo run --release --example ik_validation`
 use klaw::ik::Ik;
@@ -34,6 +35,7 @@ fn row(name: &str, r: &Recovery) {
 }
 
 fn main() {
+    own_with_database();
     println!("IK on each walk's own poulaine (60 Hz):\n");
     header("H (m), v (m/s)");
     for h in [1.5, 1.7, 1.9, 2.1] {
@@ -83,7 +85,7 @@ fn main() {
         let (frames, _, period) = cycle_frames(&walk, 60.0).unwrap();
         let truth = frames_angles(&frames, &body).unwrap();
         let rest = db.without(&e.label);
-        let (model, selection) = rest.poulaine(&e.axes, body.l1, period);
+        let (model, _) = rest.poulaine(&e.axes, body.l1, period);
         let mut poulaine = model.sample(frames.len());
         let mut ik = Ik::new(&body);
         clamp_to_reach(&mut poulaine, body.l0 / 2.0, ik.params.reach * body.l1);
@@ -91,12 +93,52 @@ fn main() {
             Ok(r) => row(&format!("{}, rest posture", e.label), &r),
             Err(err) => println!("| {}, rest posture | failed: {err} |", e.label),
         }
-        let reference = rest.reference(&selection, frames.len());
+        let reference = rest
+            .reference(poulaine.trace() / body.l1, frames.len())
+            .map(|r| r.angles);
         ik.model.weights.energy = ik.model.weights.energy_with_reference;
-        let x = &rest.entries[selection.x].label;
         match recover_referenced(&ik, &poulaine, &truth, reference.as_deref()) {
-            Ok(r) => row(&format!("{}, angles of {x}", e.label), &r),
-            Err(err) => println!("| {}, angles of {x} | failed: {err} |", e.label),
+            Ok(r) => row(&format!("{}, the database's angles", e.label), &r),
+            Err(err) => println!("| {}, the database's angles | failed: {err} |", e.label),
         }
     }
+}
+
+/// IK on each walk's own poulaine with f3 towards a database's angles (`klaw ik --poulaine P
+/// --db DB`): a database of walks at other heights, so no walk is in it.
+fn own_with_database() {
+    let grid = Grid {
+        heights: vec![1.6, 1.8, 2.0],
+        step_lengths: vec![0.5, 0.6, 0.7, 0.8, 0.9],
+        attributes: vec![],
+    };
+    let (db, skipped) = synthetic(&grid).unwrap();
+    println!(
+        "IK on each walk's own poulaine, f3 towards the angles of a database of {} walks ({} skipped; H {:?} m × step length {:?} m):\n",
+        db.entries.len(),
+        skipped.len(),
+        grid.heights,
+        grid.step_lengths
+    );
+    header("H (m), v (m/s)");
+    for h in [1.5, 1.7, 1.9, 2.1] {
+        for v in [0.8, 1.1, 1.4, 1.7] {
+            let body = Body::standard(h, 23.0 * h * h).unwrap();
+            let Ok(walk) = Simulation::new(body).velocity(v).steps(6).run() else {
+                continue;
+            };
+            let (poulaine, frames) = Trajectory::from_walk(&walk, 60.0).unwrap();
+            let truth = frames_angles(&frames, &body).unwrap();
+            let reference = db
+                .reference(poulaine.trace() / body.l1, frames.len())
+                .unwrap();
+            let mut ik = Ik::new(&body);
+            ik.model.weights.energy = ik.model.weights.energy_with_reference;
+            match recover_referenced(&ik, &poulaine, &truth, Some(&reference.angles)) {
+                Ok(r) => row(&format!("{h}, {v}"), &r),
+                Err(e) => println!("| {h}, {v} | failed: {e} |"),
+            }
+        }
+    }
+    println!();
 }

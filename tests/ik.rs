@@ -176,3 +176,33 @@ fn the_primary_step_is_bounded_near_the_straight_knee() {
         }
     }
 }
+
+/// A hyperextended knee's flexed twin (`flexed_knees`) reaches as far: each leg's hip–ankle
+/// distance is the same (forward kinematics, both legs, knees −0.05 and −0.3 rad); knees within
+/// their limit come back unchanged. A frame solved from a hyperextended posture comes back with
+/// both knees flexed and the ankles on their targets.
+#[test]
+fn a_hyperextended_knee_turns_to_its_flexed_twin() {
+    use klaw::ik::solve::flexed_knees;
+    let body = common::default_body();
+    let ik = Ik::new(&body);
+    let theta = Angles::from_row_slice(&[
+        0.1, 0.05, -0.04, 0.3, 0.02, 0.1, -0.05, -0.2, -0.03, 0.05, -0.3,
+    ]);
+    let twin = flexed_knees(theta);
+    assert_eq!((twin[6], twin[10]), (0.05, 0.3));
+    let (a, b) = (ik.chain.pose(&theta), ik.chain.pose(&twin));
+    for (p, q) in [(&a.right, &b.right), (&a.left, &b.left)] {
+        let (d, e) = ((p.ankle - p.hip).length(), (q.ankle - q.hip).length());
+        assert!((d - e).abs() < 1e-12, "{d} {e}");
+        assert!(
+            (p.ankle - q.ankle).length() > 1e-3,
+            "the twin is another posture"
+        );
+    }
+    assert_eq!(flexed_knees(twin), twin);
+    let target = ik.chain.pose(&twin).ankles();
+    let f = ik.step(&theta, &target, None, 0, 0.0).unwrap();
+    assert!(f.residual <= ik.params.tolerance);
+    assert!(f.theta[6] >= 0.0 && f.theta[10] >= 0.0, "{}", f.theta);
+}

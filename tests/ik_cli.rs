@@ -156,6 +156,45 @@ fn the_commands_chain_from_a_walk_to_a_figure() {
     let r: serde_json::Value =
         serde_json::from_str(&fs::read_to_string(d.join("r.json")).unwrap()).unwrap();
     assert!(r["max_residual_m"].as_f64().unwrap() <= 1e-3 && r["within_limits"].as_bool().unwrap());
+    // the walk's own poulaine with f3 towards the angles of the database's synthetic walks
+    // nearest in trace (the measured entry carries none)
+    let said = ok(
+        d,
+        &[
+            "ik",
+            "--poulaine",
+            "p.csv",
+            "--db",
+            "db.json",
+            "--cycles",
+            "1",
+            "--out",
+            "own.csv",
+            "--report",
+            "own.json",
+        ],
+    );
+    assert!(said.contains("f3 towards the angles of H1."), "{said}");
+    let r: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(d.join("own.json")).unwrap()).unwrap();
+    assert!(r["max_residual_m"].as_f64().unwrap() <= 1e-3 && r["within_limits"].as_bool().unwrap());
+    assert!(r["selected"].is_null(), "the poulaine is the file's: {r}");
+    refused(
+        d,
+        &[
+            "ik",
+            "--poulaine",
+            "p.csv",
+            "--db",
+            "db.json",
+            "--step-length",
+            "0.7",
+            "--out",
+            "o.csv",
+        ],
+        "--step-length",
+        "o.csv",
+    );
     ok(
         d,
         &[

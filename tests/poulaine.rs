@@ -167,15 +167,75 @@ fn the_database_file_round_trips_and_damage_is_refused() {
     v["entries"][0]["angles"] = serde_json::json!([vec![0.0; 11]]);
     let e = Database::parse(&v.to_string(), Path::new("db.json")).unwrap_err();
     assert!(e.to_string().contains("at least 2 samples"), "{e}");
-    // a measured entry has no angles: the reference is the rest posture's business
+    // a measured entry has no angles
     v["entries"][0].as_object_mut().unwrap().remove("angles");
-    let measured = Database::parse(&v.to_string(), Path::new("db.json")).unwrap();
-    let first = klaw::poulaine::database::Selection { x: 0, y: 0, z: 0 };
-    assert!(measured.reference(&first, 10).is_none());
-    assert_eq!(back.reference(&first, 10).unwrap().len(), 10);
+    Database::parse(&v.to_string(), Path::new("db.json")).unwrap();
     v["entries"][1]["axes"]["trace"] = serde_json::json!(0.1);
     let e = Database::parse(&v.to_string(), Path::new("db.json")).unwrap_err();
     assert!(e.to_string().contains("entry 1"), "{e}");
     let e = Database::parse("{}", Path::new("db.json")).unwrap_err();
     assert!(e.to_string().contains("db.json"), "{e}");
+}
+
+/// f3's reference from the database's angles (`Database::reference`): none without angles; at
+/// an entry's own trace, its own angles; between the two entries nearest in trace, weights
+/// linear in the trace and the weighted mean of their postures at the same phase of their
+/// cycles; beyond the database's traces, the nearest entry alone.
+#[test]
+fn the_reference_blends_the_entries_nearest_in_trace() {
+    let db = database();
+    let mut bare = db.clone();
+    bare.entries.iter_mut().for_each(|e| e.angles.clear());
+    assert!(bare.reference(0.5, 10).is_none());
+    let mut by_trace: Vec<usize> = (0..db.entries.len()).collect();
+    by_trace.sort_by(|&a, &b| {
+        db.entries[a]
+            .axes
+            .trace
+            .total_cmp(&db.entries[b].axes.trace)
+    });
+    let (lo, hi) = (by_trace[0], by_trace[1]);
+    let (a, b) = (&db.entries[lo], &db.entries[hi]);
+    assert!(b.axes.trace > a.axes.trace);
+    let m = a.angles.len();
+    let own = db.reference(a.axes.trace, m).unwrap();
+    assert_eq!(own.blend, vec![(lo, 1.0)]);
+    for (r, e) in own.angles.iter().zip(&a.angles) {
+        assert!(r.iter().zip(e).all(|(x, y)| (x - y).abs() < 1e-12));
+    }
+    // a quarter of the way from a to b, at 50 samples per cycle
+    let trace = 0.75 * a.axes.trace + 0.25 * b.axes.trace;
+    let n = 50;
+    let r = db.reference(trace, n).unwrap();
+    assert_eq!(r.blend.len(), 2);
+    assert!(
+        (r.blend[0].1 - 0.75).abs() < 1e-12 && r.blend[0].0 == lo,
+        "{:?}",
+        r.blend
+    );
+    assert!(
+        (r.blend[1].1 - 0.25).abs() < 1e-12 && r.blend[1].0 == hi,
+        "{:?}",
+        r.blend
+    );
+    // the posture at sample i: each entry's angles at phase i / n of its cycle, linear
+    // between its samples
+    let at = |e: &klaw::poulaine::Entry, phase: f64, k: usize| {
+        let u = phase * e.angles.len() as f64;
+        let (j, f) = (u.floor() as usize % e.angles.len(), u.fract());
+        e.angles[j][k] * (1.0 - f) + e.angles[(j + 1) % e.angles.len()][k] * f
+    };
+    for i in [0, 7, 31, 49] {
+        let phase = i as f64 / n as f64;
+        for k in 0..11 {
+            let want = 0.75 * at(a, phase, k) + 0.25 * at(b, phase, k);
+            assert!(
+                (r.angles[i][k] - want).abs() < 1e-12,
+                "sample {i} angle {k}"
+            );
+        }
+    }
+    let top = *by_trace.last().unwrap();
+    assert_eq!(db.reference(10.0, n).unwrap().blend, vec![(top, 1.0)]);
+    assert_eq!(db.reference(0.0, n).unwrap().blend, vec![(lo, 1.0)]);
 }

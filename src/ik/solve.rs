@@ -16,12 +16,13 @@ use argmin::core::{Executor, State};
 use argmin::solver::neldermead::NelderMead;
 use serde::Serialize;
 
-use crate::ik::chain::{Angles, Ankles, Chain};
+use crate::ik::chain::{Angles, Ankles, Chain, leg_offset};
 use crate::ik::error::IkError;
 use crate::ik::mds::MultiDirectional;
 use crate::ik::model::IkModel;
 use crate::ik::parameters::{IkParameters, Optimizer};
 use crate::ik::tasks::{self, FrameProblem, NULL};
+use crate::kinematics::pelvis::Side;
 use crate::model::InputError;
 use crate::model::body::Body;
 
@@ -267,9 +268,11 @@ impl Ik {
     }
 
     /// The primary-task corrections: θ ← θ + J⁺ (X* − f(θ)) until the error is within the
-    /// tolerance or the corrections run out. Returns θ, the error and the corrections made.
+    /// tolerance or the corrections run out, each knee kept on its flexed branch
+    /// ([`flexed_knees`]). Returns θ, the error and the corrections made.
     fn correct(&self, mut theta: Angles, target: &Ankles) -> (Angles, f64, usize) {
         for k in 0..=self.params.max_corrections {
+            theta = flexed_knees(theta);
             let pose = self.chain.pose(&theta);
             let (e, r) = tasks::error(target, &pose.ankles());
             if r <= self.params.tolerance || k == self.params.max_corrections {
@@ -293,6 +296,20 @@ impl Ik {
             step
         }
     }
+}
+
+/// θ with each hyperextended knee (flexion < 0, beyond AAOS's lower limit of 0°) turned to
+/// its flexed twin |flexion| \[ours\]: a hinge's hip–ankle distance depends on the knee's
+/// cosine only, so the twin reaches as far, and the corrections that follow put the ankle back
+/// on the target with the knee flexed. Near the straight knee a damped step can cross 0, and
+/// eq. 4's exponential cannot bring it back: no small null-space move leads from one branch to
+/// the other (docs/ik.md).
+pub fn flexed_knees(mut theta: Angles) -> Angles {
+    for side in [Side::Right, Side::Left] {
+        let knee = leg_offset(side) + 3;
+        theta[knee] = theta[knee].abs();
+    }
+    theta
 }
 
 /// The minimum and the counts of a finished argmin run.

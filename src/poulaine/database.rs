@@ -121,6 +121,15 @@ pub struct Database {
 /// The poulaine asked of the database: its three parameters (fractions of the leg length).
 pub type Query = Axes;
 
+/// f3's reference posture per sample from a database's angles ([`Database::reference`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Reference {
+    /// One posture per sample of the poulaine.
+    pub angles: Vec<Angles>,
+    /// The entries blended (their indices) and their weights, which sum to 1.
+    pub blend: Vec<(usize, f64)>,
+}
+
 /// The entries chosen for each axis.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 pub struct Selection {
@@ -296,13 +305,41 @@ impl Database {
         (combine(q.spacing - raw.spacing, q.stance - raw.stance), s)
     }
 
-    /// The per-phase reference posture for a poulaine of `n` samples per cycle made from
-    /// `selection`: the x entry's angles (that entry sets the support phases) at the samples'
-    /// phases ([`resample`]). `None` when that entry carries no angles.
-    pub fn reference(&self, selection: &Selection, n: usize) -> Option<Vec<Angles>> {
-        let e = &self.entries[selection.x];
-        let angles: Vec<Angles> = e.angles.iter().map(|a| Angles::from(*a)).collect();
-        (!angles.is_empty()).then(|| resample(&angles, n))
+    /// The per-phase reference posture of f3 (eq. 6) for a poulaine of `n` uniform samples per
+    /// cycle from its right heel strike, whose trace length is `trace` (a fraction of the leg,
+    /// [`Axes::trace`]) \[ours: the paper's f3 pulls towards one rest posture; its database
+    /// held no angles\]: the angles of the two entries nearest in trace below and above it,
+    /// linear in the trace between them, each at the same phase of its cycle ([`resample`];
+    /// a synthetic entry's cycle starts at its right heel strike). Beyond the database's traces,
+    /// the nearest entry's. `None` when no entry carries angles.
+    pub fn reference(&self, trace: f64, n: usize) -> Option<Reference> {
+        let with: Vec<usize> = (0..self.entries.len())
+            .filter(|&i| !self.entries[i].angles.is_empty())
+            .collect();
+        let t = |i: usize| self.entries[i].axes.trace;
+        let nearest = |side: f64| {
+            with.iter()
+                .copied()
+                .filter(|&i| side * (t(i) - trace) >= 0.0)
+                .min_by(|&a, &b| (t(a) - trace).abs().total_cmp(&(t(b) - trace).abs()))
+        };
+        let blend = match (nearest(-1.0), nearest(1.0)) {
+            (Some(lo), Some(hi)) if t(hi) > t(lo) => {
+                let w = (trace - t(lo)) / (t(hi) - t(lo));
+                vec![(lo, 1.0 - w), (hi, w)]
+            }
+            (Some(i), _) | (None, Some(i)) => vec![(i, 1.0)],
+            (None, None) => return None,
+        };
+        let mut angles = vec![Angles::zeros(); n];
+        for &(i, w) in &blend {
+            let e = &self.entries[i];
+            let own: Vec<Angles> = e.angles.iter().map(|a| Angles::from(*a)).collect();
+            for (sum, a) in angles.iter_mut().zip(resample(&own, n)) {
+                *sum += a * w;
+            }
+        }
+        Some(Reference { angles, blend })
     }
 
     /// The database without the entry labelled `label` (leave-one-out).

@@ -268,6 +268,18 @@ impl Trajectory {
         0.5 * (one(&self.right) + one(&self.left))
     }
 
+    /// The ankles' trace length along x over the cycle (max x − min x), the mean of both (m):
+    /// the samples' counterpart of the model's [`crate::poulaine::Axes::trace`].
+    pub fn trace(&self) -> f64 {
+        let range = |leg: &[[f64; 3]]| {
+            let (lo, hi) = leg
+                .iter()
+                .fold((f64::MAX, f64::MIN), |(l, h), p| (l.min(p[0]), h.max(p[0])));
+            hi - lo
+        };
+        0.5 * (range(&self.right) + range(&self.left))
+    }
+
     /// The ankle targets of the inverse kinematics, one per sample.
     pub fn targets(&self) -> Vec<Ankles> {
         self.right

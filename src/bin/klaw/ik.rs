@@ -25,14 +25,10 @@ enum Minimiser {
 #[derive(Args)]
 pub(crate) struct IkArgs {
     /// The poulaine to follow (.csv of `klaw poulaine extract`: one cycle, uniform samples)
-    #[arg(
-        long,
-        value_name = "FILE.csv",
-        conflicts_with = "db",
-        required_unless_present = "db"
-    )]
+    #[arg(long, value_name = "FILE.csv", required_unless_present = "db")]
     poulaine: Option<PathBuf>,
-    /// A poulaine database (.json of `klaw poulaine-db build`): the poulaine for the walker
+    /// A poulaine database (.json of `klaw poulaine-db build`): the poulaine for the walker,
+    /// and f3's reference angles; with --poulaine, only the reference angles
     #[arg(long, value_name = "FILE.json")]
     db: Option<PathBuf>,
     /// Body height H in m, range [1.2, 2.2]
@@ -46,10 +42,22 @@ pub(crate) struct IkArgs {
     #[arg(long, value_name = "M/S", allow_negative_numbers = true)]
     velocity: Option<f64>,
     /// --db: the step length (m) [default: by the normalizing formula]
-    #[arg(long, value_name = "M", requires = "db", allow_negative_numbers = true)]
+    #[arg(
+        long,
+        value_name = "M",
+        requires = "db",
+        conflicts_with = "poulaine",
+        allow_negative_numbers = true
+    )]
     step_length: Option<f64>,
     /// --db: the feet's spacing in support, ankle to ankle (m) [default: the selected walk's]
-    #[arg(long, value_name = "M", requires = "db", allow_negative_numbers = true)]
+    #[arg(
+        long,
+        value_name = "M",
+        requires = "db",
+        conflicts_with = "poulaine",
+        allow_negative_numbers = true
+    )]
     step_width: Option<f64>,
     /// --db: the pelvis-to-ankle height in support, a fraction of the leg, range [0.7, 1]
     /// [default: the selected walk's]
@@ -57,6 +65,7 @@ pub(crate) struct IkArgs {
         long,
         value_name = "FRACTION",
         requires = "db",
+        conflicts_with = "poulaine",
         allow_negative_numbers = true
     )]
     stance: Option<f64>,
@@ -69,8 +78,8 @@ pub(crate) struct IkArgs {
     )]
     fps: f64,
     /// --db: f3 (eq. 6) pulls towards the rest posture of models/ik.toml, as in the paper
-    /// [default: towards the selected walk's angles at each phase, where the database carries
-    /// them, with the kinetic weight energy_with_reference]
+    /// [default: towards the angles of the database's walks nearest in trace length at each
+    /// phase, where it carries them, with the kinetic weight energy_with_reference]
     #[arg(long, requires = "db")]
     rest_posture: bool,
     /// Gait cycles to write, range [1, 1000]
@@ -115,7 +124,7 @@ struct Source {
     name: String,
     selected: Option<[String; 3]>,
     query: Option<Query>,
-    /// f3's reference posture per sample (the x entry's angles), if used.
+    /// f3's reference posture per sample (the database's angles), if used, and its entries.
     reference: Option<(String, Vec<Angles>)>,
 }
 
@@ -156,19 +165,36 @@ fn db_poulaine(a: &IkArgs, db_path: &std::path::Path, body: &Body) -> Result<Sou
     let (model, s) = db.poulaine(&q, body.l1, period);
     let n = (period * a.fps).round() as usize;
     let labels = [s.x, s.y, s.z].map(|i| db.entries[i].label.clone());
-    let reference = if a.rest_posture {
-        None
-    } else {
-        db.reference(&s, n).map(|r| (labels[0].clone(), r))
-    };
+    let poulaine = model.sample(n);
     Ok(Source {
-        poulaine: model.sample(n),
+        reference: reference(a, &db, &poulaine, body),
         velocity: gait.velocity,
         name: db_path.display().to_string(),
+        poulaine,
         selected: Some(labels),
         query: Some(q),
-        reference,
     })
+}
+
+/// f3's per-phase reference from `db`'s angles for `poulaine` ([`Database::reference`]) and the
+/// entries it blends, unless --rest-posture.
+fn reference(
+    a: &IkArgs,
+    db: &Database,
+    poulaine: &Trajectory,
+    body: &Body,
+) -> Option<(String, Vec<Angles>)> {
+    if a.rest_posture {
+        return None;
+    }
+    let n = poulaine.time.len();
+    let r = db.reference(poulaine.trace() / body.l1, n)?;
+    let names: Vec<String> = r
+        .blend
+        .iter()
+        .map(|&(i, w)| format!("{} ({w:.2})", db.entries[i].label))
+        .collect();
+    Some((names.join(" and "), r.angles))
 }
 
 pub(crate) fn run(a: &IkArgs) -> Result<()> {
@@ -196,15 +222,19 @@ pub(crate) fn run(a: &IkArgs) -> Result<()> {
         query,
         reference,
     } = match (&a.poulaine, &a.db) {
-        (Some(p), _) => {
+        (Some(p), db) => {
             let t = Trajectory::read_csv(p)?;
+            let reference = match db {
+                Some(d) => reference(a, &Database::read(d)?, &t, &body),
+                None => None,
+            };
             Source {
                 velocity: a.velocity.unwrap_or_else(|| t.speed()),
                 poulaine: t,
                 name: p.display().to_string(),
                 selected: None,
                 query: None,
-                reference: None,
+                reference,
             }
         }
         (None, Some(db_path)) => db_poulaine(a, db_path, &body)?,
@@ -238,7 +268,7 @@ pub(crate) fn run(a: &IkArgs) -> Result<()> {
         source,
         selected,
         reference: reference.map_or("the rest posture".into(), |(label, _)| {
-            format!("the angles of entry {label} at each phase")
+            format!("the angles of {label} at each phase")
         }),
         query,
         period_s: poulaine.period,
