@@ -93,9 +93,7 @@ fn main() {
             Ok(r) => row(&format!("{}, rest posture", e.label), &r),
             Err(err) => println!("| {}, rest posture | failed: {err} |", e.label),
         }
-        let reference = rest
-            .reference(poulaine.trace() / body.l1, frames.len())
-            .map(|r| r.angles);
+        let reference = rest.reference(&poulaine, body.l1, false).map(|r| r.angles);
         ik.model.weights.energy = ik.model.weights.energy_with_reference;
         match recover_referenced(&ik, &poulaine, &truth, reference.as_deref()) {
             Ok(r) => row(&format!("{}, the database's angles", e.label), &r),
@@ -129,9 +127,7 @@ fn own_with_database() {
             };
             let (poulaine, frames) = Trajectory::from_walk(&walk, 60.0).unwrap();
             let truth = frames_angles(&frames, &body).unwrap();
-            let reference = db
-                .reference(poulaine.trace() / body.l1, frames.len())
-                .unwrap();
+            let reference = db.reference(&poulaine, body.l1, false).unwrap();
             let mut ik = Ik::new(&body);
             ik.model.weights.energy = ik.model.weights.energy_with_reference;
             match recover_referenced(&ik, &poulaine, &truth, Some(&reference.angles)) {

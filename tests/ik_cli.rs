@@ -179,6 +179,46 @@ fn the_commands_chain_from_a_walk_to_a_figure() {
         serde_json::from_str(&fs::read_to_string(d.join("own.json")).unwrap()).unwrap();
     assert!(r["max_residual_m"].as_f64().unwrap() <= 1e-3 && r["within_limits"].as_bool().unwrap());
     assert!(r["selected"].is_null(), "the poulaine is the file's: {r}");
+    // the same poulaine started 40 % into its cycle: a warning naming the offset, and with
+    // --align-phase the database's angles read 0.4 of a cycle on
+    let text = fs::read_to_string(d.join("p.csv")).unwrap();
+    let mut lines = text.lines();
+    let header = lines.next().unwrap();
+    let rows: Vec<&str> = lines.collect();
+    let (n, k) = (rows.len(), rows.len() * 2 / 5);
+    let dt = 1.2 / n as f64;
+    let mut rotated = format!("{header}\n");
+    for (i, row) in rows[k..].iter().chain(&rows[..k]).enumerate() {
+        let rest = row.split_once(',').unwrap().1;
+        rotated += &format!("{:.9},{rest}\n", i as f64 * dt);
+    }
+    fs::write(d.join("p40.csv"), rotated).unwrap();
+    let args = [
+        "ik",
+        "--poulaine",
+        "p40.csv",
+        "--db",
+        "db.json",
+        "--cycles",
+        "1",
+        "--out",
+        "late.csv",
+    ];
+    let o = klaw(d, &args);
+    assert!(o.status.success());
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(stderr.contains("of a cycle out of phase"), "{stderr}");
+    let said = ok(d, &[&args[..], &["--align-phase"]].concat());
+    let shifts: Vec<f64> = said
+        .split("phase ")
+        .skip(1)
+        .map(|t| t[..6].parse().unwrap())
+        .collect();
+    let start = k as f64 / n as f64;
+    assert!(
+        !shifts.is_empty() && shifts.iter().all(|s| (s - start).abs() < 0.02),
+        "{start} {said}"
+    );
     refused(
         d,
         &[

@@ -121,7 +121,7 @@ fn the_hip_and_knee_angles_meet_table_2_with_the_databases_angles() {
             "H {h} v {v} is in the database"
         );
         let truth = frames_angles(&frames, &b).unwrap();
-        let reference = db.reference(poulaine.trace() / b.l1, frames.len()).unwrap();
+        let reference = db.reference(&poulaine, b.l1, false).unwrap();
         let mut ik = Ik::new(&b);
         ik.model.weights.energy = ik.model.weights.energy_with_reference;
         let r = recover_referenced(&ik, &poulaine, &truth, Some(&reference.angles)).unwrap();
@@ -183,10 +183,7 @@ fn leave_one_out_recovers_the_left_out_walk() {
         for n in ["hip_adduction", "hip_rotation", "knee_flexion"] {
             assert!(r.table2(n) <= 0.25, "{n}: {}", r.table2(n));
         }
-        let reference = rest
-            .reference(poulaine.trace() / b.l1, frames.len())
-            .unwrap()
-            .angles;
+        let reference = rest.reference(&poulaine, b.l1, false).unwrap().angles;
         let mut ik = Ik::new(&b);
         ik.model.weights.energy = ik.model.weights.energy_with_reference;
         let with = recover_referenced(&ik, &poulaine, &truth, Some(&reference)).unwrap();

@@ -177,16 +177,32 @@ fn the_database_file_round_trips_and_damage_is_refused() {
     assert!(e.to_string().contains("db.json"), "{e}");
 }
 
-/// f3's reference from the database's angles (`Database::reference`): none without angles; at
-/// an entry's own trace, its own angles; between the two entries nearest in trace, weights
-/// linear in the trace and the weighted mean of their postures at the same phase of their
-/// cycles; beyond the database's traces, the nearest entry alone.
+/// `model`'s cycle from phase `start` at `n` uniform samples, its x scaled by `k`.
+fn from_phase(model: &klaw::poulaine::Model, start: f64, n: usize, k: f64) -> Trajectory {
+    let (mut right, mut left) = (Vec::new(), Vec::new());
+    for i in 0..n {
+        let (r, l) = model.at((i as f64 / n as f64 + start).rem_euclid(1.0));
+        right.push([k * r[0], r[1], r[2]]);
+        left.push([k * l[0], l[1], l[2]]);
+    }
+    Trajectory {
+        time: (0..n).map(|i| i as f64 * model.period / n as f64).collect(),
+        period: model.period,
+        right,
+        left,
+        pelvis_speed: None,
+    }
+}
+
+/// f3's reference from the database's angles (`Database::reference`): none without angles; a
+/// poulaine that starts 0.3 into an entry's cycle is found 0.3 out of phase when aligned
+/// (within the alignment's grid), and read from phase 0 when not; between the two entries nearest in trace the weights are linear in the
+/// poulaine's trace per leg (its samples' x range, computed here) and the posture is their
+/// weighted mean, each entry's angles read at its own phase; beyond the database's traces, the
+/// nearest entry alone.
 #[test]
 fn the_reference_blends_the_entries_nearest_in_trace() {
     let db = database();
-    let mut bare = db.clone();
-    bare.entries.iter_mut().for_each(|e| e.angles.clear());
-    assert!(bare.reference(0.5, 10).is_none());
     let mut by_trace: Vec<usize> = (0..db.entries.len()).collect();
     by_trace.sort_by(|&a, &b| {
         db.entries[a]
@@ -197,45 +213,54 @@ fn the_reference_blends_the_entries_nearest_in_trace() {
     let (lo, hi) = (by_trace[0], by_trace[1]);
     let (a, b) = (&db.entries[lo], &db.entries[hi]);
     assert!(b.axes.trace > a.axes.trace);
-    let m = a.angles.len();
-    let own = db.reference(a.axes.trace, m).unwrap();
-    assert_eq!(own.blend, vec![(lo, 1.0)]);
-    for (r, e) in own.angles.iter().zip(&a.angles) {
-        assert!(r.iter().zip(e).all(|(x, y)| (x - y).abs() < 1e-12));
-    }
-    // a quarter of the way from a to b, at 50 samples per cycle
-    let trace = 0.75 * a.axes.trace + 0.25 * b.axes.trace;
-    let n = 50;
-    let r = db.reference(trace, n).unwrap();
-    assert_eq!(r.blend.len(), 2);
+    let leg = a.leg_length;
+    let mut bare = db.clone();
+    bare.entries.iter_mut().for_each(|e| e.angles.clear());
     assert!(
-        (r.blend[0].1 - 0.75).abs() < 1e-12 && r.blend[0].0 == lo,
+        bare.reference(&from_phase(&a.model, 0.0, 50, 1.0), leg, true)
+            .is_none()
+    );
+    // a quarter of the way from a to b in trace, a's shape started 0.3 into its cycle
+    let n = 60;
+    let sampled = from_phase(&a.model, 0.3, n, 1.0).trace() / leg;
+    let k = (0.75 * a.axes.trace + 0.25 * b.axes.trace) / sampled;
+    let p = from_phase(&a.model, 0.3, n, k);
+    let r = db.reference(&p, leg, true).unwrap();
+    assert_eq!(r.blend.len(), 2, "{:?}", r.blend);
+    let [ba, bb] = [r.blend[0], r.blend[1]];
+    assert_eq!((ba.entry, bb.entry), (lo, hi));
+    assert!(
+        (ba.weight - 0.75).abs() < 1e-9 && (bb.weight - 0.25).abs() < 1e-9,
         "{:?}",
         r.blend
     );
-    assert!(
-        (r.blend[1].1 - 0.25).abs() < 1e-12 && r.blend[1].0 == hi,
-        "{:?}",
-        r.blend
-    );
-    // the posture at sample i: each entry's angles at phase i / n of its cycle, linear
-    // between its samples
-    let at = |e: &klaw::poulaine::Entry, phase: f64, k: usize| {
-        let u = phase * e.angles.len() as f64;
-        let (j, f) = (u.floor() as usize % e.angles.len(), u.fract());
-        e.angles[j][k] * (1.0 - f) + e.angles[(j + 1) % e.angles.len()][k] * f
+    assert!((ba.shift - 0.3).abs() <= 2e-3, "{:?}", r.blend);
+    // b is another walk from its own heel strike: in phase with a within a few hundredths
+    assert!((bb.shift - 0.3).abs() < 0.05, "{:?}", r.blend);
+    let at = |e: &klaw::poulaine::Entry, phase: f64, j: usize| {
+        let u = phase.rem_euclid(1.0) * e.angles.len() as f64;
+        let (i, f) = (u.floor() as usize % e.angles.len(), u.fract());
+        e.angles[i][j] * (1.0 - f) + e.angles[(i + 1) % e.angles.len()][j] * f
     };
-    for i in [0, 7, 31, 49] {
+    for i in [0, 7, 31, 59] {
         let phase = i as f64 / n as f64;
-        for k in 0..11 {
-            let want = 0.75 * at(a, phase, k) + 0.25 * at(b, phase, k);
-            assert!(
-                (r.angles[i][k] - want).abs() < 1e-12,
-                "sample {i} angle {k}"
-            );
+        for j in 0..11 {
+            let want = 0.75 * at(a, phase + ba.shift, j) + 0.25 * at(b, phase + bb.shift, j);
+            assert!((r.angles[i][j] - want).abs() < 1e-9, "sample {i} angle {j}");
         }
     }
+    // unaligned, both read from phase 0
+    let flat = db.reference(&p, leg, false).unwrap();
+    assert!(flat.blend.iter().all(|b| b.shift == 0.0));
+    for j in 0..11 {
+        let want = 0.75 * at(a, 0.5, j) + 0.25 * at(b, 0.5, j);
+        assert!((flat.angles[n / 2][j] - want).abs() < 1e-9, "angle {j}");
+    }
     let top = *by_trace.last().unwrap();
-    assert_eq!(db.reference(10.0, n).unwrap().blend, vec![(top, 1.0)]);
-    assert_eq!(db.reference(0.0, n).unwrap().blend, vec![(lo, 1.0)]);
+    let beyond = db
+        .reference(&from_phase(&a.model, 0.0, n, 100.0), leg, true)
+        .unwrap();
+    assert_eq!((beyond.blend.len(), beyond.blend[0].entry), (1, top));
+    assert_eq!(beyond.blend[0].weight, 1.0);
+    assert!(beyond.blend[0].shift.abs() < 0.05, "{:?}", beyond.blend);
 }

@@ -126,8 +126,19 @@ pub type Query = Axes;
 pub struct Reference {
     /// One posture per sample of the poulaine.
     pub angles: Vec<Angles>,
-    /// The entries blended (their indices) and their weights, which sum to 1.
-    pub blend: Vec<(usize, f64)>,
+    /// The entries blended.
+    pub blend: Vec<Blended>,
+}
+
+/// One entry of a [`Reference`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Blended {
+    /// The entry's index.
+    pub entry: usize,
+    /// Its weight; the weights sum to 1.
+    pub weight: f64,
+    /// The entry's phase read at the poulaine's phase 0 (cycles; 0 unless aligned).
+    pub shift: f64,
 }
 
 /// The entries chosen for each axis.
@@ -305,14 +316,18 @@ impl Database {
         (combine(q.spacing - raw.spacing, q.stance - raw.stance), s)
     }
 
-    /// The per-phase reference posture of f3 (eq. 6) for a poulaine of `n` uniform samples per
-    /// cycle from its right heel strike, whose trace length is `trace` (a fraction of the leg,
-    /// [`Axes::trace`]) \[ours: the paper's f3 pulls towards one rest posture; its database
-    /// held no angles\]: the angles of the two entries nearest in trace below and above it,
-    /// linear in the trace between them, each at the same phase of its cycle ([`resample`];
-    /// a synthetic entry's cycle starts at its right heel strike). Beyond the database's traces,
-    /// the nearest entry's. `None` when no entry carries angles.
-    pub fn reference(&self, trace: f64, n: usize) -> Option<Reference> {
+    /// The per-phase reference posture of f3 (eq. 6) for `poulaine` (uniform samples of one
+    /// cycle) of a walker of leg length `leg` (m) \[ours: the paper's f3 pulls towards one rest
+    /// posture; its database held no angles\]: the angles of the two entries nearest in trace
+    /// below and above the poulaine's own ([`Trajectory::trace`] / `leg`), linear in the trace
+    /// between them, each linear between its samples, read at the poulaine's phase: both
+    /// cycles from their right heel strike (klaw's poulaines and synthetic entries start there),
+    /// or with `align`, shifted by the [`alignment`] of the ankles' paths (a poulaine that starts
+    /// elsewhere). Beyond the database's traces, the nearest entry's. `None` when no entry
+    /// carries angles.
+    pub fn reference(&self, poulaine: &Trajectory, leg: f64, align: bool) -> Option<Reference> {
+        let trace = poulaine.trace() / leg;
+        let n = poulaine.time.len();
         let with: Vec<usize> = (0..self.entries.len())
             .filter(|&i| !self.entries[i].angles.is_empty())
             .collect();
@@ -323,7 +338,7 @@ impl Database {
                 .filter(|&i| side * (t(i) - trace) >= 0.0)
                 .min_by(|&a, &b| (t(a) - trace).abs().total_cmp(&(t(b) - trace).abs()))
         };
-        let blend = match (nearest(-1.0), nearest(1.0)) {
+        let weights = match (nearest(-1.0), nearest(1.0)) {
             (Some(lo), Some(hi)) if t(hi) > t(lo) => {
                 let w = (trace - t(lo)) / (t(hi) - t(lo));
                 vec![(lo, 1.0 - w), (hi, w)]
@@ -332,12 +347,19 @@ impl Database {
             (None, None) => return None,
         };
         let mut angles = vec![Angles::zeros(); n];
-        for &(i, w) in &blend {
-            let e = &self.entries[i];
+        let mut blend = Vec::new();
+        for (entry, weight) in weights {
+            let e = &self.entries[entry];
+            let shift = if align { alignment(e, poulaine) } else { 0.0 };
             let own: Vec<Angles> = e.angles.iter().map(|a| Angles::from(*a)).collect();
-            for (sum, a) in angles.iter_mut().zip(resample(&own, n)) {
-                *sum += a * w;
+            for (i, sum) in angles.iter_mut().enumerate() {
+                *sum += at_phase(&own, i as f64 / n as f64 + shift) * weight;
             }
+            blend.push(Blended {
+                entry,
+                weight,
+                shift,
+            });
         }
         Some(Reference { angles, blend })
     }
@@ -356,16 +378,67 @@ impl Database {
     }
 }
 
+/// The phase shift s (cycles, in [−½, ½)) that puts `entry`'s cycle in phase with
+/// `poulaine` (uniform samples from its phase 0): the s on a grid of 1/1000 cycle that
+/// minimizes Σᵢ Σ_c (ĉᵢ − ĉₑ(i/n + s))² over the forward and vertical coordinates c of both
+/// ankles, each less its mean over its range (max − min), c_e the entry's model. A measured
+/// poulaine may start anywhere in its cycle; klaw's start at the right heel strike.
+pub fn alignment(entry: &Entry, poulaine: &Trajectory) -> f64 {
+    const GRID: usize = 1000;
+    let n = poulaine.time.len();
+    let normalized = |v: Vec<f64>| {
+        let mean = v.iter().sum::<f64>() / v.len() as f64;
+        let (lo, hi) = v
+            .iter()
+            .fold((f64::MAX, f64::MIN), |(l, h), &a| (l.min(a), h.max(a)));
+        v.into_iter()
+            .map(|a| (a - mean) / (hi - lo).max(1e-9))
+            .collect::<Vec<f64>>()
+    };
+    let signals: Vec<(Vec<f64>, Vec<f64>)> = [
+        (&poulaine.right, &entry.model.right),
+        (&poulaine.left, &entry.model.left),
+    ]
+    .into_iter()
+    .flat_map(|(samples, curve)| {
+        [0, 1].map(|c| {
+            let own = normalized(samples.iter().map(|p| p[c]).collect());
+            let model = (0..GRID).map(|k| curve.at(k as f64 / GRID as f64)[c]);
+            (own, normalized(model.collect()))
+        })
+    })
+    .collect();
+    let cost = |s: usize| {
+        let mut sum = 0.0;
+        for (own, model) in &signals {
+            for (i, a) in own.iter().enumerate() {
+                let u = (i as f64 / n as f64 * GRID as f64).round() as usize + s;
+                sum += (a - model[u % GRID]).powi(2);
+            }
+        }
+        sum
+    };
+    let best = (0..GRID)
+        .min_by(|&a, &b| cost(a).total_cmp(&cost(b)))
+        .expect("a grid");
+    let s = best as f64 / GRID as f64;
+    if s >= 0.5 { s - 1.0 } else { s }
+}
+
+/// `angles`, samples of one cycle at uniform phases from 0, at `phase` (cycles, any real):
+/// linear between samples, cyclic.
+fn at_phase(angles: &[Angles], phase: f64) -> Angles {
+    let m = angles.len();
+    let u = phase.rem_euclid(1.0) * m as f64;
+    let (k, f) = (u.floor() as usize % m, u.fract());
+    angles[k] * (1.0 - f) + angles[(k + 1) % m] * f
+}
+
 /// `angles`, samples of one cycle at uniform phases from 0, at `n` uniform phases: linear
 /// between samples, cyclic (the last sample is followed by the first).
 pub fn resample(angles: &[Angles], n: usize) -> Vec<Angles> {
-    let m = angles.len();
     (0..n)
-        .map(|i| {
-            let u = i as f64 * m as f64 / n as f64;
-            let (k, f) = (u.floor() as usize % m, u.fract());
-            angles[k] * (1.0 - f) + angles[(k + 1) % m] * f
-        })
+        .map(|i| at_phase(angles, i as f64 / n as f64))
         .collect()
 }
 
@@ -399,7 +472,9 @@ mod tests {
         let m = 5;
         let value = |k: usize| [0.0, 2.0, 1.0, 4.0, -1.0][k % m];
         let samples: Vec<Angles> = (0..m).map(|k| Angles::from_element(value(k))).collect();
-        assert_eq!(resample(&samples, m), samples);
+        for (a, b) in resample(&samples, m).iter().zip(&samples) {
+            assert!((a - b).amax() < 1e-12);
+        }
         let halves = resample(&samples, 2 * m);
         for k in 0..m {
             let mean = 0.5 * (value(k) + value(k + 1));

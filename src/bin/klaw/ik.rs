@@ -82,6 +82,16 @@ pub(crate) struct IkArgs {
     /// phase, where it carries them, with the kinetic weight energy_with_reference]
     #[arg(long, requires = "db")]
     rest_posture: bool,
+    /// --poulaine with --db: read the database's angles in phase with the poulaine's ankle
+    /// paths, for a poulaine that does not start at its right heel strike [default: both
+    /// cycles from their right heel strike, as `klaw poulaine extract` writes them]
+    #[arg(
+        long,
+        requires = "poulaine",
+        requires = "db",
+        conflicts_with = "rest_posture"
+    )]
+    align_phase: bool,
     /// Gait cycles to write, range [1, 1000]
     #[arg(
         long,
@@ -187,12 +197,24 @@ fn reference(
     if a.rest_posture {
         return None;
     }
-    let n = poulaine.time.len();
-    let r = db.reference(poulaine.trace() / body.l1, n)?;
+    let r = db.reference(poulaine, body.l1, a.align_phase)?;
+    if !a.align_phase {
+        let off = klaw::poulaine::database::alignment(&db.entries[r.blend[0].entry], poulaine);
+        if off.abs() > 0.1 {
+            eprintln!(
+                "warning: the poulaine's ankle paths are {off:+.2} of a cycle out of phase with \
+                 the database's walks, which start at their right heel strike; --align-phase \
+                 reads the reference in phase"
+            );
+        }
+    }
     let names: Vec<String> = r
         .blend
         .iter()
-        .map(|&(i, w)| format!("{} ({w:.2})", db.entries[i].label))
+        .map(|b| {
+            let label = &db.entries[b.entry].label;
+            format!("{label} (weight {:.2}, phase {:+.3})", b.weight, b.shift)
+        })
         .collect();
     Some((names.join(" and "), r.angles))
 }
