@@ -15,6 +15,14 @@
 //! \[ours\] Each coordinate is its own closed curve with its own four knots ([`Component`]): a
 //! fitted poulaine has the same knots on its three coordinates, and the database's selection
 //! (§4) takes each coordinate from a different poulaine, knots and all.
+//!
+//! The shape and the speed along it are apart (§3.2, "the shape of the trajectories but not
+//! the speed … an average profile computed after isolation, synchronization and normalization
+//! of walk cycles according to the duration of the steps and the size of the trajectories"):
+//! the curve's parameter ψ runs through the knots at their phases (the characteristic points
+//! are the synchronization), and within knot interval k the ankle is at ψ = φ_k + Δ_k g_k(s)
+//! at the time s = (φ − φ_k) / Δ_k of the interval ([`Speed`], both normalized to [0, 1]).
+//! With g_k(s) = s the parameter is the phase itself.
 use serde::{Deserialize, Serialize};
 
 /// The Hermite basis (h₀₀, h₁₀, h₀₁, h₁₁) at s.
@@ -77,7 +85,65 @@ impl Component {
     }
 }
 
-/// One ankle's curve: its x (forward), y (up) and z (right) coordinates.
+/// The samples of each interval's speed profile after the first (at s = j / [`SPEED_STEPS`]).
+pub const SPEED_STEPS: usize = 24;
+
+/// The speed along one ankle's curve (module doc): per knot interval k, the normalized
+/// parameter g_k at the normalized times s = j / [`SPEED_STEPS`], from 0 to 1 nondecreasing,
+/// linear between.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(transparent)]
+pub struct Speed(pub [[f64; SPEED_STEPS + 1]; 4]);
+
+impl Default for Speed {
+    /// g_k(s) = s: the parameter is the phase.
+    fn default() -> Self {
+        Speed([std::array::from_fn(|j| j as f64 / SPEED_STEPS as f64); 4])
+    }
+}
+
+impl Speed {
+    /// g_k(s), linear between the samples.
+    pub fn warp(&self, k: usize, s: f64) -> f64 {
+        let u = s.clamp(0.0, 1.0) * SPEED_STEPS as f64;
+        let j = (u.floor() as usize).min(SPEED_STEPS - 1);
+        let g = &self.0[k];
+        g[j] + (u - j as f64) * (g[j + 1] - g[j])
+    }
+
+    /// Whether every profile runs from 0 to 1 nondecreasing, every number finite.
+    pub fn is_valid(&self) -> bool {
+        self.0.iter().all(|g| {
+            g[0] == 0.0
+                && g[SPEED_STEPS] == 1.0
+                && g.iter().all(|v| v.is_finite())
+                && g.windows(2).all(|w| w[1] >= w[0])
+        })
+    }
+
+    /// The mean of `profiles` (none: the identity).
+    pub fn mean<'a>(profiles: impl IntoIterator<Item = &'a Speed>) -> Speed {
+        let mut sum = [[0.0; SPEED_STEPS + 1]; 4];
+        let mut n = 0;
+        for p in profiles {
+            for (a, b) in sum.iter_mut().flatten().zip(p.0.iter().flatten()) {
+                *a += b;
+            }
+            n += 1;
+        }
+        if n == 0 {
+            return Speed::default();
+        }
+        let mut mean = Speed(sum.map(|g| g.map(|v| v / n as f64)));
+        for g in &mut mean.0 {
+            (g[0], g[SPEED_STEPS]) = (0.0, 1.0);
+        }
+        mean
+    }
+}
+
+/// One ankle's curve: its x (forward), y (up) and z (right) coordinates, and the speed along
+/// them.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LegCurve {
@@ -87,12 +153,24 @@ pub struct LegCurve {
     pub y: Component,
     /// z, to the right.
     pub z: Component,
+    /// The speed profile (absent in a file: the parameter is the phase).
+    #[serde(default)]
+    pub speed: Speed,
 }
 
 impl LegCurve {
-    /// The ankle at phase φ.
+    /// The ankle at phase φ: each coordinate at its parameter ψ (module doc).
     pub fn at(&self, phi: f64) -> [f64; 3] {
-        [self.x.at(phi), self.y.at(phi), self.z.at(phi)]
+        let at = |c: &Component| {
+            let (k, s, d) = c.locate(phi);
+            c.at(c.phase[k] + d * self.speed.warp(k, s))
+        };
+        [at(&self.x), at(&self.y), at(&self.z)]
+    }
+
+    /// The ankle at the curve's own parameter ψ (the shape, whatever the speed).
+    pub fn shape_at(&self, psi: f64) -> [f64; 3] {
+        [self.x.at(psi), self.y.at(psi), self.z.at(psi)]
     }
 
     /// The components.
@@ -155,5 +233,36 @@ mod tests {
         let mut c = component();
         c.slope[2] = f64::NAN;
         assert!(!c.is_valid());
+    }
+
+    /// The speed moves the ankle along the shape, never off it: with g(s) = s², the ankle at
+    /// phase φ in interval k is the shape at φ_k + Δ_k s², it still passes the knots at their
+    /// phases, and the mean of two profiles is their pointwise mean (hand-computed at s = ½).
+    #[test]
+    fn the_speed_moves_the_ankle_along_the_shape() {
+        let c = component();
+        let square = Speed([std::array::from_fn(|j| (j as f64 / SPEED_STEPS as f64).powi(2)); 4]);
+        assert!(square.is_valid() && Speed::default().is_valid());
+        let leg = LegCurve {
+            x: c,
+            y: c,
+            z: c,
+            speed: square,
+        };
+        for (k, s) in [(0, 0.5), (1, 0.25), (2, 0.75), (3, 0.0)] {
+            let d = (c.phase[(k + 1) % 4] - c.phase[k]).rem_euclid(1.0);
+            let got = leg.at(c.phase[k] + d * s)[0];
+            assert!(
+                (got - c.at(c.phase[k] + d * s * s)).abs() < 1e-12,
+                "{k} {s}"
+            );
+            assert!((leg.at(c.phase[k])[1] - c.value[k]).abs() < 1e-12);
+        }
+        let mean = Speed::mean([&square, &Speed::default()]);
+        assert!((mean.warp(2, 0.5) - (0.25 + 0.5) / 2.0).abs() < 1e-12);
+        assert_eq!(Speed::mean([]), Speed::default());
+        let mut back = square;
+        back.0[1][4] = 0.9;
+        assert!(!back.is_valid());
     }
 }

@@ -4,8 +4,9 @@
 //!
 //! The parameters, each as a fraction of the walker's leg length l (hip to ankle, l3 + l4) so
 //! that walkers of every size share one database:
-//! - x: the ankle's trace length along x over the cycle (max x − min x), the paper's "step
-//!   length" parameter;
+//! - x: the ankle's trace length along x over the cycle, its x at its most forward point
+//!   less its x at its most backward (characteristic points 2 and 4: the samples' max x −
+//!   min x; the cubic between may overshoot them), the paper's "step length" parameter;
 //! - y: half the feet's spacing in support, the ankle's mean |z| from its most forward to its
 //!   most backward point;
 //! - z: the stance, the pelvis-to-ankle height where the ankle passes under the pelvis in
@@ -20,13 +21,11 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 
 use crate::ik::chain::{Angles, DOF};
-use crate::poulaine::curve::{Component, LegCurve};
+use crate::model::GRAVITY;
+use crate::poulaine::curve::{Component, LegCurve, Speed};
 use crate::poulaine::error::PoulaineError;
 use crate::poulaine::fit::{FitError, Model};
 use crate::poulaine::trajectory::Trajectory;
-
-/// The samples per cycle the parameters are measured on.
-const SAMPLES: usize = 400;
 
 /// A poulaine's three parameters, fractions of the leg length (module doc).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -45,12 +44,6 @@ impl Axes {
     /// ankles'.
     pub fn of(model: &Model, leg: f64) -> Self {
         let one = |c: &LegCurve| {
-            let t: Vec<[f64; 3]> = (0..SAMPLES)
-                .map(|i| c.at(i as f64 / SAMPLES as f64))
-                .collect();
-            let (lo, hi) = t
-                .iter()
-                .fold((f64::MAX, f64::MIN), |(l, h), p| (l.min(p[0]), h.max(p[0])));
             // support: the x component's knots 2 (most forward) to 4 (most backward)
             let [_, front, under, back] = c.x.phase;
             let span = (back - front).rem_euclid(1.0);
@@ -60,7 +53,7 @@ impl Axes {
                 .sum::<f64>()
                 / (k + 1) as f64;
             Axes {
-                trace: (hi - lo) / leg,
+                trace: (c.x.value[1] - c.x.value[3]) / leg,
                 spacing: spacing / leg,
                 stance: -c.y.at(under) / leg,
             }
@@ -226,6 +219,15 @@ impl Database {
             if !valid {
                 return Err(at("a curve's knots are not distinct phases in [0, 1) in cyclic order, or a value is not finite".into()));
             }
+            if ![&e.model.right, &e.model.left]
+                .iter()
+                .all(|c| c.speed.is_valid())
+            {
+                return Err(at(format!(
+                    "a speed profile must run from 0 to 1 nondecreasing, {} steps per interval",
+                    crate::poulaine::curve::SPEED_STEPS
+                )));
+            }
             if e.angles.len() == 1 || e.angles.iter().flatten().any(|v| !v.is_finite()) {
                 return Err(at(format!(
                     "its angles must be none or at least 2 samples of finite values ({} given)",
@@ -286,7 +288,8 @@ impl Database {
     /// exactly: the selection's axes scaled to the leg, x scaled to the trace length, then the
     /// lateral and vertical coordinates shifted by what the combined curve still lacks (its
     /// support phases are the x entry's, so the shift is measured on the combination, not on
-    /// the y or z entry alone). Not clamped: sample it and [`clamp_to_reach`].
+    /// the y or z entry alone); the speed along it the database's average profile per ankle
+    /// (§3.2, [`Speed::mean`]). Not clamped: sample it and [`clamp_to_reach`].
     pub fn poulaine(&self, q: &Query, leg: f64, period: f64) -> (Model, Selection) {
         let s = self.select(q);
         let (ex, ey, ez) = (&self.entries[s.x], &self.entries[s.y], &self.entries[s.z]);
@@ -296,8 +299,12 @@ impl Database {
             slope: c.slope.map(|m| k * m),
         };
         let kx = q.trace / ex.axes.trace * leg / ex.leg_length;
+        let average = |pick: fn(&Model) -> &LegCurve| {
+            Speed::mean(self.entries.iter().map(|e| &pick(&e.model).speed))
+        };
         let combine = |lateral: f64, down: f64| {
             let leg_curve = |side: f64, pick: fn(&Model) -> &LegCurve| LegCurve {
+                speed: average(pick),
                 x: scale(&pick(&ex.model).x, kx, 0.0),
                 y: scale(&pick(&ez.model).y, leg / ez.leg_length, -down * leg),
                 z: scale(
@@ -318,29 +325,45 @@ impl Database {
 
     /// The per-phase reference posture of f3 (eq. 6) for `poulaine` (uniform samples of one
     /// cycle) of a walker of leg length `leg` (m) \[ours: the paper's f3 pulls towards one rest
-    /// posture; its database held no angles\]: the angles of the two entries nearest in trace
-    /// below and above the poulaine's own ([`Trajectory::trace`] / `leg`), linear in the trace
-    /// between them, each linear between its samples, read at the poulaine's phase: both
-    /// cycles from their right heel strike (klaw's poulaines and synthetic entries start there),
-    /// or with `align`, shifted by the [`alignment`] of the ankles' paths (a poulaine that starts
-    /// elsewhere). Beyond the database's traces, the nearest entry's. `None` when no entry
-    /// carries angles.
+    /// posture; its database held no angles\]: the angles of the two entries nearest below and
+    /// above the poulaine in the blending coordinate, linear in it between them, each linear
+    /// between its samples, read at the poulaine's phase: both cycles from their right heel
+    /// strike (klaw's poulaines and synthetic entries start there), or with `align`, shifted by
+    /// the [`alignment`] of the ankles' paths (a poulaine that starts elsewhere). Beyond the
+    /// database, the nearest entry's. The coordinate is the dimensionless speed v / √(g l)
+    /// (Alexander's dynamic similarity: walkers of different sizes at one v / √(g l) move their
+    /// joints alike), the poulaine's [`Trajectory::speed`] against each entry's walking speed,
+    /// when every entry with angles knows its speed; else the trace per leg
+    /// ([`Trajectory::trace`] / `leg` against [`Axes::trace`]). `None` when no entry carries
+    /// angles.
     pub fn reference(&self, poulaine: &Trajectory, leg: f64, align: bool) -> Option<Reference> {
-        let trace = poulaine.trace() / leg;
         let n = poulaine.time.len();
         let with: Vec<usize> = (0..self.entries.len())
             .filter(|&i| !self.entries[i].angles.is_empty())
             .collect();
-        let t = |i: usize| self.entries[i].axes.trace;
+        let by_speed = with.iter().all(|&i| self.entries[i].velocity.is_some());
+        let froude = |v: f64, l: f64| v / (GRAVITY * l).sqrt();
+        let x = if by_speed {
+            froude(poulaine.speed(), leg)
+        } else {
+            poulaine.trace() / leg
+        };
+        let t = |i: usize| {
+            let e = &self.entries[i];
+            match e.velocity {
+                Some(v) if by_speed => froude(v, e.leg_length),
+                _ => e.axes.trace,
+            }
+        };
         let nearest = |side: f64| {
             with.iter()
                 .copied()
-                .filter(|&i| side * (t(i) - trace) >= 0.0)
-                .min_by(|&a, &b| (t(a) - trace).abs().total_cmp(&(t(b) - trace).abs()))
+                .filter(|&i| side * (t(i) - x) >= 0.0)
+                .min_by(|&a, &b| (t(a) - x).abs().total_cmp(&(t(b) - x).abs()))
         };
         let weights = match (nearest(-1.0), nearest(1.0)) {
             (Some(lo), Some(hi)) if t(hi) > t(lo) => {
-                let w = (trace - t(lo)) / (t(hi) - t(lo));
+                let w = (x - t(lo)) / (t(hi) - t(lo));
                 vec![(lo, 1.0 - w), (hi, w)]
             }
             (Some(i), _) | (None, Some(i)) => vec![(i, 1.0)],

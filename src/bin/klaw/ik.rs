@@ -78,7 +78,7 @@ pub(crate) struct IkArgs {
     )]
     fps: f64,
     /// --db: f3 (eq. 6) pulls towards the rest posture of models/ik.toml, as in the paper
-    /// [default: towards the angles of the database's walks nearest in trace length at each
+    /// [default: towards the angles of the database's walks nearest in v / √(g l) at each
     /// phase, where it carries them, with the kinetic weight energy_with_reference]
     #[arg(long, requires = "db")]
     rest_posture: bool,
