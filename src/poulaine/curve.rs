@@ -45,7 +45,8 @@ pub struct Component {
     pub phase: [f64; 4],
     /// The coordinate at the knots (m).
     pub value: [f64; 4],
-    /// Its derivative at the knots, d/dφ (m per cycle).
+    /// Its derivative at the knots, d/dψ (m per unit of the curve's parameter ψ, which passes
+    /// the knots at their phases: m per cycle when ψ is the phase).
     pub slope: [f64; 4],
 }
 
@@ -64,7 +65,8 @@ impl Component {
         unreachable!("the loop returns at k = 3")
     }
 
-    /// The coordinate at phase φ.
+    /// The coordinate at the curve's parameter ψ = `phi` (the phase itself when the speed
+    /// profile is the identity; [`LegCurve::at`] maps a phase to ψ).
     pub fn at(&self, phi: f64) -> f64 {
         let (k, s, d) = self.locate(phi);
         let [a, b, c, e] = hermite(s);
