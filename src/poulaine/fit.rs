@@ -5,7 +5,7 @@
 //! every sample at its curve parameter ψᵢ, alternating with ψᵢ moved to the point of its knot
 //! interval's curve nearest the sample (the paper's "iterative algorithm, which searches for
 //! the tangents minimizing the distance between the real and the calculated curve"), from
-//! ψᵢ = φᵢ = tᵢ / T, until a round gains less than [`SHAPE_TOLERANCE`]; the knots keep their
+//! ψᵢ = φᵢ = tᵢ / T, until a round gains less than [`FitParameters::shape_tolerance`]; the knots keep their
 //! samples' phases. The curve is
 //! linear in its tangents (four unknowns per coordinate), so each fit solves the normal
 //! equations AᵀA m = Aᵀ(y − p₀), by argmin's conjugate gradient (exact in four steps but for
@@ -17,6 +17,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::poulaine::curve::{Component, LegCurve, SPEED_STEPS, Speed, hermite};
 use crate::poulaine::error::PoulaineError;
+use crate::poulaine::parameters::FitParameters;
 use crate::poulaine::trajectory::Trajectory;
 
 /// A poulaine's model: both ankles' curves over a cycle of duration `period`.
@@ -84,12 +85,12 @@ impl Model {
     /// the whole cycle; the paper's Figure 3 compares shapes; the speed along them is modelled
     /// apart, §3.2). At most [`Self::error`] but for the search's round-off.
     pub fn shape_error(&self, t: &Trajectory) -> FitError {
-        const POINTS: usize = 2000;
         let mut sum = 0.0;
         let mut max: f64 = 0.0;
         for (curve, samples) in [(&self.right, &t.right), (&self.left, &t.left)] {
             for s in samples {
-                let (_, d2) = nearest(curve, s, 0.0, 1.0, POINTS);
+                let p = FitParameters::DEFAULT;
+                let (_, d2) = nearest(curve, s, (0.0, 1.0), p.cycle_grid, p.golden_steps);
                 sum += d2;
                 max = max.max(d2.sqrt());
             }
@@ -245,21 +246,19 @@ fn fit_component(
     })
 }
 
-/// The shape fit's alternation of projection and tangents (module doc) stops when a round
-/// lowers the samples' RMS distance from the shape by less than this fraction of it…
-pub const SHAPE_TOLERANCE: f64 = 1e-3;
-/// … or after this many rounds (its convergence is linear: the tangents and the parameters
-/// trade the same path against each other).
-pub const SHAPE_ROUNDS: usize = 200;
-
 /// Model the poulaine `t` (module doc), and the model's error on its samples.
 pub fn fit(t: &Trajectory) -> Result<(Model, FitError), PoulaineError> {
+    fit_with(t, &FitParameters::DEFAULT)
+}
+
+/// [`fit`] with the tolerances and grids `p`.
+pub fn fit_with(t: &Trajectory, p: &FitParameters) -> Result<(Model, FitError), PoulaineError> {
     t.check(std::path::Path::new("(poulaine)"))?;
     let phases: Vec<f64> = t.time.iter().map(|x| x / t.period).collect();
     let model = Model {
         period: t.period,
-        right: fit_leg(&t.right, &phases, "right")?,
-        left: fit_leg(&t.left, &phases, "left")?,
+        right: fit_leg(&t.right, &phases, "right", p)?,
+        left: fit_leg(&t.left, &phases, "left", p)?,
     };
     let error = model.error(t);
     Ok((model, error))
@@ -270,6 +269,7 @@ fn fit_leg(
     samples: &[[f64; 3]],
     phases: &[f64],
     name: &'static str,
+    p: &FitParameters,
 ) -> Result<LegCurve, PoulaineError> {
     let knots = characteristic_points(samples, name)?;
     let shape = |psi: &[f64]| -> Result<LegCurve, PoulaineError> {
@@ -296,12 +296,12 @@ fn fit_leg(
     let mut psi = phases.to_vec();
     let mut curve = shape(&psi)?;
     let mut last = distance(&curve, &psi);
-    for _ in 0..SHAPE_ROUNDS {
-        let next = project(&curve, knots, samples, phases);
+    for _ in 0..p.shape_rounds {
+        let next = project(&curve, knots, samples, phases, p);
         let refit = shape(&next)?;
         let d = distance(&refit, &next);
         (psi, curve) = (next, refit);
-        if last - d < SHAPE_TOLERANCE * last {
+        if last - d < p.shape_tolerance * last {
             break;
         }
         last = d;
@@ -324,20 +324,33 @@ fn intervals(knots: [usize; 4], phases: &[f64]) -> [(f64, f64, Vec<usize>); 4] {
 
 /// Each sample's parameter moved to the nearest point of its interval's curve (`curve`'s
 /// shape, [`nearest`] on a 64-point grid). The knots keep their phases.
-fn project(curve: &LegCurve, knots: [usize; 4], samples: &[[f64; 3]], phases: &[f64]) -> Vec<f64> {
+fn project(
+    curve: &LegCurve,
+    knots: [usize; 4],
+    samples: &[[f64; 3]],
+    phases: &[f64],
+    p: &FitParameters,
+) -> Vec<f64> {
     let mut psi = phases.to_vec();
     for (start, span, inside) in intervals(knots, phases) {
         for i in inside {
-            psi[i] = nearest(curve, &samples[i], start, span, 64).0;
+            let segment = (start, span);
+            psi[i] = nearest(curve, &samples[i], segment, p.segment_grid, p.golden_steps).0;
         }
     }
     psi
 }
 
-/// The parameter ψ in [start, start + span] (cyclic) of the point of `curve`'s shape nearest
-/// `p`, and its squared distance: the best of `grid` + 1 evenly spaced points, refined by
-/// golden section between its neighbours.
-fn nearest(curve: &LegCurve, p: &[f64; 3], start: f64, span: f64, grid: usize) -> (f64, f64) {
+/// The parameter ψ in the `(start, span)` segment [start, start + span] (cyclic) of the point
+/// of `curve`'s shape nearest `p`, and its squared distance: the best of `grid` + 1 evenly
+/// spaced points, refined by `golden_steps` of golden section between its neighbours.
+fn nearest(
+    curve: &LegCurve,
+    p: &[f64; 3],
+    (start, span): (f64, f64),
+    grid: usize,
+    golden_steps: usize,
+) -> (f64, f64) {
     let d2 = |u: f64| {
         let m = curve.shape_at(start + span * u);
         (0..3).map(|a| (m[a] - p[a]).powi(2)).sum::<f64>()
@@ -353,7 +366,7 @@ fn nearest(curve: &LegCurve, p: &[f64; 3], start: f64, span: f64, grid: usize) -
         (best + 1).min(grid) as f64 * step,
     );
     let r = (5f64.sqrt() - 1.0) / 2.0;
-    for _ in 0..40 {
+    for _ in 0..golden_steps {
         let (c, d) = (hi - r * (hi - lo), lo + r * (hi - lo));
         if d2(c) < d2(d) {
             hi = d;

@@ -8,10 +8,12 @@ pub mod curve;
 pub mod database;
 pub mod error;
 pub mod fit;
+pub mod parameters;
 pub mod trajectory;
 pub mod validate;
 
 pub use database::{Axes, Database, Entry, Query};
 pub use error::PoulaineError;
-pub use fit::{FitError, Model, fit};
+pub use fit::{FitError, Model, fit, fit_with};
+pub use parameters::FitParameters;
 pub use trajectory::Trajectory;
