@@ -204,6 +204,27 @@ fn the_database_file_round_trips_and_damage_is_refused() {
     assert!(e.to_string().contains("db.json"), "{e}");
 }
 
+/// Half the feet's spacing from a walk's samples (mean |z| from the most forward sample to the
+/// most backward) is its model's (`Axes::spacing`: the same over the curve between those
+/// knots), to the fit's lateral error.
+#[test]
+fn the_samples_spacing_is_the_models() {
+    for (h, v) in [(1.6, 0.8), (2.0, 1.6)] {
+        let t = walk_poulaine(h, v);
+        let (model, _) = fit(&t).unwrap();
+        let want = klaw::poulaine::Axes::of(&model, 1.0).spacing;
+        eprintln!(
+            "H {h} v {v}: samples {:.5} m, model {want:.5} m",
+            t.spacing()
+        );
+        assert!(
+            (t.spacing() - want).abs() < 1e-3,
+            "{} vs {want}",
+            t.spacing()
+        );
+    }
+}
+
 /// `model`'s cycle from phase `start` at `n` uniform samples, its x scaled by `k`.
 fn from_phase(model: &klaw::poulaine::Model, start: f64, n: usize, k: f64) -> Trajectory {
     let (mut right, mut left) = (Vec::new(), Vec::new());
@@ -263,6 +284,17 @@ fn the_reference_blends_the_entries_nearest_in_speed_or_trace() {
     let beyond = db.reference(&p, leg, true).unwrap();
     assert_eq!((beyond.blend.len(), beyond.blend[0].entry), (1, top));
     assert_eq!(beyond.blend[0].weight, 1.0);
+    // at an entry's own speed and shape, that entry alone: of the two that walk at that speed
+    // (step widths 0.05 and 0.12 m), the one whose feet's spacing the poulaine has
+    for (i, e) in db.entries.iter().enumerate() {
+        let mut own = from_phase(&e.model, 0.0, n, 1.0);
+        own.pelvis_speed = Some(vec![e.velocity.unwrap(); n]);
+        let r = db.reference(&own, e.leg_length, false).unwrap();
+        // (the mean of the speeds may differ from the speed in its last bit: a second entry
+        // may come in, at a weight of that order)
+        let main = r.blend.iter().find(|b| b.weight > 1.0 - 1e-9);
+        assert_eq!(main.map(|b| b.entry), Some(i), "{}: {:?}", e.label, r.blend);
+    }
 
     // without the entries' speeds (a measured database): by trace
     let mut blind = db.clone();

@@ -51,18 +51,18 @@ pub struct Component {
 }
 
 impl Component {
-    /// The knot interval holding phase φ: its index k, the local s and the interval Δ_k.
+    /// The knot interval holding phase φ: its index k, the local s and the interval Δ_k. The
+    /// interval starts at the knot last passed (the least (φ − φ_k) mod 1); s is at most 1, so
+    /// a φ a rounding error short of a knot stays at the end of the interval before it (a
+    /// fall-through to the last interval put s at (1 − ε) / Δ₃ and the cubic far off the curve).
     pub fn locate(&self, phi: f64) -> (usize, f64, f64) {
         let phi = phi.rem_euclid(1.0);
-        for k in 0..4 {
-            let a = self.phase[k];
-            let d = (self.phase[(k + 1) % 4] - a).rem_euclid(1.0);
-            let u = (phi - a).rem_euclid(1.0);
-            if u < d || k == 3 {
-                return (k, u / d, d);
-            }
-        }
-        unreachable!("the loop returns at k = 3")
+        let since = |k: usize| (phi - self.phase[k]).rem_euclid(1.0);
+        let k = (0..4)
+            .min_by(|&a, &b| since(a).total_cmp(&since(b)))
+            .expect("four knots");
+        let d = (self.phase[(k + 1) % 4] - self.phase[k]).rem_euclid(1.0);
+        (k, (since(k) / d).min(1.0), d)
     }
 
     /// The coordinate at the curve's parameter ψ = `phi` (the phase itself when the speed
@@ -224,6 +224,39 @@ mod tests {
             let [h0, h1, h2, h3] = hermite(s);
             let v = h0 * p(a) + h1 * d * dp(a) + h2 * p(b) + h3 * d * dp(b);
             assert!((v - p(a + s * d)).abs() < 1e-14);
+        }
+    }
+
+    /// A phase one rounding step short of a knot, however the knots lie across the cycle's end,
+    /// reads the knot's value (to the curve's slope times the step), not the last interval's
+    /// cubic far beyond its end.
+    #[test]
+    fn a_phase_a_hair_short_of_a_knot_reads_the_knot() {
+        let mut c = component();
+        for phase in [
+            c.phase,
+            [
+                0.17272727272727276,
+                0.4545454545454545,
+                0.7636363636363634,
+                0.10909090909090895,
+            ],
+        ] {
+            c.phase = phase;
+            for k in 0..4 {
+                let p = c.phase[k];
+                for q in [
+                    f64::from_bits(p.to_bits() - 1),
+                    f64::from_bits(p.to_bits() - 3),
+                    p + 1.0 - 1e-16,
+                ] {
+                    assert!(
+                        (c.at(q) - c.value[k]).abs() < 1e-9,
+                        "knot {k} at {q}: {}",
+                        c.at(q)
+                    );
+                }
+            }
         }
     }
 

@@ -334,8 +334,10 @@ impl Database {
     /// (Alexander's dynamic similarity: walkers of different sizes at one v / √(g l) move their
     /// joints alike), the poulaine's [`Trajectory::speed`] against each entry's walking speed,
     /// when every entry with angles knows its speed; else the trace per leg
-    /// ([`Trajectory::trace`] / `leg` against [`Axes::trace`]). `None` when no entry carries
-    /// angles.
+    /// ([`Trajectory::trace`] / `leg` against [`Axes::trace`]). Of entries equally near (a
+    /// database's walks that differ in step width only), the one nearest in half the feet's
+    /// spacing ([`Trajectory::spacing`] / `leg` against [`Axes::spacing`]). `None` when no entry
+    /// carries angles.
     pub fn reference(&self, poulaine: &Trajectory, leg: f64, align: bool) -> Option<Reference> {
         let n = poulaine.time.len();
         let with: Vec<usize> = (0..self.entries.len())
@@ -355,11 +357,19 @@ impl Database {
                 _ => e.axes.trace,
             }
         };
+        let spacing = poulaine.spacing() / leg;
+        let apart = |i: usize| {
+            let e = &self.entries[i];
+            ((t(i) - x).abs(), (e.axes.spacing - spacing).abs())
+        };
         let nearest = |side: f64| {
             with.iter()
                 .copied()
                 .filter(|&i| side * (t(i) - x) >= 0.0)
-                .min_by(|&a, &b| (t(a) - x).abs().total_cmp(&(t(b) - x).abs()))
+                .min_by(|&a, &b| {
+                    let ((ta, sa), (tb, sb)) = (apart(a), apart(b));
+                    ta.total_cmp(&tb).then(sa.total_cmp(&sb))
+                })
         };
         let weights = match (nearest(-1.0), nearest(1.0)) {
             (Some(lo), Some(hi)) if t(hi) > t(lo) => {

@@ -280,6 +280,24 @@ impl Trajectory {
         0.5 * (range(&self.right) + range(&self.left))
     }
 
+    /// Half the feet's spacing in support (m): each ankle's mean |z| over its samples from its
+    /// most forward to its most backward, the mean of both; the samples' counterpart of the
+    /// model's [`crate::poulaine::Axes::spacing`].
+    pub fn spacing(&self) -> f64 {
+        let one = |leg: &[[f64; 3]]| {
+            let n = leg.len();
+            let by_x = |a: &usize, b: &usize| leg[*a][0].total_cmp(&leg[*b][0]);
+            let front = (0..n).max_by(by_x).expect("samples");
+            let back = (0..n).min_by(by_x).expect("samples");
+            let count = (back + n - front) % n + 1;
+            (0..count)
+                .map(|j| leg[(front + j) % n][2].abs())
+                .sum::<f64>()
+                / count as f64
+        };
+        0.5 * (one(&self.right) + one(&self.left))
+    }
+
     /// The ankle targets of the inverse kinematics, one per sample.
     pub fn targets(&self) -> Vec<Ankles> {
         self.right
