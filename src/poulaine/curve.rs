@@ -74,6 +74,21 @@ impl Component {
         a * self.value[k] + b * d * self.slope[k] + c * self.value[j] + e * d * self.slope[j]
     }
 
+    /// The same coordinate with its knots moved to the phases `to` \[ours, for a poulaine
+    /// combined from several entries ([`crate::poulaine::Database::poulaine`])\]: the values at
+    /// the knots kept, each knot's slope scaled by its two neighbouring intervals' total span
+    /// before over after, so that the coordinate crosses each knot at the same rate per share
+    /// of its surrounding intervals.
+    pub fn retimed(&self, to: [f64; 4]) -> Component {
+        let span = |p: &[f64; 4], k: usize| (p[(k + 1) % 4] - p[k]).rem_euclid(1.0);
+        let around = |p: &[f64; 4], k: usize| span(p, k) + span(p, (k + 3) % 4);
+        Component {
+            phase: to,
+            value: self.value,
+            slope: std::array::from_fn(|k| self.slope[k] * around(&self.phase, k) / around(&to, k)),
+        }
+    }
+
     /// The knots' phases are distinct and in [0, 1), and every number finite.
     pub fn is_valid(&self) -> bool {
         let finite = self.value.iter().chain(&self.slope).all(|v| v.is_finite());
@@ -258,6 +273,31 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Retimed, a coordinate passes its knot values at the new phases; onto its own phases it
+    /// is unchanged, and there and back it comes back to its last bits; a knot whose two
+    /// intervals together keep their span keeps its slope, and one whose intervals grow from
+    /// 0.5 to 0.65 of the cycle takes 0.5 / 0.65 of it.
+    #[test]
+    fn retiming_moves_the_knots_and_keeps_their_values() {
+        let c = component();
+        assert_eq!(c.retimed(c.phase), c);
+        let to = [0.75, 0.05, 0.4, 0.55];
+        let r = c.retimed(to);
+        assert!(r.is_valid());
+        let back = r.retimed(c.phase);
+        for (k, &p) in to.iter().enumerate() {
+            assert!((r.at(p) - c.value[k]).abs() < 1e-12);
+            assert!((back.slope[k] - c.slope[k]).abs() < 1e-12);
+        }
+        // knot 0: intervals 0.6→0.8 and 0.8→0.1 (0.5 together) become 0.55→0.75 and 0.75→0.05
+        // (0.5): its slope kept; knot 2: 0.1→0.35 and 0.35→0.6 (0.5) become 0.05→0.4 and
+        // 0.4→0.55 (0.5): kept too
+        assert!((r.slope[0] - c.slope[0]).abs() < 1e-12 && (r.slope[2] - c.slope[2]).abs() < 1e-12);
+        let squeezed = c.retimed([0.9, 0.05, 0.2, 0.7]);
+        // knot 2: 0.1→0.35→0.6 (0.5) become 0.05→0.2→0.7 (0.65)
+        assert!((squeezed.slope[2] - c.slope[2] * 0.5 / 0.65).abs() < 1e-12);
     }
 
     #[test]

@@ -285,10 +285,12 @@ impl Database {
     }
 
     /// The poulaine for a walker of leg length `leg` (m) and cycle `period` (s) that meets `q`
-    /// exactly: the selection's axes scaled to the leg, x scaled to the trace length, then the
-    /// lateral and vertical coordinates shifted by what the combined curve still lacks (its
-    /// support phases are the x entry's, so the shift is measured on the combination, not on
-    /// the y or z entry alone); the speed along it the database's average profile per ankle
+    /// exactly: the selection's axes scaled to the leg, x scaled to the trace length, \[ours\]
+    /// the vertical and lateral coordinates moved onto the x entry's characteristic points
+    /// ([`Component::retimed`]: a poulaine's coordinates share their knots, and the entries'
+    /// points fall at different phases), then shifted by what the combined curve still lacks
+    /// (its support phases are the x entry's, so the shift is measured on the combination, not
+    /// on the y or z entry alone); the speed along it the database's average profile per ankle
     /// (§3.2, [`Speed::mean`]). Not clamped: sample it and [`clamp_to_reach`].
     pub fn poulaine(&self, q: &Query, leg: f64, period: f64) -> (Model, Selection) {
         let s = self.select(q);
@@ -303,15 +305,20 @@ impl Database {
             Speed::mean(self.entries.iter().map(|e| &pick(&e.model).speed))
         };
         let combine = |lateral: f64, down: f64| {
-            let leg_curve = |side: f64, pick: fn(&Model) -> &LegCurve| LegCurve {
-                speed: average(pick),
-                x: scale(&pick(&ex.model).x, kx, 0.0),
-                y: scale(&pick(&ez.model).y, leg / ez.leg_length, -down * leg),
-                z: scale(
+            let leg_curve = |side: f64, pick: fn(&Model) -> &LegCurve| {
+                let x = pick(&ex.model).x;
+                let y = scale(&pick(&ez.model).y, leg / ez.leg_length, -down * leg);
+                let z = scale(
                     &pick(&ey.model).z,
                     leg / ey.leg_length,
                     side * lateral * leg,
-                ),
+                );
+                LegCurve {
+                    speed: average(pick),
+                    x: scale(&x, kx, 0.0),
+                    y: y.retimed(x.phase),
+                    z: z.retimed(x.phase),
+                }
             };
             Model {
                 period,
