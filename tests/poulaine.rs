@@ -360,3 +360,74 @@ fn check_blend(db: &Database, p: &Trajectory, leg: f64, (lo, hi): (usize, usize)
         assert!((flat.angles[n / 2][j] - want).abs() < 1e-9, "angle {j}");
     }
 }
+
+/// Noisy poulaine-like curves of `n` samples, 8–67 per trial from a fixed xorshift seed; the
+/// largest |coordinate| of each model fitted with `p` over 200 phases, for the trials of at
+/// most 10 samples (a segment then holds one or two samples).
+fn sparse_fits(p: &klaw::poulaine::FitParameters) -> Vec<f64> {
+    let mut seed = 12345u64;
+    let mut rnd = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed % 1_000_000) as f64 / 1e6
+    };
+    let mut biggest = Vec::new();
+    for _ in 0..3000 {
+        let n = 8 + (rnd() * 60.0) as usize;
+        let (noise, ph) = (rnd() * 0.02, rnd());
+        let (mut right, mut left) = (Vec::new(), Vec::new());
+        for i in 0..n {
+            let a = std::f64::consts::TAU * (i as f64 / n as f64 + ph);
+            let mut point = |a: f64, s: f64| {
+                [
+                    -0.4 * a.cos() + noise * (rnd() - 0.5),
+                    -0.8 + 0.08 * a.sin().max(0.0) + 0.03 * (2.0 * a).sin() + noise * (rnd() - 0.5),
+                    s * (0.08 + 0.02 * a.sin()),
+                ]
+            };
+            right.push(point(a, 1.0));
+            left.push(point(a + std::f64::consts::PI, -1.0));
+        }
+        if n > 10 {
+            continue;
+        }
+        let t = Trajectory {
+            time: (0..n).map(|i| i as f64 * 1.1 / n as f64).collect(),
+            period: 1.1,
+            right,
+            left,
+            pelvis_speed: None,
+        };
+        let (m, _) = klaw::poulaine::fit_with(&t, p).unwrap();
+        biggest.push((0..200).fold(0.0f64, |b, k| {
+            let (r, l) = m.at(k as f64 / 200.0);
+            r.iter().chain(&l).fold(b, |b, v| b.max(v.abs()))
+        }));
+    }
+    biggest
+}
+
+/// A sparse poulaine's model stays near its samples (within 1.2 m of the pelvis, the samples
+/// within 0.5 m): its tangents are fitted at the phases when a segment holds fewer than
+/// `min_inside` samples; with the samples' parameters free there (`min_inside` 0), some of the
+/// same curves wind metres off between their samples.
+#[test]
+fn a_sparse_poulaines_model_stays_near_its_samples() {
+    let guarded = sparse_fits(&klaw::poulaine::FitParameters::DEFAULT);
+    assert!(guarded.len() > 100, "{}", guarded.len());
+    assert!(
+        guarded.iter().all(|&b| b < 1.2),
+        "{:?}",
+        guarded.iter().fold(0.0f64, |a, &b| a.max(b))
+    );
+    let free = sparse_fits(&klaw::poulaine::FitParameters {
+        min_inside: 0,
+        ..klaw::poulaine::FitParameters::DEFAULT
+    });
+    assert!(
+        free.iter().any(|&b| b > 5.0),
+        "{:?}",
+        free.iter().fold(0.0f64, |a, &b| a.max(b))
+    );
+}

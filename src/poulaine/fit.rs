@@ -296,7 +296,11 @@ fn fit_leg(
     let mut psi = phases.to_vec();
     let mut curve = shape(&psi)?;
     let mut last = distance(&curve, &psi);
-    for _ in 0..p.shape_rounds {
+    let sparse = intervals(knots, phases)
+        .iter()
+        .any(|(_, _, inside)| inside.len() < p.min_inside);
+    let rounds = if sparse { 0 } else { p.shape_rounds };
+    for _ in 0..rounds {
         let next = project(&curve, knots, samples, phases, p);
         let refit = shape(&next)?;
         let d = distance(&refit, &next);

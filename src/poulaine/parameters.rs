@@ -16,6 +16,11 @@ pub struct FitParameters {
     /// Golden-section steps refining a nearest point between its grid neighbours (each keeps
     /// 0.618 of the bracket).
     pub golden_steps: usize,
+    /// The fewest samples strictly inside every knot segment for the shape fit to move the
+    /// samples' parameters; fewer, and the tangents are fitted at the phases alone (free
+    /// parameters on so few samples let the cubic wind through them: 8-sample curves reached
+    /// 10⁸ m between their samples).
+    pub min_inside: usize,
 }
 
 impl FitParameters {
@@ -26,6 +31,7 @@ impl FitParameters {
         segment_grid: 64,
         cycle_grid: 2000,
         golden_steps: 40,
+        min_inside: 4,
     };
 }
 
