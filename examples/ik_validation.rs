@@ -34,10 +34,17 @@ fn row(name: &str, r: &Recovery) {
     println!("{} |", r.within_limits);
 }
 
-fn main() {
-    own_with_database();
-    println!("IK on each walk's own poulaine (60 Hz):\n");
-    header("H (m), v (m/s)");
+/// A walk of the 16-point grid: its label "H, v", body, own poulaine (60 Hz) and angles.
+struct Own {
+    label: String,
+    body: Body,
+    poulaine: Trajectory,
+    truth: Vec<klaw::ik::chain::Angles>,
+}
+
+/// The walks of H 1.5–2.1 m × v 0.8–1.7 m/s that run, each simulated once for both tables.
+fn own_walks() -> Vec<Own> {
+    let mut walks = Vec::new();
     for h in [1.5, 1.7, 1.9, 2.1] {
         for v in [0.8, 1.1, 1.4, 1.7] {
             let body = Body::standard(h, 23.0 * h * h).unwrap();
@@ -46,10 +53,26 @@ fn main() {
             };
             let (poulaine, frames) = Trajectory::from_walk(&walk, 60.0).unwrap();
             let truth = frames_angles(&frames, &body).unwrap();
-            match recover(&Ik::new(&body), &poulaine, &truth) {
-                Ok(r) => row(&format!("{h}, {v}"), &r),
-                Err(e) => println!("| {h}, {v} | failed: {e} |"),
-            }
+            walks.push(Own {
+                label: format!("{h}, {v}"),
+                body,
+                poulaine,
+                truth,
+            });
+        }
+    }
+    walks
+}
+
+fn main() {
+    let walks = own_walks();
+    own_with_database(&walks);
+    println!("IK on each walk's own poulaine (60 Hz):\n");
+    header("H (m), v (m/s)");
+    for w in &walks {
+        match recover(&Ik::new(&w.body), &w.poulaine, &w.truth) {
+            Ok(r) => row(&w.label, &r),
+            Err(e) => println!("| {} | failed: {e} |", w.label),
         }
     }
     let grid = Grid {
@@ -104,7 +127,7 @@ fn main() {
 
 /// IK on each walk's own poulaine with f3 towards a database's angles (`klaw ik --poulaine P
 /// --db DB`): a database of walks at other heights, so no walk is in it.
-fn own_with_database() {
+fn own_with_database(walks: &[Own]) {
     let grid = Grid {
         heights: vec![1.6, 1.8, 2.0],
         step_lengths: vec![0.5, 0.6, 0.7, 0.8, 0.9],
@@ -119,21 +142,13 @@ fn own_with_database() {
         grid.step_lengths
     );
     header("H (m), v (m/s)");
-    for h in [1.5, 1.7, 1.9, 2.1] {
-        for v in [0.8, 1.1, 1.4, 1.7] {
-            let body = Body::standard(h, 23.0 * h * h).unwrap();
-            let Ok(walk) = Simulation::new(body).velocity(v).steps(6).run() else {
-                continue;
-            };
-            let (poulaine, frames) = Trajectory::from_walk(&walk, 60.0).unwrap();
-            let truth = frames_angles(&frames, &body).unwrap();
-            let reference = db.reference(&poulaine, body.l1, false).unwrap();
-            let mut ik = Ik::new(&body);
-            ik.model.weights.energy = ik.model.weights.energy_with_reference;
-            match recover_referenced(&ik, &poulaine, &truth, Some(&reference.angles)) {
-                Ok(r) => row(&format!("{h}, {v}"), &r),
-                Err(e) => println!("| {h}, {v} | failed: {e} |"),
-            }
+    for w in walks {
+        let reference = db.reference(&w.poulaine, w.body.l1, false).unwrap();
+        let mut ik = Ik::new(&w.body);
+        ik.model.weights.energy = ik.model.weights.energy_with_reference;
+        match recover_referenced(&ik, &w.poulaine, &w.truth, Some(&reference.angles)) {
+            Ok(r) => row(&w.label, &r),
+            Err(e) => println!("| {} | failed: {e} |", w.label),
         }
     }
     println!();

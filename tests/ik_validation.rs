@@ -18,12 +18,28 @@ fn body(h: f64) -> Body {
     Body::standard(h, 23.0 * h * h).unwrap()
 }
 
-/// IK on the walk's own poulaine (samples at 60 Hz).
-fn own(h: f64, v: f64) -> Recovery {
+/// The six speeds and heights (H m, v m/s) the own-poulaine tests run.
+const SIX: [(f64, f64); 6] = [
+    (1.6, 0.9),
+    (1.6, 1.4),
+    (1.8, 1.0),
+    (1.8, 1.6),
+    (2.0, 1.2),
+    (2.0, 1.8),
+];
+
+/// The walk of H `h` at `v`: its body, own poulaine (samples at 60 Hz) and angles.
+fn walk_of(h: f64, v: f64) -> (Body, Trajectory, Vec<klaw::ik::chain::Angles>) {
     let b = body(h);
     let walk = Simulation::new(b).velocity(v).steps(6).run().unwrap();
     let (poulaine, frames) = Trajectory::from_walk(&walk, RATE).unwrap();
     let truth = frames_angles(&frames, &b).unwrap();
+    (b, poulaine, truth)
+}
+
+/// IK on the walk's own poulaine (samples at 60 Hz).
+fn own(h: f64, v: f64) -> Recovery {
+    let (b, poulaine, truth) = walk_of(h, v);
     recover(&Ik::new(&b), &poulaine, &truth).unwrap()
 }
 
@@ -34,10 +50,7 @@ fn own(h: f64, v: f64) -> Recovery {
 /// instead, the same solve is far off (pelvis rotation > 0.1 rad).
 #[test]
 fn the_walks_own_angles_as_reference_come_back() {
-    let b = body(1.8);
-    let walk = Simulation::new(b).velocity(1.2).steps(6).run().unwrap();
-    let (poulaine, frames) = Trajectory::from_walk(&walk, RATE).unwrap();
-    let truth = frames_angles(&frames, &b).unwrap();
+    let (b, poulaine, truth) = walk_of(1.8, 1.2);
     let mut ik = Ik::new(&b);
     ik.model.weights.energy = 0.0;
     let r = recover_referenced(&ik, &poulaine, &truth, Some(&truth)).unwrap();
@@ -65,14 +78,7 @@ fn show(what: &str, r: &Recovery) {
 /// and klaw's straight stance knee turns each millimetre of hip height into ≈ 0.1 rad of knee.
 #[test]
 fn the_hip_and_knee_angles_of_klaws_walks_are_recovered() {
-    for (h, v) in [
-        (1.6, 0.9),
-        (1.6, 1.4),
-        (1.8, 1.0),
-        (1.8, 1.6),
-        (2.0, 1.2),
-        (2.0, 1.8),
-    ] {
+    for (h, v) in SIX {
         let r = own(h, v);
         show(&format!("H {h} v {v}"), &r);
         assert!(r.residual <= 1e-3 && r.within_limits);
@@ -102,17 +108,8 @@ fn the_hip_and_knee_angles_meet_table_2_with_the_databases_angles() {
     };
     let (db, _) = synthetic(&grid).unwrap();
     let mut all = Vec::new();
-    for (h, v) in [
-        (1.6, 0.9),
-        (1.6, 1.4),
-        (1.8, 1.0),
-        (1.8, 1.6),
-        (2.0, 1.2),
-        (2.0, 1.8),
-    ] {
-        let b = body(h);
-        let walk = Simulation::new(b).velocity(v).steps(6).run().unwrap();
-        let (poulaine, frames) = Trajectory::from_walk(&walk, RATE).unwrap();
+    for (h, v) in SIX {
+        let (b, poulaine, truth) = walk_of(h, v);
         let same = |e: &klaw::poulaine::Entry| {
             e.height == Some(h) && (e.velocity.unwrap() - v).abs() < 0.01
         };
@@ -120,7 +117,6 @@ fn the_hip_and_knee_angles_meet_table_2_with_the_databases_angles() {
             !db.entries.iter().any(same),
             "H {h} v {v} is in the database"
         );
-        let truth = frames_angles(&frames, &b).unwrap();
         let reference = db.reference(&poulaine, b.l1, false).unwrap();
         let mut ik = Ik::new(&b);
         ik.model.weights.energy = ik.model.weights.energy_with_reference;

@@ -296,12 +296,13 @@ fn fit_leg(
     let mut psi = phases.to_vec();
     let mut curve = shape(&psi)?;
     let mut last = distance(&curve, &psi);
-    let sparse = intervals(knots, phases)
+    let segments = intervals(knots, phases);
+    let sparse = segments
         .iter()
         .any(|(_, _, inside)| inside.len() < p.min_inside);
     let rounds = if sparse { 0 } else { p.shape_rounds };
     for _ in 0..rounds {
-        let next = project(&curve, knots, samples, phases, p);
+        let next = project(&curve, &segments, samples, phases, p);
         let refit = shape(&next)?;
         let d = distance(&refit, &next);
         (psi, curve) = (next, refit);
@@ -310,13 +311,16 @@ fn fit_leg(
         }
         last = d;
     }
-    curve.speed = speed(knots, phases, &psi);
+    curve.speed = speed(&segments, phases, &psi);
     Ok(curve)
 }
 
+/// Per knot interval: its first knot's phase, its span and the samples strictly inside it.
+type Segments = [(f64, f64, Vec<usize>); 4];
+
 /// The samples' knot intervals: for interval k (knot k to k + 1, cyclically), its knots'
 /// phases and the indices of the samples strictly inside it.
-fn intervals(knots: [usize; 4], phases: &[f64]) -> [(f64, f64, Vec<usize>); 4] {
+fn intervals(knots: [usize; 4], phases: &[f64]) -> Segments {
     let n = phases.len();
     std::array::from_fn(|k| {
         let (a, b) = (knots[k], knots[(k + 1) % 4]);
@@ -330,15 +334,15 @@ fn intervals(knots: [usize; 4], phases: &[f64]) -> [(f64, f64, Vec<usize>); 4] {
 /// shape, [`nearest`] on a 64-point grid). The knots keep their phases.
 fn project(
     curve: &LegCurve,
-    knots: [usize; 4],
+    segments: &Segments,
     samples: &[[f64; 3]],
     phases: &[f64],
     p: &FitParameters,
 ) -> Vec<f64> {
     let mut psi = phases.to_vec();
-    for (start, span, inside) in intervals(knots, phases) {
-        for i in inside {
-            let segment = (start, span);
+    for (start, span, inside) in segments {
+        for &i in inside {
+            let segment = (*start, *span);
             psi[i] = nearest(curve, &samples[i], segment, p.segment_grid, p.golden_steps).0;
         }
     }
@@ -385,11 +389,11 @@ fn nearest(
 /// The speed profile of the parameters `psi` at the times `phases` (module doc): per interval
 /// the pairs (s, g) of its samples between (0, 0) and (1, 1), g made nondecreasing by
 /// [`isotonic`] regression, read linearly at the profile's times.
-fn speed(knots: [usize; 4], phases: &[f64], psi: &[f64]) -> Speed {
+fn speed(segments: &Segments, phases: &[f64], psi: &[f64]) -> Speed {
     let mut profile = [[0.0; SPEED_STEPS + 1]; 4];
-    for (k, (start, span, inside)) in intervals(knots, phases).into_iter().enumerate() {
+    for (k, &(start, span, ref inside)) in segments.iter().enumerate() {
         let mut pairs = vec![(0.0, 0.0)];
-        for i in inside {
+        for &i in inside {
             let s = (phases[i] - start).rem_euclid(1.0) / span;
             pairs.push((s, ((psi[i] - start).rem_euclid(1.0) / span).min(1.0)));
         }
