@@ -235,8 +235,8 @@ impl Walker {
             stance: &stance,
             setup: &setup,
         };
-        let toe_off = self.double_support(&plan, &hips)?;
         let stance_leg = self.heel_off(&plan, &hips, prev_c.sole_angle)?;
+        let toe_off = self.double_support(&plan, &hips, &stance_leg)?;
         let (hip_path, hip_vy_end) =
             swing::hip_path(&plan, &stance, &setup, self.parameters.hip_path_step);
         let sw = SwingSetup::new(

@@ -186,14 +186,18 @@ impl Walker {
 
     /// Double support (spec §7): the previous step's stance leg completes its stance to toe-off
     /// at t_ds, the knee reaching κ_TO; θ̇3 at toe-off by a 4th-order central difference.
+    /// The first step's hind leg mirrors this step's `stance_leg` one step earlier.
     pub(super) fn double_support(
         &self,
         plan: &StepPlan,
         hips: &HipJoints,
+        stance_leg: &StanceLeg,
     ) -> Result<ToeOff, SimulationError> {
         let (t, t0) = (plan.c.timing, plan.t0);
         let kappa_to = self.attrs.toe_off_knee;
-        let mut hind = self.prev_leg.unwrap_or_else(|| self.first_hind_leg(plan));
+        let mut hind = self
+            .prev_leg
+            .unwrap_or_else(|| self.first_hind_leg(plan, stance_leg));
         let hind_side = plan.side.other();
         let invariant = plan.invariant("double_support");
         hind.continue_to_toe_off(|tw| hips.at(hind_side, tw - t0), t0, t0 + t.t_ds, kappa_to)
@@ -218,9 +222,14 @@ impl Walker {
         })
     }
 
-    /// \[ours\] The first step's hind leg: a foot flat at −sl, its heel already off at the heel
-    /// strike with the knee at κ_hs.
-    fn first_hind_leg(&self, plan: &StepPlan) -> StanceLeg {
+    /// \[ours\] The first step's hind leg: a foot flat at −sl whose knee follows the plan of
+    /// this step's own stance leg `mirror` one step earlier (its heel-off, knee and rate there,
+    /// and κ_TO at this step's toe-off), as the hind leg of a steady gait would; with no heel-off
+    /// in `mirror`, its heel is already off at the heel strike with the knee at κ_hs. (Starting
+    /// from κ_hs at the heel strike instead handed the swing a knee flexing at 2.4–5.5 times the
+    /// steady rate at toe-off, and the start step's toe went 13–16 mm under the floor at
+    /// 1.6–1.7 m/s in de Leva's female bodies: docs/coverage.md.)
+    fn first_hind_leg(&self, plan: &StepPlan, mirror: &StanceLeg) -> StanceLeg {
         let (t, t0) = (plan.c.timing, plan.t0);
         let mut leg = StanceLeg::new(
             &self.body,
@@ -231,13 +240,20 @@ impl Walker {
             self.attrs.heel_off_dorsiflexion,
             self.attrs.metatarsal_limit,
         );
-        leg.heel_off = Some(KneeCurve::new(
-            t0,
-            self.attrs.heel_strike_knee,
-            0.0,
-            t0 + t.t_ds,
-            self.attrs.toe_off_knee,
-        ));
+        leg.heel_off = Some(match mirror.heel_off {
+            Some(k) => KneeCurve {
+                t0: k.t0 - t.t_step,
+                t_to: t0 + t.t_ds,
+                ..k
+            },
+            None => KneeCurve::new(
+                t0,
+                self.attrs.heel_strike_knee,
+                0.0,
+                t0 + t.t_ds,
+                self.attrs.toe_off_knee,
+            ),
+        });
         leg
     }
 
