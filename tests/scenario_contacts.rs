@@ -106,7 +106,30 @@ fn contacts_alternate_and_agree_with_the_frames() {
 
 #[test]
 fn a_step_lifts_and_sets_down_its_foot_once_and_a_turnaround_each_foot_once() {
-    let m = example("table");
+    steps_lift_once(&example("table"));
+}
+
+/// The same with the hip's lead at heel strike (docs/realism.md): its walking steps'
+/// plantarflexed push-off put the stop step's toe back on the floor just after it left,
+/// until the airborne foot kept its toe above the engine's rising floor (docs/nrs.md).
+#[test]
+fn with_the_hip_lead_a_step_still_lifts_its_foot_once() {
+    let path = format!(
+        "{}/examples/scenarios/table.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(path).unwrap()
+        + "\n[attributes]\nhip_lead_slope = 0.595\nheel_off_dorsiflexion = 8.0\n";
+    let dir = std::env::temp_dir().join(format!("klaw-lead-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("table-lead.toml");
+    std::fs::write(&file, text).unwrap();
+    let m = run(&read_scenario(&file).unwrap(), FPS);
+    std::fs::remove_dir_all(&dir).unwrap();
+    steps_lift_once(&m.unwrap());
+}
+
+fn steps_lift_once(m: &Motion) {
     for s in &m.spans {
         let inside: Vec<&Contact> = m
             .contacts

@@ -405,3 +405,49 @@ fn the_integrator_limits_come_from_the_parameters() {
     let (a, b) = (clearance(default), clearance(coarse));
     assert!(a != b && (a - b).abs() < 1e-6, "{a} vs {b}");
 }
+
+/// The hip's lead at heel strike (opt-in: `hip_lead_slope` 0.595, `heel_off_dorsiflexion` 8°,
+/// docs/realism.md) walks with every bound held where the whole lead up to the walk–run
+/// transition failed (docs/coverage.md): Winter's body of 1.2 m at its limit (the virtual leg's
+/// reference under y_hs before heel strike), de Leva's woman of 1.4 m at 1.75 m/s and of 1.7 m
+/// at 1.86 m/s and at her limit (the swing toe on the floor, the hip under y_hs), de Leva's man
+/// of 1.3 m at 1.77 m/s; it fades from Froude 0.4 (`hip_lead_froude`), and kept whole the first
+/// of them fails.
+#[test]
+fn the_hip_lead_walks_up_to_the_walk_run_transition() {
+    let lead = klaw::Attributes {
+        hip_lead_slope: 0.595,
+        heel_off_dorsiflexion: 8f64.to_radians(),
+        ..default_attributes()
+    };
+    let walk_with = |attrs: &klaw::Attributes, table: &str, v: Option<f64>, h: f64| {
+        let body = body_of_height_in(table, h);
+        let v = v.unwrap_or_else(|| klaw::plan::gait::velocity_limit(&body, attrs));
+        let w = Simulation::new(body)
+            .attributes(attrs.clone())
+            .velocity(v)
+            .steps(10)
+            .run();
+        (w, format!("{table} v {v:.4} H {h}"))
+    };
+    for (table, v, h) in [
+        ("winter", None, 1.2),
+        ("deleva-female", Some(1.75), 1.4),
+        ("deleva-female", Some(1.86), 1.7),
+        ("deleva-female", None, 1.7),
+        ("deleva-male", Some(1.77), 1.3),
+    ] {
+        let (w, label) = walk_with(&lead, table, v, h);
+        let w = w.unwrap_or_else(|e| panic!("{label}: {e}"));
+        for s in &w.report().steps {
+            check_step(s, &label);
+        }
+    }
+    let whole = klaw::Attributes {
+        hip_lead_froude: 0.5,
+        ..lead
+    };
+    let (w, label) = walk_with(&whole, "winter", None, 1.2);
+    let e = w.err().map(|e| e.to_string()).unwrap_or_default();
+    assert!(e.contains("below its heel-strike height"), "{label}: {e:?}");
+}

@@ -235,6 +235,9 @@ attribute_struct! {
     hip_lead_neutral,
     /// φ_max: the largest hip lead at heel strike.
     hip_lead_max,
+    /// Fr_φ: the Froude number from which the hip's lead fades to none at `froude_max` (see
+    /// [`lead_fade`](crate::plan::constraints::lead_fade)).
+    hip_lead_froude,
     /// ε: hip excursion as a fraction of the step's height budget.
     bounciness,
     /// θ2_ref: forward lean of the upper body (rad).

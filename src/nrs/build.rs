@@ -16,6 +16,8 @@ use crate::nrs::specs::{FootAngles, Side, StepType};
 use crate::nrs::state::{WalkerState, hanging_arm};
 use crate::nrs::walking::WalkingStep;
 use crate::numerics::smooth::smoothstep;
+use crate::numerics::trig::sin_cos;
+use std::f64::consts::PI;
 
 /// How the centre site's height goes over a step.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -225,7 +227,10 @@ fn swing_ankle(
             // heel up (toe first), bend to the landing's in the second
             let theta6 = take_off.theta6 * (1.0 - smoothstep(2.0 * s))
                 + landing.theta6 * smoothstep(2.0 * s - 1.0);
-            let (pitch, _) = foot.clear_pitch(rule, [0.0, y], theta6, 0.0);
+            // the toe above a floor rising to the toe-clearance attribute at mid swing, as the
+            // engine's swing foot keeps it (`Step::swing_pose`)
+            let floor = state.attrs.toe_clearance * sin_cos(PI * s).0.powi(2);
+            let (pitch, _) = foot.clear_pitch(rule, [0.0, y], theta6, floor);
             let t = i as f64 / n as f64;
             let heading = pelvis(t) + r_off + smoothstep(s) * (r_land - r_off);
             let pitch = if i == n { landing.pitch } else { pitch };

@@ -55,9 +55,26 @@ pub struct StepConstraints {
     pub fold_length: f64,
 }
 
+/// The fraction of the hip's lead kept at speed `v` for leg length `l1` \[ours\]: 1 up to the
+/// Froude number v² / (g l1) = `hip_lead_froude`, falling linearly to 0 (the midway hip) at the
+/// walk–run transition `froude_max` (1 throughout if that comes first). People keep their lead
+/// up to the transition (Schwartz et al. 2008's very fast children, Fr ≈ 0.48: φ = 0.577), but
+/// near it klaw's virtual leg cannot: its reference asks for the hip under y_hs before heel
+/// strike, and de Leva's women's swing toe meets the floor (docs/realism.md).
+pub fn lead_fade(attrs: &Attributes, v: f64, l1: f64) -> f64 {
+    let froude = v * v / (crate::model::GRAVITY * l1);
+    let (from, to) = (attrs.hip_lead_froude, attrs.froude_max);
+    if to <= from {
+        1.0
+    } else {
+        ((to - froude) / (to - from)).clamp(0.0, 1.0)
+    }
+}
+
 impl StepConstraints {
     /// The heel-strike posture, spec §3 steps 1–4 with the hip's lead \[ours\]: at heel strike
     /// the hip is φ sl ahead of the stance ankle (0, l9), φ = min(1/2 + k_φ (sl/H − s_φ), φ_max)
+    /// with φ − 1/2 scaled by [`lead_fade`] near the walk–run transition
     /// (the attributes `hip_lead_slope`, `hip_lead_neutral`, `hip_lead_max`; φ = 1/2 is the
     /// paper's step symmetry, eq. 3, the hip midway to the flat-foot position (sl, l9) of the
     /// swing ankle). Real gait puts the hip further ahead the longer the step, the trailing heel
@@ -90,6 +107,7 @@ impl StepConstraints {
         let heel_x = sl - body.l8;
         let phi = (0.5 + attrs.hip_lead_slope * (sl / body.height - attrs.hip_lead_neutral))
             .min(attrs.hip_lead_max);
+        let phi = 0.5 + (phi - 0.5) * lead_fade(attrs, gait.velocity, body.l1);
         let x_h = phi * sl;
         let half = 0.5 * body.l0;
         let hip_shift = half * attrs.pelvic_rotation.sin();
@@ -344,5 +362,48 @@ mod tests {
         assert!((c.bounce - 0.8 * c.height_budget).abs() < 1e-15);
         let cap = GRAVITY * c.timing.t_step.powi(2) / (4.0 * std::f64::consts::PI.powi(2));
         assert!(c.bounce <= cap);
+    }
+
+    /// The hip's lead fades linearly from Fr_φ to the walk–run transition: whole below, half
+    /// halfway, none at Fr_max, whole throughout when Fr_max ≤ Fr_φ; and the hip's place at
+    /// heel strike moves with it, by (φ − 1/2) sl.
+    #[test]
+    fn the_hip_lead_fades_to_midway_at_the_walk_run_transition() {
+        let body = Body::standard(1.8, 80.0).unwrap();
+        let attrs = Attributes {
+            hip_lead_slope: 0.595,
+            hip_lead_froude: 0.4,
+            froude_max: 0.5,
+            ..Attributes::default()
+        };
+        let v_at = |fr: f64| (fr * GRAVITY * body.l1).sqrt();
+        assert_eq!(lead_fade(&attrs, v_at(0.3), body.l1), 1.0);
+        assert!((lead_fade(&attrs, v_at(0.45), body.l1) - 0.5).abs() < 1e-12);
+        assert!(lead_fade(&attrs, v_at(0.5), body.l1).abs() < 1e-12);
+        let early = Attributes {
+            froude_max: 0.35,
+            ..attrs.clone()
+        };
+        assert_eq!(lead_fade(&early, v_at(0.34), body.l1), 1.0);
+        let hip_x = |a: &Attributes| {
+            let gait = GaitRequest {
+                velocity: Some(v_at(0.45)),
+                ..Default::default()
+            }
+            .complete(&body, a)
+            .unwrap();
+            StepConstraints::new(&body, a, gait).unwrap().hip[0]
+        };
+        let faded = hip_x(&attrs);
+        let midway = hip_x(&Attributes {
+            hip_lead_slope: 0.0,
+            ..attrs.clone()
+        });
+        let whole = hip_x(&Attributes {
+            hip_lead_froude: 0.5,
+            ..attrs.clone()
+        });
+        assert!(whole > midway + 0.01, "{whole} {midway}");
+        assert!((faded - midway - 0.5 * (whole - midway)).abs() < 1e-12);
     }
 }
