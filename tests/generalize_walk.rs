@@ -162,3 +162,27 @@ fn too_long_a_step_names_the_limit() {
         Ok(_) => panic!("walked a step of 1.6 leg lengths"),
     }
 }
+
+/// A prototype from a walk with the hip's lead at heel strike (docs/realism.md: its push-off
+/// plantarflexes the swing foot further) generalizes to 0.7 × its step without a swing foot
+/// point sliding on the floor: the kinematic swing foot keeps its toe above klaw's rising swing
+/// floor, as the engine's does (with a floor at 0 its ball slid 2 cm after toe-off).
+#[test]
+fn a_prototype_with_the_hip_lead_generalizes_without_sliding() {
+    let attrs = klaw::Attributes {
+        hip_lead_slope: 0.595,
+        heel_off_dorsiflexion: 8f64.to_radians(),
+        ..common::default_attributes()
+    };
+    let walk = klaw::Simulation::new(common::default_body())
+        .attributes(attrs.clone())
+        .steps(10)
+        .run()
+        .unwrap();
+    let data = from_walk(walk.engine(), 4, &params()).unwrap();
+    let body = *walk.body();
+    let s = 0.7 * data.step_length;
+    let kin = KinematicWalk::new(&data, body, attrs, gait(&body, s), 6, &params())
+        .unwrap_or_else(|e| panic!("0.7: {e}"));
+    assert_walks(&kin, &body);
+}

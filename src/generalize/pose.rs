@@ -198,7 +198,9 @@ impl StepPose {
     }
 
     /// The swing foot of `s` at t: its ankle on A, its pitch F3's unless that would put the heel
-    /// or a toe under the floor (klaw's swing rule, `Foot::clear_pitch`), its toes straightening
+    /// or a toe under klaw's swing floor, rising from 0 at toe-off to the `toe_clearance`
+    /// attribute at mid swing, c sin²(πu) (klaw's swing rule, `Step::swing_pose`,
+    /// `Foot::clear_pitch`), its toes straightening
     /// by klaw's swing rule (a half cosine over the first 80 % of swing1, engine/pose.rs).
     fn swing_foot(&self, s: Side, n: f64, t: f64) -> FootPose {
         let w = &self.data;
@@ -218,7 +220,10 @@ impl StepPose {
             true => rule.max(f3 - (0.5 * ball / l13).min(1.0).asin()),
             false => rule,
         };
-        let (pitch, _) = self.foot.clear_pitch(f3, [0.0, ay], t6, 0.0);
+        // the toe above klaw's floor rising to the toe-clearance attribute at mid swing
+        let u = ((t - tom) / (1.0 - tom)).clamp(0.0, 1.0);
+        let floor = self.attrs.toe_clearance * (std::f64::consts::PI * u).sin().powi(2);
+        let (pitch, _) = self.foot.clear_pitch(f3, [0.0, ay], t6, floor);
         self.foot_at(s, [n + ax, ay], pitch, t6)
     }
 
