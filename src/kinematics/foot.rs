@@ -5,6 +5,13 @@ use crate::model::body::Body;
 use crate::numerics::roots;
 use crate::numerics::trig::sin_cos;
 
+/// How far under the ground or the floor a swing foot point may be and still keep the rule's
+/// pitch in [`Foot::clear_pitch`] (m) \[ours\]: at toe-off the swing poses the hind leg's last
+/// posture through another chain, and its toe tip, on the floor, comes out a rounding error
+/// under it; clamped, a foot pitched beyond the monotone range of [`Foot::max_pitch`] (π/3: the
+/// hip's lead rolls the foot to 69°) jumped to 60° for that one instant.
+pub const CLEAR_SLACK: f64 = 1e-9;
+
 /// Rotate a foot-frame vector (x forward, y up, foot flat) by the pitch p (heel up +).
 #[inline]
 pub(crate) fn pitch(v: [f64; 2], p: f64) -> [f64; 2] {
@@ -187,7 +194,8 @@ impl Foot {
     }
 
     /// The swing foot's pitch, and its points with the ankle at `ankle`: the rule's pitch when
-    /// it keeps the heel on or above the ground and the toe on or above `floor`; otherwise the
+    /// it keeps the heel on or above the ground and the toe on or above `floor` (to
+    /// [`CLEAR_SLACK`]); otherwise the
     /// rule clamped into the range where both hold (the floor drops to the ground when both
     /// cannot hold).
     pub(crate) fn clear_pitch(
@@ -198,7 +206,7 @@ impl Foot {
         floor: f64,
     ) -> (f64, FootPoints) {
         let pts = self.points(ankle, rule, theta6);
-        if pts.heel[1] >= 0.0 && pts.meta[1].min(pts.toe[1]) >= floor {
+        if pts.heel[1] >= -CLEAR_SLACK && pts.meta[1].min(pts.toe[1]) >= floor - CLEAR_SLACK {
             return (rule, pts);
         }
         let ankle_y = ankle[1];
