@@ -247,7 +247,8 @@ fn several_walkers_are_independent() {
 /// round-off), and it meets the standing height at t = 0 — away from the rows where the centre
 /// rises [ours, docs/nrs.md]: where eq. 4 would dorsiflex the flat stance ankle beyond
 /// `ankle_dorsiflexion_max`, which it then keeps. (In this 0.45 m step that is most of the
-/// step: eq. 4 holds on 73 of the 253 windows of five rows, the first third.)
+/// step: eq. 4 holds on 62 of the 253 windows of five rows, the first quarter; 73 before the
+/// walking step's hip led at heel strike, whose higher hip dorsiflexes the stance ankle more.)
 #[test]
 fn a_forward_step_borrows_the_walking_steps_hip_height() {
     let s = standing();
@@ -289,7 +290,7 @@ fn a_forward_step_borrows_the_walking_steps_hip_height() {
         worst = worst.max((q[0] - 4.0 * q[1] + 6.0 * q[2] - 4.0 * q[3] + q[4]).abs());
         windows += 1;
     }
-    assert!(windows > n / 4, "eq. 4 holds on {windows} windows only");
+    assert!(windows > n / 5, "eq. 4 holds on {windows} windows only");
     eprintln!("eq. 4 on {windows} of {} windows", n - 3);
     assert!(
         worst < 1e-11,

@@ -3,15 +3,12 @@
 //!
 //! Ranges the model meets are asserted as published. Where it cannot, the test asserts the
 //! deviation as measured, with its cause (docs/realism.md), so that any change to it is seen:
-//! - knee peak swing flexion 63–67° (norm 55–65°): the swing1 knee damper (the shank pendulum
-//!   damped at ζ) brakes the knee's flexion from toe-off; at 1.35–1.5 m/s the knee, handed over
-//!   at toe-off flexing faster, still ends 0.2–2° over;
-//! - ankle peak stance dorsiflexion 20.5–23.4° (norm 8–15°) and a weak push-off plantarflexion
-//!   (−8.7…−9.0°, norm −15…−25°): the default plan puts the hip midway between the ankles at
-//!   heel strike (the paper's step symmetry), which leaves the trailing ankle at ≥ 17–19° for
-//!   any human knee; the measured hip lead (`hip_lead_slope` 0.595, opt-in until it walks the
-//!   whole valid range) admits 11–13°
-//!   ([`the_hip_lead_brings_the_trailing_ankle_into_its_norm`], docs/realism.md).
+//! - ankle peak stance dorsiflexion 18.0–19.5° (norm 8–15°): the trailing knee flexes to 16–19°
+//!   by 50 % where the hip's lead (default since 2026-12-04) admits 11–13° with a knee of 5–10°
+//!   ([`the_hip_lead_brings_the_trailing_ankle_into_its_norm`]); midway it was 20.5–23.4°;
+//! - at 1.2 m/s for H 1.85 m the push-off reaches −13.7° (norm −15…−25°; −15.8 to −18.7°
+//!   elsewhere; midway −8.5 to −9.0°), and the pelvis moves 3.3 cm up and down at 1.2 m/s
+//!   (norm 4–5 cm, for free walking at ≈ 1.4 m/s; 3.8–4.6 cm faster).
 mod common;
 
 use common::{body_of_height, default_attributes, gait};
@@ -79,7 +76,7 @@ fn peak(x: &[f64], range: std::ops::Range<usize>, max: bool) -> (f64, usize) {
 }
 
 fn within(name: &str, x: f64, lo: f64, hi: f64, at: &str) {
-    println!("{at}: {name} {x:.2} [{lo}, {hi}]");
+    println!("{at}: {name} {x:.4} [{lo}, {hi}]");
     assert!(
         (lo..=hi).contains(&x),
         "{at}: {name} {x:.2} outside [{lo}, {hi}]"
@@ -99,8 +96,7 @@ fn default_walks_against_the_published_ranges() {
             within("stance %", c.stance_pct, 60.0, 64.0, &at);
             within("double support %", c.double_support_pct, 20.0, 30.0, &at);
             // hip: +25…+35° at heel strike, range 40–50°
-            // deviation: 35.4° at 1.5 m/s for H 1.75 (the norm's 25–35° is for free walking)
-            within("hip at HS", hip[0], 25.0, 36.0, &at);
+            within("hip at HS", hip[0], 25.0, 35.0, &at);
             let (hmax, _) = peak(&hip, 0..101, true);
             let (hmin, hmin_at) = peak(&hip, 0..101, false);
             within("hip range", hmax - hmin, 40.0, 50.0, &at);
@@ -121,8 +117,7 @@ fn default_walks_against_the_published_ranges() {
             );
             let (ksw, ksw_at) = peak(&knee, 50..101, true);
             within("knee swing peak at %", ksw_at as f64, 68.0, 77.0, &at);
-            // deviation: 63° at 1.2 m/s, up to 67° at 1.5 m/s (norm 55–65°, for free walking)
-            within("knee swing peak (partly a deviation)", ksw, 55.0, 68.0, &at);
+            within("knee swing peak", ksw, 55.0, 65.0, &at);
             // ankle: −5…+3° at heel strike; stance dorsiflexion peak (deviation, with its
             // geometric floor in the test below)
             within("ankle at HS", ankle[0], -5.0, 3.0, &at);
@@ -131,29 +126,26 @@ fn default_walks_against_the_published_ranges() {
                 "ankle stance dorsiflexion peak (deviation)",
                 dmax,
                 16.0,
-                24.0,
+                21.0,
                 &at,
             );
-            // deviation: the push-off plantarflexion around toe-off (norm −15…−25° at 60–65 %)
+            // the push-off plantarflexion around toe-off: norm −15…−25° at 60–65 %, reached
+            // but at 1.2 m/s for H 1.85 m (−13.7°)
             let (pmin, _) = peak(&ankle, 55..75, false);
-            within(
-                "ankle plantarflexion at push-off (deviation)",
-                pmin,
-                -11.0,
-                -6.0,
-                &at,
-            );
+            let lo = if v == 1.2 && h == 1.85 { -13.0 } else { -15.0 };
+            within("ankle plantarflexion at push-off", pmin, -25.0, lo, &at);
             // pelvis: list ±4–5°, rotation ±3–5°, vertical excursion 4–5 cm (± 1 cm)
             let list = c.col("pelvis_list");
             let rot = c.col("pelvis_rotation");
             within("pelvic list", peak(&list, 0..101, true).0, 3.5, 5.0, &at);
             within("pelvic rotation", peak(&rot, 0..101, true).0, 3.0, 5.0, &at);
-            // 4–5 cm is the norm; ≈ 6 cm at 1.5 m/s (the ε·E bounce grows with the step)
+            // 4–5 cm is the norm (± 1 cm); 3.3 cm at 1.2 m/s (the ε·E bounce grows with the
+            // step, and the hip's lead raises the heel-strike height)
             within(
                 "pelvis vertical excursion (m)",
                 c.pelvis_excursion,
-                0.035,
-                0.065,
+                0.03,
+                0.06,
                 &at,
             );
         }
@@ -237,7 +229,11 @@ fn the_hip_lead_brings_the_trailing_ankle_into_its_norm() {
         (1.5, 1.75),
         (1.5, 1.85),
     ] {
-        let (body, midway, g) = default_gait(v, h);
+        let (body, lead, g) = default_gait(v, h);
+        let midway = Attributes {
+            hip_lead_slope: 0.0,
+            ..lead.clone()
+        };
         let attrs = measured_lead();
         let (least, _) = trailing_ankle(&body, &midway, g, 5..=30);
         assert!(least > 15.0, "v {v} H {h}: midway {least:.1}°");

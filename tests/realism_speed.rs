@@ -20,13 +20,14 @@ use klaw::figure::skeleton::Side;
 const SPEEDS: [f64; 5] = [1.0, 1.2, 1.4, 1.6, 1.8];
 const HEIGHTS: [f64; 2] = [1.75, 1.85];
 
-/// Known misses of today's engine (branch `norms` from main f996cae, before the realism
-/// helper's engine changes): (v, H, norm, value measured when listed). The ankle (stance
-/// dorsiflexion 19–27° against ≈ 6–17°, push-off −8.6…−9.3° against ≈ −11.5…−30°) at every
-/// speed; the pelvic rotation (the attribute's ±4°, 8° peak to peak) from 1.4 m/s and the list
-/// (±4°) at 1.8 m/s, which the speed leaves unchanged while the children's grow; the knee
-/// (swing peak 67–72°, no stance extension: 6–20°) from 1.6 m/s. Remove an entry when it
-/// passes (the test says which).
+/// Known misses of today's engine: (v, H, norm, value measured when listed). The ankle's stance
+/// dorsiflexion (18–21° against ≈ 6–17°) at every speed and its push-off at 1.0 m/s (−9.8 and
+/// −10.7°) and at 1.2 m/s for H 1.85 m (−13.7°); the pelvic rotation (the attribute's ±4°, 8° peak to peak) from 1.4
+/// m/s and the list (±4°) at 1.8 m/s, which the speed leaves unchanged while the children's grow;
+/// the hip flexion at heel strike 0.1° under its band at 1.2 m/s and, for H 1.85 m, 1.4 m/s
+/// (listed 2026-12-04 when the hip's lead became the default: it fixed 14 misses, the knee's
+/// swing peak and stance extension from 1.6 m/s and the push-off from 1.2 m/s, and made these
+/// three). Remove an entry when it passes (the test says which).
 const EXPECTED_MISSES: &[(f64, f64, &str, f64)] = &[
     (
         1.0,
@@ -41,34 +42,28 @@ const EXPECTED_MISSES: &[(f64, f64, &str, f64)] = &[
         "ankle peak dorsiflexion in stance, by speed",
         21.06,
     ),
-    (1.2, 1.75, "ankle peak plantarflexion, by speed", -9.02),
+    (1.2, 1.75, "hip flexion at heel strike, by speed", 30.73),
     (
         1.4,
         1.75,
         "ankle peak dorsiflexion in stance, by speed",
         22.29,
     ),
-    (1.4, 1.75, "ankle peak plantarflexion, by speed", -8.89),
     (1.4, 1.75, "pelvic rotation range, by speed", 8.00),
-    (1.6, 1.75, "knee peak extension in stance, by speed", 7.56),
-    (1.6, 1.75, "knee peak swing flexion, by speed", 67.84),
     (
         1.6,
         1.75,
         "ankle peak dorsiflexion in stance, by speed",
         24.35,
     ),
-    (1.6, 1.75, "ankle peak plantarflexion, by speed", -8.60),
     (1.6, 1.75, "pelvic rotation range, by speed", 8.00),
     (1.8, 1.75, "knee peak extension in stance, by speed", 19.94),
-    (1.8, 1.75, "knee peak swing flexion, by speed", 71.68),
     (
         1.8,
         1.75,
         "ankle peak dorsiflexion in stance, by speed",
         27.06,
     ),
-    (1.8, 1.75, "ankle peak plantarflexion, by speed", -9.01),
     (
         1.8,
         1.75,
@@ -96,33 +91,28 @@ const EXPECTED_MISSES: &[(f64, f64, &str, f64)] = &[
         20.52,
     ),
     (1.2, 1.85, "ankle peak plantarflexion, by speed", -8.87),
+    (1.2, 1.85, "hip flexion at heel strike, by speed", 30.54),
     (
         1.4,
         1.85,
         "ankle peak dorsiflexion in stance, by speed",
         20.32,
     ),
-    (1.4, 1.85, "ankle peak plantarflexion, by speed", -8.93),
     (1.4, 1.85, "pelvic rotation range, by speed", 8.00),
-    (1.6, 1.85, "knee peak extension in stance, by speed", 6.31),
-    (1.6, 1.85, "knee peak swing flexion, by speed", 67.46),
+    (1.4, 1.85, "hip flexion at heel strike, by speed", 31.78),
     (
         1.6,
         1.85,
         "ankle peak dorsiflexion in stance, by speed",
         23.56,
     ),
-    (1.6, 1.85, "ankle peak plantarflexion, by speed", -9.16),
     (1.6, 1.85, "pelvic rotation range, by speed", 8.00),
-    (1.8, 1.85, "knee peak extension in stance, by speed", 15.48),
-    (1.8, 1.85, "knee peak swing flexion, by speed", 70.64),
     (
         1.8,
         1.85,
         "ankle peak dorsiflexion in stance, by speed",
         25.88,
     ),
-    (1.8, 1.85, "ankle peak plantarflexion, by speed", -9.32),
     (
         1.8,
         1.85,

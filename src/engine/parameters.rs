@@ -28,8 +28,8 @@ pub struct EngineParameters {
     /// `ode.step`): [`crate::control::swing`]'s default, 100, since swing2's stiff servos damp
     /// the local errors away.
     pub swing2_tolerance_scale: f64,
-    /// Largest grid step of the stance hip's acceleration table the swing reads (s): 4 ms, its quintic
-    /// interpolation 7e-7 m/s² from the stance dynamics (docs/engine.md, "Engine").
+    /// Largest grid step of the stance hip's acceleration table the swing reads (s): 3 ms, its quintic
+    /// interpolation 1.3e-6 m/s² from the stance dynamics (docs/engine.md, "Engine").
     pub hip_path_step: f64,
     /// The least mid-swing toe clearance a step may have (m): the feet's placement precision.
     pub toe_clearance_min: f64,

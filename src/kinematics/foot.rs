@@ -10,7 +10,7 @@ use crate::numerics::trig::sin_cos;
 /// posture through another chain, and its toe tip, on the floor, comes out a rounding error
 /// under it; clamped, a foot pitched beyond the monotone range of [`Foot::max_pitch`] (π/3: the
 /// hip's lead rolls the foot to 69°) jumped to 60° for that one instant.
-pub const CLEAR_SLACK: f64 = 1e-9;
+pub(crate) const CLEAR_SLACK: f64 = 1e-9;
 
 /// Rotate a foot-frame vector (x forward, y up, foot flat) by the pitch p (heel up +).
 #[inline]

@@ -65,7 +65,7 @@ impl Piece {
 
 /// Largest grid step of [`HipPath::new`] (s); the walker's is
 /// `EngineParameters::hip_path_step`.
-pub const HIP_PATH_STEP: f64 = 4e-3;
+pub const HIP_PATH_STEP: f64 = 3e-3;
 
 /// The step of [`HipPath::new`]'s central difference of the swing hip's offset (s).
 pub const OFFSET_DIFFERENCE_STEP: f64 = 1e-4;
