@@ -320,9 +320,12 @@ fn measured_extremes_are_at_least_those_of_dense_sampling() {
                 r.min_toe_clearance <= mid + 1e-12,
                 "{who}: mid-swing clearance"
             );
+            // (the knee's search stops within ≈ 1e-11 rad of its peak: 7e-12 under a dense
+            // sample at 1.6847 m/s, H 1.2 m)
             assert!(
-                r.peak_swing_knee_flexion >= knee - 1e-12,
-                "{who}: knee peak"
+                r.peak_swing_knee_flexion >= knee - 1e-10,
+                "{who}: knee peak {} vs {knee}",
+                r.peak_swing_knee_flexion
             );
             // and not beyond what the motion reaches (the dense samples' spacing bounds it)
             assert!(lowest - r.min_foot_height < 1e-4, "{who}: foot lowest");
@@ -414,7 +417,7 @@ fn the_integrator_limits_come_from_the_parameters() {
 /// reference under y_hs before heel strike), de Leva's woman of 1.4 m at 1.75 m/s and of 1.7 m
 /// at 1.86 m/s and at her limit (the swing toe on the floor, the hip under y_hs), de Leva's man
 /// of 1.3 m at 1.77 m/s; it fades from Froude 0.4 (`hip_lead_froude`), and kept whole the first
-/// of them fails.
+/// of them fails (neither fade applied: the step's is 1.2 leg lengths there).
 #[test]
 fn the_hip_lead_walks_up_to_the_walk_run_transition() {
     let lead = klaw::Attributes {
@@ -447,6 +450,8 @@ fn the_hip_lead_walks_up_to_the_walk_run_transition() {
     }
     let whole = klaw::Attributes {
         hip_lead_froude: 0.5,
+        hip_lead_step_from: 9.0,
+        hip_lead_step_to: 10.0,
         ..lead
     };
     let (w, label) = walk_with(&whole, "winter", None, 1.2);

@@ -238,6 +238,11 @@ attribute_struct! {
     /// Fr_φ: the Froude number from which the hip's lead fades to none at `froude_max` (see
     /// [`lead_fade`](crate::plan::constraints::lead_fade)).
     hip_lead_froude,
+    /// The step length per leg length sl / l1 from which the hip's lead fades (see
+    /// [`lead_fade`](crate::plan::constraints::lead_fade)).
+    hip_lead_step_from,
+    /// The step length per leg length sl / l1 at which the hip's lead has faded to none.
+    hip_lead_step_to,
     /// ε: hip excursion as a fraction of the step's height budget.
     bounciness,
     /// θ2_ref: forward lean of the upper body (rad).

@@ -55,20 +55,26 @@ pub struct StepConstraints {
     pub fold_length: f64,
 }
 
-/// The fraction of the hip's lead kept at speed `v` for leg length `l1` \[ours\]: 1 up to the
-/// Froude number v² / (g l1) = `hip_lead_froude`, falling linearly to 0 (the midway hip) at the
-/// walk–run transition `froude_max` (1 throughout if that comes first). People keep their lead
-/// up to the transition (Schwartz et al. 2008's very fast children, Fr ≈ 0.48: φ = 0.577), but
-/// near it klaw's virtual leg cannot: its reference asks for the hip under y_hs before heel
-/// strike, and de Leva's women's swing toe meets the floor (docs/realism.md).
-pub fn lead_fade(attrs: &Attributes, v: f64, l1: f64) -> f64 {
+/// The fraction of the hip's lead kept for a step of length `sl` at speed `v` for leg length
+/// `l1` \[ours\]: the product of two linear fades, each 1 before its start and 0 past its end:
+/// the Froude number v² / (g l1) from `hip_lead_froude` to the walk–run transition `froude_max`
+/// (1 throughout if that comes first), and the step length sl / l1 from `hip_lead_step_from` to
+/// `hip_lead_step_to`. People keep their lead up to the transition (Schwartz et al. 2008's very
+/// fast children, Fr ≈ 0.48, sl ≈ 0.95 l1: φ = 0.577), but klaw's legs cannot: near the
+/// transition the virtual leg's reference asks for the hip under y_hs before heel strike and de
+/// Leva's women's swing toe meets the floor; on steps longer than the leg the trailing foot
+/// cannot reach the hip in double support (docs/realism.md).
+pub fn lead_fade(attrs: &Attributes, sl: f64, v: f64, l1: f64) -> f64 {
+    let fade = |x: f64, from: f64, to: f64| {
+        if to <= from {
+            1.0
+        } else {
+            ((to - x) / (to - from)).clamp(0.0, 1.0)
+        }
+    };
     let froude = v * v / (crate::model::GRAVITY * l1);
-    let (from, to) = (attrs.hip_lead_froude, attrs.froude_max);
-    if to <= from {
-        1.0
-    } else {
-        ((to - froude) / (to - from)).clamp(0.0, 1.0)
-    }
+    fade(froude, attrs.hip_lead_froude, attrs.froude_max)
+        * fade(sl / l1, attrs.hip_lead_step_from, attrs.hip_lead_step_to)
 }
 
 impl StepConstraints {
@@ -107,7 +113,7 @@ impl StepConstraints {
         let heel_x = sl - body.l8;
         let phi = (0.5 + attrs.hip_lead_slope * (sl / body.height - attrs.hip_lead_neutral))
             .min(attrs.hip_lead_max);
-        let phi = 0.5 + (phi - 0.5) * lead_fade(attrs, gait.velocity, body.l1);
+        let phi = 0.5 + (phi - 0.5) * lead_fade(attrs, sl, gait.velocity, body.l1);
         let x_h = phi * sl;
         let half = 0.5 * body.l0;
         let hip_shift = half * attrs.pelvic_rotation.sin();
@@ -377,14 +383,25 @@ mod tests {
             ..Attributes::default()
         };
         let v_at = |fr: f64| (fr * GRAVITY * body.l1).sqrt();
-        assert_eq!(lead_fade(&attrs, v_at(0.3), body.l1), 1.0);
-        assert!((lead_fade(&attrs, v_at(0.45), body.l1) - 0.5).abs() < 1e-12);
-        assert!(lead_fade(&attrs, v_at(0.5), body.l1).abs() < 1e-12);
+        assert_eq!(lead_fade(&attrs, 0.5, v_at(0.3), body.l1), 1.0);
+        assert!((lead_fade(&attrs, 0.5, v_at(0.45), body.l1) - 0.5).abs() < 1e-12);
+        assert!(lead_fade(&attrs, 0.5, v_at(0.5), body.l1).abs() < 1e-12);
         let early = Attributes {
             froude_max: 0.35,
             ..attrs.clone()
         };
-        assert_eq!(lead_fade(&early, v_at(0.34), body.l1), 1.0);
+        assert_eq!(lead_fade(&early, 0.5, v_at(0.34), body.l1), 1.0);
+        // the step length's fade, from 0.98 to 1.12 leg lengths, multiplies the speed's
+        let l1 = body.l1;
+        let steps = Attributes {
+            hip_lead_step_from: 0.98,
+            hip_lead_step_to: 1.12,
+            ..attrs.clone()
+        };
+        assert_eq!(lead_fade(&steps, 0.9 * l1, v_at(0.3), l1), 1.0);
+        assert!((lead_fade(&steps, 1.05 * l1, v_at(0.3), l1) - 0.5).abs() < 1e-12);
+        assert!((lead_fade(&steps, 1.05 * l1, v_at(0.45), l1) - 0.25).abs() < 1e-12);
+        assert_eq!(lead_fade(&steps, 1.2 * l1, v_at(0.3), l1), 0.0);
         let hip_x = |a: &Attributes| {
             let gait = GaitRequest {
                 velocity: Some(v_at(0.45)),
