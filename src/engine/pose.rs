@@ -210,7 +210,7 @@ impl Step {
         // 0 at heel strike: the foot's mass is in the shank, so this is kinematic only
         let t = self.constraints.timing;
         let s = ((tau - t.t_ds) / t.t_swing).clamp(0.0, 1.0);
-        let floor = self.toe_clearance * crate::numerics::trig::sin_cos(PI * s).0.powi(2);
+        let floor = crate::kinematics::foot::swing_floor(self.toe_clearance, s);
         let (_, foot_points) = foot.clear_pitch(y[0] + y[1] - theta5, ankle, theta6, floor);
         SwingPose {
             phase: sub.name(),

@@ -220,9 +220,9 @@ impl StepPose {
             true => rule.max(f3 - (0.5 * ball / l13).min(1.0).asin()),
             false => rule,
         };
-        // the toe above klaw's floor rising to the toe-clearance attribute at mid swing
+        // the toe above klaw's rising swing floor
         let u = ((t - tom) / (1.0 - tom)).clamp(0.0, 1.0);
-        let floor = self.attrs.toe_clearance * (std::f64::consts::PI * u).sin().powi(2);
+        let floor = crate::kinematics::foot::swing_floor(self.attrs.toe_clearance, u);
         let (pitch, _) = self.foot.clear_pitch(f3, [0.0, ay], t6, floor);
         self.foot_at(s, [n + ax, ay], pitch, t6)
     }

@@ -12,6 +12,14 @@ use crate::numerics::trig::sin_cos;
 /// hip's lead rolls the foot to 69°) jumped to 60° for that one instant.
 pub(crate) const CLEAR_SLACK: f64 = 1e-9;
 
+/// The floor the swing foot's toe keeps above \[ours\]: c sin²(πs) at the fraction s of the
+/// swing, rising from the ground at toe-off to the toe-clearance attribute c at mid swing and
+/// back at heel strike (the engine's swing, the NRS's airborne foot and the kinematic mode's
+/// swing foot alike, each through [`Foot::clear_pitch`]).
+pub(crate) fn swing_floor(toe_clearance: f64, s: f64) -> f64 {
+    toe_clearance * sin_cos(std::f64::consts::PI * s).0.powi(2)
+}
+
 /// Rotate a foot-frame vector (x forward, y up, foot flat) by the pitch p (heel up +).
 #[inline]
 pub(crate) fn pitch(v: [f64; 2], p: f64) -> [f64; 2] {

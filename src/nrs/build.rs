@@ -2,7 +2,7 @@
 //! state and a [`Plan`], in stages: the foot pitches (§5.1), the swing ankle (§5.2), the pelvis
 //! at HSM⁺ and the centre site's path (§5.3), the upper body (§5.4); then every instant is
 //! checked for a leg that cannot reach.
-use crate::kinematics::foot::Foot;
+use crate::kinematics::foot::{Foot, swing_floor};
 use crate::kinematics::leg::reach;
 use crate::nrs::NrsError;
 use crate::nrs::curves::{
@@ -16,8 +16,6 @@ use crate::nrs::specs::{FootAngles, Side, StepType};
 use crate::nrs::state::{WalkerState, hanging_arm};
 use crate::nrs::walking::WalkingStep;
 use crate::numerics::smooth::smoothstep;
-use crate::numerics::trig::sin_cos;
-use std::f64::consts::PI;
 
 /// How the centre site's height goes over a step.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -227,9 +225,8 @@ fn swing_ankle(
             // heel up (toe first), bend to the landing's in the second
             let theta6 = take_off.theta6 * (1.0 - smoothstep(2.0 * s))
                 + landing.theta6 * smoothstep(2.0 * s - 1.0);
-            // the toe above a floor rising to the toe-clearance attribute at mid swing, as the
-            // engine's swing foot keeps it (`Step::swing_pose`)
-            let floor = state.attrs.toe_clearance * sin_cos(PI * s).0.powi(2);
+            // the toe above the engine's rising swing floor
+            let floor = swing_floor(state.attrs.toe_clearance, s);
             let (pitch, _) = foot.clear_pitch(rule, [0.0, y], theta6, floor);
             let t = i as f64 / n as f64;
             let heading = pelvis(t) + r_off + smoothstep(s) * (r_land - r_off);
