@@ -148,8 +148,8 @@ impl Foot {
     }
 
     /// The largest pitch (heel up +) at which the metatarsal joint and the toe tip of a foot with
-    /// its ankle at height `ankle_y` and toe angle θ6 stay at or above `floor` (both heights fall
-    /// monotonically with the pitch on [−π/2, π/3]).
+    /// its ankle at height `ankle_y` and toe angle θ6 stay at or above `floor` (the lower of the
+    /// two heights falls monotonically with the pitch on [−π/2, [`Self::max_pitch_end`]]).
     /// By bisection, steered by [`Self::max_pitch_closed_form`].
     pub(crate) fn max_pitch(&self, ankle_y: f64, theta6: f64, floor: f64) -> f64 {
         let meta = |p: f64| ankle_y + pitch([self.h12, -self.l9], p)[1];
@@ -158,10 +158,26 @@ impl Foot {
                 let m = meta(p);
                 m.min(m + pitch([self.l13, 0.0], p - theta6)[1]) >= floor
             },
-            -std::f64::consts::FRAC_PI_2,
+            (-std::f64::consts::FRAC_PI_2, self.max_pitch_end(theta6)),
             true,
             self.max_pitch_closed_form(ankle_y, theta6, floor),
         )
+    }
+
+    /// The end of the range on which [`Self::max_pitch`]'s heights fall with the pitch: the
+    /// toe tip's lowest point, π/2 − atan2(l9 − l13 sin θ6, h12 + l13 cos θ6) (69° with the toe
+    /// in line on the standard body). Beyond the metatarsal joint's own lowest point,
+    /// π/2 − atan2(l9, h12), the toe tip is the lower of the two (the toe points down for
+    /// p > θ6, and θ6 ≤ the metatarsal limit, at most 60°), so their minimum still falls. A swing
+    /// foot rolled beyond π/3 at toe-off (the hip's lead's push-off) is thus clamped onto its
+    /// floor continuously, not to the end of a shorter range.
+    fn max_pitch_end(&self, theta6: f64) -> f64 {
+        let (_, angle) = if theta6 == 0.0 {
+            self.toe_reach
+        } else {
+            Self::toe_reach(self.h12, self.l9, self.l13, theta6)
+        };
+        std::f64::consts::FRAC_PI_2 - angle
     }
 
     /// [`Self::max_pitch`] in closed form: the metatarsal joint is at height
@@ -188,7 +204,7 @@ impl Foot {
     pub(crate) fn min_pitch(&self, ankle_y: f64) -> f64 {
         boundary(
             |p| ankle_y + pitch([-self.l8, -self.l9], p)[1] >= 0.0,
-            self.heel_lowest,
+            (self.heel_lowest, std::f64::consts::FRAC_PI_3),
             false,
             self.min_pitch_closed_form(ankle_y),
         )
@@ -262,7 +278,7 @@ impl Foot {
     }
 }
 
-/// The pitch on [lo, π/3] where `ok` changes, to 1e-12 rad (its closed form `guess`, NaN for
+/// The pitch on [lo, hi] where `ok` changes, to 1e-12 rad (its closed form `guess`, NaN for
 /// none): `ok` holds below the boundary when `below` (a good pitch at most 1e-12 below the
 /// boundary is returned), above it otherwise (at most 1e-12 above). Returns the end of the
 /// range when `ok` holds, or fails, everywhere. `ok` changes at most once on the range (the
@@ -270,8 +286,7 @@ impl Foot {
 /// guess moved [`GUESS_SLACK`] to the good side where `ok` holds and 1e-12 further to the bad
 /// side where it fails is the boundary to 1e-12, in two evaluations of `ok`; else
 /// [`roots::bisect_with_guess`].
-fn boundary(ok: impl Fn(f64) -> bool, lo: f64, below: bool, guess: f64) -> f64 {
-    let hi = std::f64::consts::FRAC_PI_3;
+fn boundary(ok: impl Fn(f64) -> bool, (lo, hi): (f64, f64), below: bool, guess: f64) -> f64 {
     let (good, bad) = if below { (lo, hi) } else { (hi, lo) };
     if guess > lo && guess < hi {
         let toward_bad = if below { 1.0 } else { -1.0 };
@@ -362,6 +377,21 @@ mod tests {
         assert!(clamped < 1.0 && f.points([0.0, ankle_y], clamped, 0.0).lowest() >= 0.01 - 1e-9);
     }
 
+    /// A swing foot rolled beyond π/3 (a push-off to 66°) whose toe tip is 0.1 mm under its
+    /// floor is turned just far enough to clear it: the pitch changes by the toe's height over its
+    /// rate (≈ 0.01 rad), not to the π/3 end of a shorter search range (0.1 rad), and the toe
+    /// sits on the floor.
+    #[test]
+    fn a_foot_rolled_past_sixty_degrees_clears_its_floor_continuously() {
+        let f = foot();
+        let rule = 1.15;
+        let toe_at_zero = f.points([0.0, 0.0], rule, 0.0).toe[1];
+        let ankle = [0.0, 0.005 - toe_at_zero];
+        let (p, pts) = f.clear_pitch(rule, ankle, 0.0, 0.0051);
+        assert!(p < rule && rule - p < 0.02, "{p}");
+        assert!((pts.toe[1] - 0.0051).abs() < 1e-9, "{:?}", pts.toe);
+    }
+
     /// The clearance limits' closed forms are the boundaries their predicates change at (to
     /// 1e-12 rad, against bisection alone), and the limits are within 1e-12 rad of bisection
     /// alone's, on the good side with the bad side 1e-12 beyond, over a grid of ankle heights,
@@ -387,19 +417,20 @@ mod tests {
                     let meta = |p: f64| ankle_y + pitch([f.h12, -f.l9], p)[1];
                     let ok =
                         |p: f64| meta(p).min(meta(p) + pitch([f.l13, 0.0], p - theta6)[1]) >= floor;
-                    if ok(lo_max) && !ok(hi) {
-                        let plain = roots::bisect(ok, lo_max, hi, 1e-12).0;
+                    let hi_max = f.max_pitch_end(theta6);
+                    if ok(lo_max) && !ok(hi_max) {
+                        let plain = roots::bisect(ok, lo_max, hi_max, 1e-12).0;
                         let closed = f.max_pitch_closed_form(ankle_y, theta6, floor);
                         assert!((closed - plain).abs() < 1e-12, "{ankle_y} {theta6} {floor}");
                         let p = f.max_pitch(ankle_y, theta6, floor);
                         assert!((p - plain).abs() <= 1e-12 && ok(p) && !ok(p + 1e-12));
                         steered_max += 1;
                     }
-                    let reference = plain_boundary(ok, lo_max, true);
+                    let reference = plain_boundary(ok, (lo_max, hi_max), true);
                     assert!((f.max_pitch(ankle_y, theta6, floor) - reference).abs() <= 1e-12);
                 }
             }
-            let reference = plain_boundary(heel_ok, lo_min, false);
+            let reference = plain_boundary(heel_ok, (lo_min, hi), false);
             assert!((f.min_pitch(ankle_y) - reference).abs() <= 1e-12);
         }
         assert!(
@@ -409,8 +440,7 @@ mod tests {
     }
 
     /// [`boundary`] without a guess: the range's ends checked, then plain bisection.
-    fn plain_boundary(ok: impl Fn(f64) -> bool, lo: f64, below: bool) -> f64 {
-        let hi = std::f64::consts::FRAC_PI_3;
+    fn plain_boundary(ok: impl Fn(f64) -> bool, (lo, hi): (f64, f64), below: bool) -> f64 {
         let (good, bad) = if below { (lo, hi) } else { (hi, lo) };
         if ok(bad) {
             bad
