@@ -1,8 +1,8 @@
 //! Generates `models/startup-guesses.toml`, the start-up guesses of the walker's shooting solves
 //! (`src/engine/startup.rs`; [ours]: they only save trials): the seven unknowns (τ1, p, A, B, C,
-//! D0, D1) of steps 0, 1 and 2 over the grid `tests/walk.rs` had until issue 16 (v 0.6–2.0 m/s ×
-//! H 1.5–1.95 m, M = 23 H², default attributes; the points beyond a body's walk–run transition,
-//! 1.9–2.0 m/s at H 1.5–1.65 m, are left out since then, the committed file still has them), in body units (torques / (M l1), lengths / l1), fitted by
+//! D0, D1) of steps 0, 1 and 2 over the valid range (v 0.4–2.4 m/s by 0.1 × H 1.2–2.2 m by
+//! 0.2, M = 23 H², default attributes; the points beyond a body's walk–run transition are
+//! refused and left out), in body units (torques / (M l1), lengths / l1), fitted by
 //! least squares as c0 + c1 F + c2 F² in the Froude speed F = v / √(g l1): the step-0 values
 //! and the changes from step 0 to 1 and 1 to 2, with the fits' largest residuals as comments;
 //! and the default walk's Jacobians at the end of its step-0 solves. The walks start every solve
@@ -28,8 +28,9 @@ const HEADER: &str = "\
 #
 # Rows: the seven unknowns τ1, p (stance), A, B (swing1), C (swing2), D0, D1 (swing3), in body
 # units (torques / (M l1), lengths / l1), as quadratics c0 + c1 F + c2 F² in the Froude speed
-# F = v / √(g l1): least-squares fits over the grid tests/walk.rs had until issue 16 (v 0.6–2.0 m/s ×
-# H 1.5–1.95 m, M = 23 H², default attributes), from walks started plainly.
+# F = v / √(g l1): least-squares fits over the valid range (v 0.4–2.4 m/s by 0.1 × H 1.2–2.2 m
+# by 0.2, M = 23 H², default attributes, up to the walk–run transition), from walks started
+# plainly.
 ";
 
 /// A table of quadratic fits (one per unknown) and their largest residuals.
@@ -77,9 +78,9 @@ fn quadratic(points: &[(f64, f64)]) -> ([f64; 3], f64) {
 fn grid_fits(attrs: &Attributes) -> [Fits; 3] {
     // per grid point: F and the unknowns of steps 0, 1, 2
     let mut rows: Vec<(f64, [[f64; 7]; 3])> = Vec::new();
-    for h in [1.5, 1.65, 1.8, 1.95] {
-        for i in 0..15 {
-            let v = 0.6 + 0.1 * i as f64;
+    for h in [1.2, 1.4, 1.6, 1.8, 2.0, 2.2] {
+        for i in 0..21 {
+            let v = 0.4 + 0.1 * i as f64;
             let body = Body::standard(h, 23.0 * h * h).expect("grid body");
             let gait = GaitRequest {
                 velocity: Some(v),
