@@ -313,14 +313,18 @@ fn the_reference_blends_the_entries_nearest_in_speed_or_trace() {
     let sampled = from_phase(&a.model, 0.3, n, 1.0).trace() / leg;
     let k = (0.75 * a.axes.trace + 0.25 * b.axes.trace) / sampled;
     check_blend(&blind, &from_phase(&a.model, 0.3, n, k), leg, (lo, hi));
+    // beyond the widest entry: that entry alone, its own shape (stretched 1.5× forward) found
+    // in phase within the alignment's grid
+    let top = *by_trace.last().unwrap();
     let beyond = blind
-        .reference(&from_phase(&a.model, 0.0, n, 100.0), leg, true)
+        .reference(&from_phase(&db.entries[top].model, 0.0, n, 1.5), leg, true)
         .unwrap();
-    assert_eq!(
-        (beyond.blend.len(), beyond.blend[0].entry),
-        (1, *by_trace.last().unwrap())
+    assert_eq!((beyond.blend.len(), beyond.blend[0].entry), (1, top));
+    assert!(
+        beyond.blend[0].shift.abs() <= 1.0 / n as f64,
+        "{:?}",
+        beyond.blend
     );
-    assert!(beyond.blend[0].shift.abs() < 0.05, "{:?}", beyond.blend);
 }
 
 /// `db`'s reference for `p` (entry `lo`'s shape started 0.3 into its cycle, a quarter of the

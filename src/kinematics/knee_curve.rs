@@ -16,8 +16,9 @@ pub struct KneeCurve {
 /// The knee's rate at toe-off as a multiple of its mean rate from heel-off \[ours\]: the knee
 /// stays nearly straight after heel-off and folds in pre-swing, as in human gait (Perry: ≈ 5° at
 /// 40 % of the cycle, 35–40° at toe-off, still flexing), while the foot rolls up and the ankle
-/// plantarflexes.
-pub(crate) const TOE_OFF_KNEE_RATE: f64 = 2.0;
+/// plantarflexes. With a start rate of 0 the cubic is κ0 + (κ_TO − κ0) s³ at 3, the largest
+/// multiple at which it never dips below κ0 (at R it is (R − 2) s³ − (R − 3) s² of the rise).
+pub(crate) const TOE_OFF_KNEE_RATE: f64 = 3.0;
 
 impl KneeCurve {
     /// The curve from (κ0, κ̇0) at t0 to κ_TO at t_to, reaching it at TOE_OFF_KNEE_RATE × the
@@ -58,6 +59,20 @@ impl KneeCurve {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// From rest at heel-off the curve is κ0 + (κ_TO − κ0) s³ (the toe-off rate 3 × the mean),
+    /// so the knee never flexes less than at heel-off and has risen by an eighth of its rise
+    /// half-way.
+    #[test]
+    fn from_rest_the_knee_rises_as_the_cube_of_the_time() {
+        let (k0, k1) = (0.1, 0.7);
+        let c = KneeCurve::new(2.0, k0, 0.0, 2.4, k1);
+        for i in 0..=100 {
+            let s = i as f64 / 100.0;
+            let (v, _) = c.at(2.0 + 0.4 * s);
+            assert!((v - (k0 + (k1 - k0) * s.powi(3))).abs() < 1e-12, "{s}: {v}");
+        }
+    }
 
     /// The knee curve meets its ends (value and rate, the start rate unless bounded) and never
     /// hyperextends, even from a knee straightening fast into heel-off; checked on a dense grid.
