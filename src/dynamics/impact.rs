@@ -28,24 +28,30 @@ pub fn rates_about_pivot(
     Vector3::new(vx * s1 + vy * c1, (vx * c1 - vy * s1) / q[0], trunk_rate)
 }
 
-/// Plastic heel-strike impulse along the new stance leg (spec §7): with the pre-impact rates
-/// q̇⁻ written about the new pivot, q̇⁺ = q̇⁻ − M⁻¹ e_w ẇ⁻ / (e_wᵀ M⁻¹ e_w), e_w = (1, 0, 0).
-/// Afterwards ẇ⁺ = 0, and p_θ1, p_θ2 (components of M q̇) are unchanged.
+/// Heel-strike impulse along the new stance leg (spec §7, \[ours\]: a fraction of the plastic
+/// one): with the pre-impact rates q̇⁻ written about the new pivot,
+/// q̇⁺ = q̇⁻ − ρ M⁻¹ e_w ẇ⁻ / (e_wᵀ M⁻¹ e_w), e_w = (1, 0, 0), 0 ≤ ρ ≤ 1 (`fraction`, the
+/// attribute heel_strike_impulse). Afterwards ẇ⁺ = (1 − ρ) ẇ⁻, and p_θ1, p_θ2 (components of
+/// M q̇) are unchanged; the energy lost is ρ (2 − ρ) · ½ ẇ⁻² / (M⁻¹)_ww. ρ = 1 is the plastic
+/// impulse that stops the leg axis (ẇ⁺ = 0); with ρ < 1 the leg keeps shortening into the
+/// loading response, where the stance servo absorbs the rest (KLAW 1989 §4: the new stance
+/// from the conservation of momentum).
 pub fn heel_strike(
     model: &StanceModel,
     q: &Vector3<f64>,
     qd_minus: &Vector3<f64>,
+    fraction: f64,
 ) -> (Vector3<f64>, ImpactReport) {
     let m = model.mass_matrix(q);
     let minv_ew = solve3(&m, &Vector3::new(1.0, 0.0, 0.0));
     let wd = qd_minus[0];
-    let qd_plus = qd_minus - minv_ew * (wd / minv_ew[0]);
+    let qd_plus = qd_minus - minv_ew * (fraction * wd / minv_ew[0]);
     let speed = |qd: &Vector3<f64>| {
         let [x, y] = model.hip_velocity(q, qd);
         x.hypot(y)
     };
     let report = ImpactReport {
-        energy_lost: 0.5 * wd * wd / minv_ew[0],
+        energy_lost: fraction * (2.0 - fraction) * 0.5 * wd * wd / minv_ew[0],
         speed_ratio: speed(&qd_plus) / speed(qd_minus),
     };
     (qd_plus, report)

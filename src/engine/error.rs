@@ -79,6 +79,21 @@ pub enum Invariant {
 }
 
 impl SimulationError {
+    /// Whether the step failed with the stance hip under its heel-strike height, which a larger
+    /// heel-strike impulse can mend \[ours\]: the part of the new leg's axial velocity the impulse
+    /// leaves is absorbed in the loading response, and in slow walks and at the start of a walk
+    /// the servo can let the hip sink up to 0.3 mm under y_hs doing so.
+    pub fn is_loading_failure(&self) -> bool {
+        matches!(
+            self,
+            SimulationError::Invariant {
+                phase: "stance",
+                source: Invariant::HipDrops { .. },
+                ..
+            }
+        )
+    }
+
     /// A failure that less pelvic list can mend \[ours\]: the swing's (its shooting, or its foot
     /// under the ground: the list lowers the swing hip by (l0/2) sin L at mid-step), or the
     /// stance hip under its heel-strike height (the list raises the stance hip joint by the

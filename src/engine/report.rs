@@ -121,6 +121,10 @@ pub struct StepReport {
     pub hip_min_margin: f64,
     /// Hip speed after / before the heel strike that starts the step (1; spec §7).
     pub impact_speed_ratio: f64,
+    /// The fraction of the new leg's axial velocity that heel strike removed (1): the attribute
+    /// heel_strike_impulse, or more where the loading response would have let the hip sink
+    /// under its heel-strike height (`Walker::step`).
+    pub impact_fraction: f64,
     /// Height of the swing foot's lowest point over the whole swing (m; ≥ −1e-6 by invariant,
     /// spec §5).
     pub min_foot_height: f64,
@@ -150,7 +154,7 @@ impl StepReport {
         index: usize,
         gait: &Gait,
         c: &StepConstraints,
-        impact_speed_ratio: f64,
+        (impact_speed_ratio, impact_fraction): (f64, f64),
         work: Work,
     ) -> Self {
         StepReport {
@@ -172,6 +176,7 @@ impl StepReport {
             bounce_reference: c.bounce,
             hip_min_margin: f64::NAN,
             impact_speed_ratio,
+            impact_fraction,
             min_foot_height: f64::NAN,
             min_toe_clearance: f64::NAN,
             heel_contact_velocity: f64::NAN,

@@ -4,7 +4,8 @@
 //! joint is given at each instant (the dynamic hip moved by the determinants of gait); the foot's
 //! contact with the ground does not slide:
 //! - *heel rocker* (heel strike → foot flat, FGM): the foot turns about its heel, sole angle
-//!   φ(t) = φ_hs (1 − smoothstep(t / t_FGM)); the knee by two-link trigonometry;
+//!   φ(t) = φ_hs (1 − s)² (1 + s), s = t / t_FGM ([`rocker_sole`]); the knee by two-link
+//!   trigonometry;
 //! - *foot flat* (FGM → heel-off): ankle fixed; the knee follows from the hip–ankle distance;
 //! - *heel-off* and *meta-off*: the knee flexion κ(t) is prescribed, C¹ from its value and rate
 //!   at heel-off to κ_TO at toe-off, and the one unknown foot pitch p solves
@@ -23,7 +24,6 @@ pub(crate) use crate::kinematics::leg::{LegPose, leg_points, leg_points_sc};
 use crate::kinematics::leg::{chain, reach};
 use crate::model::body::Body;
 use crate::numerics::roots;
-use crate::numerics::smooth::smoothstep;
 use crate::numerics::trig::{atan2, sin_cos};
 
 /// Which foot rule holds.
@@ -65,6 +65,15 @@ pub struct StanceLeg {
     /// to toe-off. `None` until found.
     pub heel_off: Option<KneeCurve>,
     pub(crate) to_toe_off: Option<KneeCurve>,
+}
+
+/// The heel rocker's sole angle as a fraction of φ_hs at s = t / t_FGM, (1 − s)² (1 + s) \[ours\]:
+/// the foot starts down at the rate of the straight line to foot flat and lands flat with zero
+/// rate. A smoothstep (spec §7) held the sole at its heel-strike angle at first while the stance
+/// knee flexed into the loading response, rocking the ankle into dorsiflexion and then slapping
+/// the foot down mid-way (the knee flexed and extended again before foot flat).
+fn rocker_sole(s: f64) -> f64 {
+    (1.0 - s) * (1.0 - s) * (1.0 + s)
 }
 
 /// The largest pitch (rad) the rolling foot may take to reach the hip.
@@ -191,7 +200,7 @@ impl StanceLeg {
             Some((kappa, _)) => self.rolling_pose(hip, dz, kappa),
             None => {
                 let rule = if t < self.t_hs + self.t_fgm {
-                    self.sole_hs * (1.0 - smoothstep((t - self.t_hs) / self.t_fgm))
+                    self.sole_hs * rocker_sole((t - self.t_hs) / self.t_fgm)
                 } else {
                     0.0
                 };
@@ -575,7 +584,9 @@ mod tests {
         assert_eq!((arc.radius, arc.phase), (radius, phase));
     }
 
-    /// The heel rocker ends flat (sole angle → 0 with zero rate) and starts at φ_hs.
+    /// The heel rocker starts at φ_hs going down at the line's rate φ_hs / t_FGM and ends flat
+    /// with zero rate: near its ends the sole angle is φ_hs (1 − δ − δ² + δ³) and φ_hs (2δ² − δ³),
+    /// δ the time from the end over t_FGM.
     #[test]
     fn heel_rocker_runs_from_strike_to_flat() {
         let (_, l) = leg();
@@ -584,10 +595,11 @@ mod tests {
         assert!((p0.pitch + l.sole_hs).abs() < 1e-15);
         let pf = l.pose(hip, 0.0, l.t_fgm).unwrap();
         assert!(pf.pitch.abs() < 1e-15);
-        // 1 − smoothstep(1 − δ) = 3δ² − 2δ³: the sole lands with zero rate
         let d = 1e-4 / l.t_fgm;
+        let ps = l.pose(hip, 0.0, 1e-4).unwrap();
+        assert!((ps.pitch + l.sole_hs * (1.0 - d - d * d + d * d * d)).abs() < 1e-12);
         let pe = l.pose(hip, 0.0, l.t_fgm - 1e-4).unwrap();
-        assert!((pe.pitch + l.sole_hs * (3.0 * d * d - 2.0 * d * d * d)).abs() < 1e-12);
+        assert!((pe.pitch + l.sole_hs * (2.0 * d * d - d * d * d)).abs() < 1e-12);
     }
 
     /// Heel-off is found where the flat-foot dorsiflexion reaches θ5_max, and the knee is C¹

@@ -263,6 +263,8 @@ attribute_struct! {
     metatarsal_limit,
     /// Expected minimum toe clearance in swing (m).
     toe_clearance,
+    /// ρ_hs: the fraction of the new stance leg's axial velocity the heel-strike impulse removes.
+    heel_strike_impulse,
     /// Downward heel velocity at contact (m/s).
     heel_strike_velocity,
     /// sf_max (steps/min).

@@ -120,8 +120,8 @@ impl StanceRun {
                     Some(0) => {
                         // the knee locks: a plastic impulse along the leg stops ẇ
                         let q = Vector3::new(y[0], y[1], y[2]);
-                        let (qd, _) =
-                            impact::heel_strike(&setup.model, &q, &Vector3::new(y[3], y[4], y[5]));
+                        let qd_minus = Vector3::new(y[3], y[4], y[5]);
+                        let (qd, _) = impact::heel_strike(&setup.model, &q, &qd_minus, 1.0);
                         y = StanceState::from([y[0], y[1], y[2], 0.0, qd[1], qd[2]]);
                         locked = true;
                     }

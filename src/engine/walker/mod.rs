@@ -62,6 +62,14 @@ pub struct Walker {
 
 /// What the phases of one step share: its constraints, side and determinants, where and when
 /// it starts, and how its solves start.
+/// The solves' memories for the next step's warm starts: stance, swing1, swing2, swing3.
+pub type Memories = (
+    Option<Memory2>,
+    Option<Memory2>,
+    Option<Memory1>,
+    Option<Memory2>,
+);
+
 pub(super) struct StepPlan {
     pub index: usize,
     pub gait: Gait,
@@ -74,6 +82,9 @@ pub(super) struct StepPlan {
     pub t0: f64,
     pub x0: f64,
     pub startup: Startup,
+    /// The fraction of the new leg's axial velocity the heel-strike impulse removes
+    /// ([`impact::heel_strike`](crate::dynamics::impact::heel_strike)).
+    pub impulse: f64,
 }
 
 impl StepPlan {
@@ -175,14 +186,7 @@ impl Walker {
 
     /// What the last step's solves leave for the next one's warm starts (stance, swing1,
     /// swing2, swing3): `examples/startup_fit.rs` reads the cold Jacobians from it.
-    pub fn memories(
-        &self,
-    ) -> (
-        Option<Memory2>,
-        Option<Memory2>,
-        Option<Memory1>,
-        Option<Memory2>,
-    ) {
+    pub fn memories(&self) -> Memories {
         (
             self.stance_memory,
             self.swing1_memory,
@@ -203,16 +207,20 @@ impl Walker {
     pub fn step(&mut self, gait: Gait) -> Result<Step, SimulationError> {
         let saved = self.memories();
         let mut list = self.attrs.pelvic_list;
+        let mut impulse = self.attrs.heel_strike_impulse;
         self.evaluations = 0;
         loop {
-            match self.step_with_list(gait, list) {
+            match self.step_with(gait, list, impulse) {
+                Err(e) if e.is_loading_failure() && impulse < 1.0 => {
+                    self.restore(saved);
+                    impulse = if impulse < 0.5 {
+                        0.5 * (1.0 + impulse)
+                    } else {
+                        1.0
+                    };
+                }
                 Err(e) if list > 0.0 && e.is_list_failure() => {
-                    (
-                        self.stance_memory,
-                        self.swing1_memory,
-                        self.swing2_memory,
-                        self.swing3_memory,
-                    ) = saved;
+                    self.restore(saved);
                     list = if list > self.parameters.least_halved_list {
                         0.5 * list
                     } else {
@@ -224,9 +232,20 @@ impl Walker {
         }
     }
 
-    /// One step with pelvic list `list`, phase after phase.
-    fn step_with_list(&mut self, gait: Gait, list: f64) -> Result<Step, SimulationError> {
-        let plan = self.plan(gait, list)?;
+    /// Put back the solves' memories of before a failed try of a step.
+    fn restore(&mut self, saved: Memories) {
+        (
+            self.stance_memory,
+            self.swing1_memory,
+            self.swing2_memory,
+            self.swing3_memory,
+        ) = saved;
+    }
+
+    /// One step with pelvic list `list` and heel-strike impulse fraction `impulse`, phase after
+    /// phase.
+    fn step_with(&mut self, gait: Gait, list: f64, impulse: f64) -> Result<Step, SimulationError> {
+        let plan = self.plan(gait, list, impulse)?;
         let (prev_c, y0, impact) = self.heel_strike(&plan);
         let setup = self.stance_setup(&prev_c, &plan);
         let (stance, stance_solve) = self.solve_stance(&plan, &setup, y0)?;
@@ -252,7 +271,8 @@ impl Walker {
         let (s3, swing3) = self.swing3(&plan, &sw, s2.segment.y1, mesh3)?;
         self.swing_meshes = [&s1, &s2, &s3].map(|s| Some(s.segment.clone()));
         let work = self.work(&sw, &setup, &stance, [&s1, &s2, &s3]);
-        let report = StepReport::unmeasured(plan.index, &gait, &plan.c, impact.speed_ratio, work);
+        let impact = (impact.speed_ratio, plan.impulse);
+        let report = StepReport::unmeasured(plan.index, &gait, &plan.c, impact, work);
         let step = Step {
             index: plan.index,
             t_start: plan.t0,
@@ -276,7 +296,7 @@ impl Walker {
     }
 
     /// The step's constraints (the high level, KLAW 1989 §3, spec §3), side, determinants and start.
-    fn plan(&self, gait: Gait, list: f64) -> Result<StepPlan, SimulationError> {
+    fn plan(&self, gait: Gait, list: f64, impulse: f64) -> Result<StepPlan, SimulationError> {
         let det = Determinants {
             list,
             ..self.determinants
@@ -298,6 +318,7 @@ impl Walker {
                 index,
                 froude: gait.velocity / (crate::model::GRAVITY * self.body.l1).sqrt(),
             },
+            impulse,
         })
     }
 

@@ -79,7 +79,7 @@ impl Walker {
             }
         };
         let qd_minus = impact::rates_about_pivot(&q, hip_v, trunk_rate);
-        let (qd, impact) = impact::heel_strike(&self.stance_model, &q, &qd_minus);
+        let (qd, impact) = impact::heel_strike(&self.stance_model, &q, &qd_minus, plan.impulse);
         let y0 = StanceState::from([q[0], q[1], q[2], qd[0], qd[1], qd[2]]);
         (prev_c, y0, impact)
     }
