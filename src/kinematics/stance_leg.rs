@@ -4,7 +4,7 @@
 //! joint is given at each instant (the dynamic hip moved by the determinants of gait); the foot's
 //! contact with the ground does not slide:
 //! - *heel rocker* (heel strike → foot flat, FGM): the foot turns about its heel, sole angle
-//!   φ(t) = φ_hs (1 − s)² (1 + s), s = t / t_FGM ([`rocker_sole`]); the knee by two-link
+//!   φ(t) = φ_hs (1 − s)² (1 + s), s = t / t_FGM (`rocker_sole`); the knee by two-link
 //!   trigonometry;
 //! - *foot flat* (FGM → heel-off): ankle fixed; the knee follows from the hip–ankle distance;
 //! - *heel-off* and *meta-off*: the knee flexion κ(t) is prescribed, C¹ from its value and rate
