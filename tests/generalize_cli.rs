@@ -184,4 +184,17 @@ fn the_bundled_prototype_is_the_default_walks() {
         );
     }
     assert!(klaw::generalize::DEFAULT_PROTOTYPE.len() < 30_000);
+    // and the whole of it: every sample of every sequence, as the command writes them
+    let data = |text: &str| -> Vec<String> {
+        text.lines()
+            .filter(|l| !l.starts_with('#'))
+            .map(str::to_owned)
+            .collect()
+    };
+    assert!(
+        data(&klaw::generalize::text::to_csv(&fresh).unwrap())
+            == data(klaw::generalize::DEFAULT_PROTOTYPE),
+        "the bundled prototype's samples differ from today's engine's: regenerate it with \
+         `klaw prototype --from-walk --out models/prototype-default.csv`"
+    );
 }
