@@ -15,8 +15,9 @@
 //! leg can no longer reach the hip. Legs are worked in their own plane: a hip joint with lateral
 //! offset `dz` from the ankle is at 3-D distance √(Δx² + Δy² + dz²), and the leg's plane contains
 //! the forward axis, so the in-plane drop from hip to ankle is √(Δy² + dz²).
-use std::f64::consts::{FRAC_PI_3, TAU};
+use std::f64::consts::FRAC_PI_3;
 
+use crate::kinematics::arc::{Arc, first_in};
 use crate::kinematics::error::GeometryError;
 use crate::kinematics::foot::{Foot, FootPoints, GUESS_SLACK};
 pub(crate) use crate::kinematics::knee_curve::KneeCurve;
@@ -24,7 +25,7 @@ pub(crate) use crate::kinematics::leg::{LegPose, leg_points, leg_points_sc};
 use crate::kinematics::leg::{chain, reach};
 use crate::model::body::Body;
 use crate::numerics::roots;
-use crate::numerics::trig::{atan2, sin_cos};
+use crate::numerics::trig::sin_cos;
 
 /// Which foot rule holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -79,64 +80,10 @@ fn rocker_sole(s: f64) -> f64 {
 /// The largest pitch (rad) the rolling foot may take to reach the hip.
 const MAX_PITCH: f64 = 1.8;
 
-/// How far (rad) outside its range a root found in closed form may fall by round-off and still
-/// count as in it (it is then clamped into the range).
-const ROOT_SLACK: f64 = 1e-12;
-
 /// The largest gap (m) between the straight leg and the hip at heel-off that is still a
 /// continuous roll onto the metatarsal joint ([`StanceLeg::find_heel_off`]): the heel-off root is
 /// found to 1e-9 s, and the gap is read 1e-7 s after it, when the hip has moved ≤ 3e-7 m.
 const FLAT_REACH_SLACK: f64 = 1e-6;
-
-/// The ankle of a foot turning rigidly about a pivot on the ground, as a function of the foot
-/// pitch p (heel up +): `ankle + pitch(v, p) = pivot` for the foot-frame vector v from the
-/// ankle to the pivot, i.e. `ankle(p) = pivot + radius · (−cos(p + phase), sin(p + phase))`
-/// with `radius · (cos phase, −sin phase) = v`.
-#[derive(Clone, Copy, Debug)]
-struct Arc {
-    pivot: [f64; 2],
-    radius: f64,
-    phase: f64,
-}
-
-impl Arc {
-    fn new(pivot: [f64; 2], v: [f64; 2]) -> Self {
-        Arc {
-            pivot,
-            radius: v[0].hypot(v[1]),
-            phase: atan2(-v[1], v[0]),
-        }
-    }
-
-    /// The two families of pitches at which the ankle is at in-plane distance `b` from `target`
-    /// (a circle–circle intersection), each defined modulo 2π: with D = target − pivot,
-    /// |D − radius · u(p + phase)|² = b² reads cos(p + phase − ψ) = c with ψ the direction of
-    /// (−D_x, D_y) and c = (|D|² + radius² − b²) / (2 radius |D|). `None` when the circles do
-    /// not meet (|c| > 1, or a NaN).
-    fn pitches_at(&self, target: [f64; 2], b: f64) -> Option<[f64; 2]> {
-        let dx = target[0] - self.pivot[0];
-        let dy = target[1] - self.pivot[1];
-        let d2 = dx * dx + dy * dy;
-        let c = (d2 + self.radius * self.radius - b * b) / (2.0 * self.radius * d2.sqrt());
-        // (NaN fails the test too)
-        (c.abs() <= 1.0).then(|| {
-            let base = atan2(dy, -dx) - self.phase;
-            let half = c.acos();
-            [base - half, base + half]
-        })
-    }
-}
-
-/// The smallest member of the families `roots` (each modulo 2π) in [lo, hi], a member up to
-/// [`ROOT_SLACK`] outside the range clamped into it.
-fn first_in(roots: [f64; 2], lo: f64, hi: f64) -> Option<f64> {
-    let from = lo - ROOT_SLACK;
-    let first = roots
-        .map(|r| from + (r - from).rem_euclid(TAU))
-        .into_iter()
-        .fold(f64::INFINITY, f64::min);
-    (first <= hi + ROOT_SLACK).then(|| first.clamp(lo, hi))
-}
 
 impl StanceLeg {
     /// The stance leg of `body` whose flat foot's ankle is at `ankle_x`, striking at `t_hs` with
