@@ -8,8 +8,8 @@ use crate::numerics::trig::sin_cos;
 /// How far under the ground or the floor a swing foot point may be and still keep the rule's
 /// pitch in [`Foot::clear_pitch`] (m) \[ours\]: at toe-off the swing poses the hind leg's last
 /// posture through another chain, and its toe tip, on the floor, comes out a rounding error
-/// under it; clamped, a foot pitched beyond the monotone range of [`Foot::max_pitch`] (π/3: the
-/// hip's lead rolls the foot to 69°) jumped to 60° for that one instant.
+/// under it; clamped, a foot rolled to 69° by the hip's lead's push-off jumped to the end of
+/// [`Foot::max_pitch`]'s search range (then π/3) for that one instant.
 pub(crate) const CLEAR_SLACK: f64 = 1e-9;
 
 /// The floor the swing foot's toe keeps above \[ours\]: c sin²(πs) at the fraction s of the
@@ -172,12 +172,17 @@ impl Foot {
     /// foot rolled beyond π/3 at toe-off (the hip's lead's push-off) is thus clamped onto its
     /// floor continuously, not to the end of a shorter range.
     fn max_pitch_end(&self, theta6: f64) -> f64 {
-        let (_, angle) = if theta6 == 0.0 {
+        std::f64::consts::FRAC_PI_2 - self.toe_reach_at(theta6).1
+    }
+
+    /// [`Self::toe_reach`] for toe angle θ6, the toe in line (the swing's usual case) from the
+    /// foot's constants.
+    fn toe_reach_at(&self, theta6: f64) -> (f64, f64) {
+        if theta6 == 0.0 {
             self.toe_reach
         } else {
             Self::toe_reach(self.h12, self.l9, self.l13, theta6)
-        };
-        std::f64::consts::FRAC_PI_2 - angle
+        }
     }
 
     /// [`Self::max_pitch`] in closed form: the metatarsal joint is at height
@@ -189,12 +194,7 @@ impl Foot {
     /// constants.)
     fn max_pitch_closed_form(&self, ankle_y: f64, theta6: f64, floor: f64) -> f64 {
         let reach = |(r, angle): (f64, f64)| asin((ankle_y - floor) / r) - angle;
-        let toe = if theta6 == 0.0 {
-            self.toe_reach
-        } else {
-            Self::toe_reach(self.h12, self.l9, self.l13, theta6)
-        };
-        reach(self.meta_reach).min(reach(toe))
+        reach(self.meta_reach).min(reach(self.toe_reach_at(theta6)))
     }
 
     /// The smallest pitch (heel up +) that keeps the heel at or above the ground, for an ankle at

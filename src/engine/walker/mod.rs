@@ -60,8 +60,6 @@ pub struct Walker {
     startup_guesses: bool,
 }
 
-/// What the phases of one step share: its constraints, side and determinants, where and when
-/// it starts, and how its solves start.
 /// The solves' memories for the next step's warm starts: stance, swing1, swing2, swing3.
 pub type Memories = (
     Option<Memory2>,
@@ -70,6 +68,8 @@ pub type Memories = (
     Option<Memory2>,
 );
 
+/// What the phases of one step share: its constraints, side and determinants, where and when
+/// it starts, how its solves start, and its heel-strike impulse.
 pub(super) struct StepPlan {
     pub index: usize,
     pub gait: Gait,
