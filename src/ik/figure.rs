@@ -11,7 +11,10 @@
 //!   engine's heel rocker and rolling foot), its pitch the one that puts the ankle at its
 //!   horizontal place. The pelvis's height is the one that puts the supporting ankle at the
 //!   height that pitch gives it (the higher of the two in double support: no foot goes
-//!   through the floor).
+//!   through the floor), raised where a swinging ankle would come nearer the floor than the
+//!   foot's ankle height l9 (the chain's ankle path from a poulaine can pass a millimetre
+//!   under it at the heel strike the supports' first frame does not yet count; the swinging
+//!   foot then rests flat on the floor).
 //! - A swinging foot stays square to its shank (the ankle at 0° of dorsiflexion), clamped to
 //!   keep the heel and the toe above the floor (`Foot::clear_pitch`).
 //! - The trunk keeps its lean (attribute `trunk_lean`): lumbar extension = tilt − lean, bending
@@ -175,7 +178,7 @@ pub fn frames(
     let foot = Foot::new(body);
     (0..total)
         .map(|k| {
-            let mut f = pose_frame(&cycle, k, flat[k], (body, attrs, &foot), reference);
+            let mut f = pose_frame(&cycle, k, flat[k], (attrs, &foot), reference);
             f.step = starts.partition_point(|&s| s <= k) + shift - 1;
             f
         })
@@ -188,7 +191,7 @@ fn pose_frame(
     cycle: &Cycle,
     k: usize,
     flat: [f64; 2],
-    (body, attrs, foot): (&Body, &Attributes, &Foot),
+    (attrs, foot): (&Attributes, &Foot),
     reference: f64,
 ) -> Landmarks {
     let n = cycle.len();
@@ -203,14 +206,11 @@ fn pose_frame(
             (p, a[1], t6)
         })
     });
+    // each supporting ankle at its grounded height, and each swinging one at least its foot's
+    // height l9 above the floor (lower, no pitch keeps both heel and toe above it)
     let y_pelvis = (0..2)
-        .filter_map(|s| grounded[s].map(|g| g.1 - pose.leg(SIDES[s]).ankle.y))
+        .map(|s| grounded[s].map_or(foot.l9, |g| g.1) - pose.leg(SIDES[s]).ankle.y)
         .fold(f64::NEG_INFINITY, f64::max);
-    let y_pelvis = if y_pelvis.is_finite() {
-        y_pelvis
-    } else {
-        body.l1 + body.l9
-    };
     let origin = DVec3::new(cycle.speed * k as f64 * cycle.dt, y_pelvis, 0.0);
     let leg = |s: usize| {
         let l = pose.leg(SIDES[s]);
