@@ -405,7 +405,7 @@ fn closed_form_foot_pitches_match_the_numeric_solvers() {
                         _ => {
                             let rule = if t < leg.t_hs + leg.t_fgm {
                                 let x = (t - leg.t_hs) / leg.t_fgm;
-                                leg.sole_hs * (1.0 - x) * (1.0 - x) * (1.0 + x)
+                                leg.sole_hs * (1.0 - x) * (1.0 - x) * (1.0 + 0.5 * x)
                             } else {
                                 0.0
                             };

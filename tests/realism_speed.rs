@@ -21,8 +21,9 @@ const SPEEDS: [f64; 5] = [1.0, 1.2, 1.4, 1.6, 1.8];
 const HEIGHTS: [f64; 2] = [1.75, 1.85];
 
 /// Known misses of today's engine: (v, H, norm, value measured when listed). The ankle's stance
-/// dorsiflexion (18–21° against ≈ 6–17°) at every speed and its push-off at 1.0 m/s (−9.8 and
-/// −10.7°) and at 1.2 m/s for H 1.85 m (−13.7°); the pelvic rotation (the attribute's ±4°, 8° peak to peak) from 1.4
+/// dorsiflexion at 1.8 m/s (19–27° against ≈ 6–15°; at 1.0–1.6 m/s it was 19–24° until the heel
+/// rose mid-way in terminal stance, 2026-12-04 late night, docs/realism.md, and passes now)
+/// and its push-off at 1.0 m/s (−9.8 and −10.7°) and at 1.2 m/s for H 1.85 m (−13.7°); the pelvic rotation (the attribute's ±4°, 8° peak to peak) from 1.4
 /// m/s and the list (±4°) at 1.8 m/s, which the speed leaves unchanged while the children's grow;
 /// the push-off at 1.8 m/s (−11.0 and −14.7° against ≤ −15.4°: since the heel-strike impulse
 /// takes 40 % of the leg's axial velocity, 2026-12-04, the other leg's loading response no
@@ -30,32 +31,8 @@ const HEIGHTS: [f64; 2] = [1.75, 1.85];
 /// the hip flexion at heel strike at 1.2 and 1.4 m/s, listed when the hip's lead became the
 /// default). Remove an entry when it passes (the test says which).
 const EXPECTED_MISSES: &[(f64, f64, &str, f64)] = &[
-    (
-        1.0,
-        1.75,
-        "ankle peak dorsiflexion in stance, by speed",
-        19.53,
-    ),
     (1.0, 1.75, "ankle peak plantarflexion, by speed", -8.91),
-    (
-        1.2,
-        1.75,
-        "ankle peak dorsiflexion in stance, by speed",
-        21.06,
-    ),
-    (
-        1.4,
-        1.75,
-        "ankle peak dorsiflexion in stance, by speed",
-        22.29,
-    ),
     (1.4, 1.75, "pelvic rotation range, by speed", 8.00),
-    (
-        1.6,
-        1.75,
-        "ankle peak dorsiflexion in stance, by speed",
-        24.35,
-    ),
     (1.6, 1.75, "pelvic rotation range, by speed", 8.00),
     (1.8, 1.75, "knee peak extension in stance, by speed", 19.94),
     (1.8, 1.75, "ankle peak plantarflexion, by speed", -11.0),
@@ -78,33 +55,9 @@ const EXPECTED_MISSES: &[(f64, f64, &str, f64)] = &[
         -4.00,
     ),
     (1.8, 1.75, "pelvic rotation range, by speed", 8.00),
-    (
-        1.0,
-        1.85,
-        "ankle peak dorsiflexion in stance, by speed",
-        19.10,
-    ),
     (1.0, 1.85, "ankle peak plantarflexion, by speed", -9.11),
-    (
-        1.2,
-        1.85,
-        "ankle peak dorsiflexion in stance, by speed",
-        20.52,
-    ),
     (1.2, 1.85, "ankle peak plantarflexion, by speed", -8.87),
-    (
-        1.4,
-        1.85,
-        "ankle peak dorsiflexion in stance, by speed",
-        20.32,
-    ),
     (1.4, 1.85, "pelvic rotation range, by speed", 8.00),
-    (
-        1.6,
-        1.85,
-        "ankle peak dorsiflexion in stance, by speed",
-        23.56,
-    ),
     (1.6, 1.85, "pelvic rotation range, by speed", 8.00),
     (
         1.8,

@@ -4,7 +4,7 @@
 //! joint is given at each instant (the dynamic hip moved by the determinants of gait); the foot's
 //! contact with the ground does not slide:
 //! - *heel rocker* (heel strike → foot flat, FGM): the foot turns about its heel, sole angle
-//!   φ(t) = φ_hs (1 − s)² (1 + s), s = t / t_FGM (`rocker_sole`); the knee by two-link
+//!   φ(t) = φ_hs (1 − s)² (1 + s/2), s = t / t_FGM (`rocker_sole`); the knee by two-link
 //!   trigonometry;
 //! - *foot flat* (FGM → heel-off): ankle fixed; the knee follows from the hip–ankle distance;
 //! - *heel-off* and *meta-off*: the knee flexion κ(t) is prescribed, C¹ from its value and rate
@@ -68,13 +68,16 @@ pub struct StanceLeg {
     pub(crate) to_toe_off: Option<KneeCurve>,
 }
 
-/// The heel rocker's sole angle as a fraction of φ_hs at s = t / t_FGM, (1 − s)² (1 + s) \[ours\]:
-/// the foot starts down at the rate of the straight line to foot flat and lands flat with zero
-/// rate. A smoothstep (spec §7) held the sole at its heel-strike angle at first while the stance
-/// knee flexed into the loading response, rocking the ankle into dorsiflexion and then slapping
-/// the foot down mid-way (the knee flexed and extended again before foot flat).
+/// The heel rocker's sole angle as a fraction of φ_hs at s = t / t_FGM, (1 − s)² (1 + s/2)
+/// \[ours\]: the foot starts down at 1.5 × the rate of the straight line to foot flat and its
+/// rate, −(3/2)(1 − s²), falls from there to zero at foot flat (the rate's size
+/// (1 − s)(2 − β + 3βs) of (1 − s)² (1 + βs) is non-increasing only for β ≤ ½). A smoothstep (spec §7) held the sole at its heel-strike
+/// angle at first while the stance knee flexed into the loading response, rocking the ankle into
+/// dorsiflexion and then slapping the foot down mid-way; with β = 1 (from the straight line's
+/// rate, the fastest at a third of the way) the foot's fall outran the hip's approach there and
+/// the knee paused or extended by up to 0.1° at 3–5 % of the cycle (docs/realism.md).
 fn rocker_sole(s: f64) -> f64 {
-    (1.0 - s) * (1.0 - s) * (1.0 + s)
+    (1.0 - s) * (1.0 - s) * (1.0 + 0.5 * s)
 }
 
 /// The largest pitch (rad) the rolling foot may take to reach the hip.
@@ -427,6 +430,23 @@ impl StanceLeg {
 mod tests {
     use super::*;
 
+    /// The heel rocker's sole: 1 at heel strike, 0 at foot flat with zero rate, its rate
+    /// −(3/2)(1 − s²) against central differences, falling in size all the way.
+    #[test]
+    fn the_rocker_sole_lands_with_a_falling_rate() {
+        assert_eq!(rocker_sole(0.0), 1.0);
+        assert_eq!(rocker_sole(1.0), 0.0);
+        let h = 1e-6;
+        let mut last = f64::INFINITY;
+        for i in 0..=100 {
+            let s = i as f64 / 100.0;
+            let fd = (rocker_sole(s + h) - rocker_sole(s - h)) / (2.0 * h);
+            assert!((fd + 1.5 * (1.0 - s * s)).abs() < 1e-8, "s {s}: {fd}");
+            assert!(-fd <= last + 1e-9, "s {s}");
+            last = -fd;
+        }
+    }
+
     fn leg() -> (Body, StanceLeg) {
         let b = Body::standard(1.8, 80.0).unwrap();
         let l = StanceLeg::new(
@@ -531,9 +551,9 @@ mod tests {
         assert_eq!((arc.radius, arc.phase), (radius, phase));
     }
 
-    /// The heel rocker starts at φ_hs going down at the line's rate φ_hs / t_FGM and ends flat
-    /// with zero rate: near its ends the sole angle is φ_hs (1 − δ − δ² + δ³) and φ_hs (2δ² − δ³),
-    /// δ the time from the end over t_FGM.
+    /// The heel rocker starts at φ_hs going down at 1.5 × the line's rate φ_hs / t_FGM and ends
+    /// flat with zero rate: near its ends the sole angle is φ_hs (1 − 3δ/2 + δ³/2) and
+    /// φ_hs (3δ²/2 − δ³/2), δ the time from the end over t_FGM.
     #[test]
     fn heel_rocker_runs_from_strike_to_flat() {
         let (_, l) = leg();
@@ -544,9 +564,9 @@ mod tests {
         assert!(pf.pitch.abs() < 1e-15);
         let d = 1e-4 / l.t_fgm;
         let ps = l.pose(hip, 0.0, 1e-4).unwrap();
-        assert!((ps.pitch + l.sole_hs * (1.0 - d - d * d + d * d * d)).abs() < 1e-12);
+        assert!((ps.pitch + l.sole_hs * (1.0 - 1.5 * d + 0.5 * d * d * d)).abs() < 1e-12);
         let pe = l.pose(hip, 0.0, l.t_fgm - 1e-4).unwrap();
-        assert!((pe.pitch + l.sole_hs * (2.0 * d * d - d * d * d)).abs() < 1e-12);
+        assert!((pe.pitch + l.sole_hs * (1.5 * d * d - 0.5 * d * d * d)).abs() < 1e-12);
     }
 
     /// Heel-off is found where the flat-foot dorsiflexion reaches θ5_max, and the knee is C¹

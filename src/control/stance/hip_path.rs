@@ -9,7 +9,9 @@ use super::{StanceRun, StanceSetup};
 /// the hip of the same step's stance). The table is split wherever the stance run has a segment
 /// boundary — the leg torque switching off, the position actuator's blend starting, the leg
 /// locking or releasing, the leg force's clamp — since the acceleration or its derivative jumps
-/// there. The swing integrations stop at the same [`HipPath::breaks`], so that no integrator
+/// there, and at the reference's heel-off, where its third derivative jumps (a quintic across
+/// it missed by 1.4e-5 m/s² once [`PITCH_BULGE`](super::reference::PITCH_BULGE) lifted the heel
+/// mid-way). The swing integrations stop at the same [`HipPath::breaks`], so that no integrator
 /// step straddles a jump (a step across one leaves a global error far above the integrator's
 /// tolerance). The grid step is at most [`HIP_PATH_STEP`]. A kinematic offset of the swing-side
 /// hip joint from the dynamic hip (the determinants of gait, spec §7) adds its acceleration, by
@@ -114,6 +116,10 @@ impl HipPath {
                 .map(|(seg, _)| seg.t1)
                 .filter(|&t| t > t0 && t < t1),
         );
+        if let Some(t) = run.heel_off_time(setup).filter(|&t| t > t0 && t < t1) {
+            cuts.push(t);
+            cuts.sort_by(f64::total_cmp);
+        }
         cuts.push(t1);
         // the ends of a piece are its inner limits (the state or the forces jump at a cut)
         let eps = 1e-12 * setup.t_step;

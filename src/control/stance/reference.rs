@@ -60,12 +60,13 @@ pub(super) fn hip_reference_sc(
 /// - foot flat (A = P) while the ankle's dorsiflexion, the lean of the shank (the ankle–J line's
 ///   angle plus the shank's lead δ over it at κ0), is below θ5_max;
 /// - heel-off: the foot turns about its metatarsal joint M by the pitch
-///   p = p_hs s⁴ (1 + c (s − 1)), s = (sin θ1 − sin θ_ho) / (sin θ1* − sin θ_ho), so that the
-///   reference is C³ at heel-off (the swing reads the hip's acceleration from a quintic table,
-///   [`HipPath`](super::HipPath), which a C² reference's jerk kink pushes over its error bound)
-///   and the heel rises ever faster into push-off; p_hs puts C at (θ1*, w*) at
-///   heel strike and c ∈ [−4, 1] makes C arrive there level (as the spec §4 reference did, so
-///   that the hip does not dip below y_hs before it), or as nearly as a monotone pitch allows.
+///   p = p_hs s⁴ (1 + c (s − 1) + D (1 − s)²), s = (sin θ1 − sin θ_ho) / (sin θ1* − sin θ_ho),
+///   so that the reference is C³ at heel-off (the swing reads the hip's acceleration from a
+///   quintic table, [`HipPath`](super::HipPath), which a C² reference's jerk kink pushes over
+///   its error bound) and the heel rises ever faster into push-off; p_hs puts C at (θ1*, w*) at
+///   heel strike, c ∈ [−4, 1] makes C arrive there level (as the spec §4 reference did, so
+///   that the hip does not dip below y_hs before it), or as nearly as a monotone pitch allows,
+///   and D = [`PITCH_BULGE`] raises the heel in mid terminal stance without changing either end.
 ///
 /// The pelvis moves J from C by o(u) = (−(l0/2) sin(A sin(πu/2)), (l0/2) sin(L cos(πu/2))) and
 /// dz(u) = D cos(πu/2) + l0/2 − b/2 (rotation A, list L, lateral displacement D, step width b;
@@ -81,7 +82,7 @@ pub(crate) struct TerminalStance {
     /// M relative to the pivot (m).
     pub(crate) meta: [f64; 2],
     /// Foot pitch at heel strike p_hs (rad), and c of the pitch's shape
-    /// s⁴ (1 + c (s − 1)), c ∈ [−4, 1] (monotone, ≥ 0; end rate 4 + c).
+    /// s⁴ (1 + c (s − 1) + D (1 − s)²), c ∈ [−4, 1] (monotone, ≥ 0; end rate 4 + c).
     pub(crate) pitch_end: f64,
     pub(crate) end_rate: f64,
     /// sin θ_ho, sin θ1*.
@@ -90,8 +91,9 @@ pub(crate) struct TerminalStance {
     /// The determinants of gait (with the step's list), which move the hip joint.
     pub(crate) pelvis: Determinants,
     /// W as a function of sin θ1 in Chebyshev series, on [0, sin θ_ho] (foot flat) and from
-    /// there to where the pitch is held ([`PAST_END`]): what [`Self::length`] evaluates.
-    table: [Chebyshev; 2],
+    /// there to where the pitch is held ([`PAST_END`]) in two halves: what [`Self::length`]
+    /// evaluates.
+    table: [Chebyshev; 3],
 }
 
 /// m of the margin m (1 − x)² above y_hs that the reference keeps between heel-off (x = 0) and
@@ -105,6 +107,15 @@ pub(crate) const END_MARGIN: f64 = 1e-2;
 /// rising reference brings it in falling. 0.004 walks the whole box v 0.4–2.5 m/s, H 1.2–2.2 m
 /// up to Froude 0.5 (0.0065 and 0.005 fail one or two of its points; docs/realism.md).
 pub(crate) const END_RISE: f64 = 0.004;
+
+/// D of the heel-off pitch's shape s⁴ (1 + c (s − 1) + D (1 − s)²) \[ours\]: the bulge
+/// D s⁴ (1 − s)² lifts the heel in mid terminal stance and leaves the pitch, its end rate and
+/// its C³ start at heel-off alone. The pitch stays monotone for every c ∈ [−4, 1] while D ≤ 10
+/// (at c = −4 its rate is s³ u (20 − 2D + 6D u), u = 1 − s). With D = 0 the heel rose late
+/// (the pitch 0.2 p_hs at s = 0.68, where people have raised it to over half its heel-strike
+/// value), the flat foot's arc let the hip fall early, and the trailing ankle dorsiflexed to
+/// 17.2–18.6° at 44 % of the cycle (norm 8–15°); 8 brings it to 14.2–14.7° (docs/realism.md).
+pub(crate) const PITCH_BULGE: f64 = 8.0;
 
 /// How far past heel strike (in s and u, where heel strike is 1) the pitch and the pelvis's
 /// offsets continue their formulas before they are held \[ours\]: held at heel strike itself, the
@@ -142,7 +153,7 @@ impl TerminalStance {
             sin_heel_off: 0.7 * sin_end,
             sin_end,
             pelvis: *det,
-            table: [Chebyshev::ZERO; 2],
+            table: [Chebyshev::ZERO; 3],
         };
         // heel-off: the flat foot's ankle–J line reaches θ5_max − δ (rising with θ1)
         let line = |s1: f64| {
@@ -187,13 +198,15 @@ impl TerminalStance {
             ..t
         };
         let held = t.sin_heel_off + PAST_END * (sin_end - t.sin_heel_off);
+        let half = 0.5 * (t.sin_heel_off + held);
         t.table = [
             Chebyshev::fit(
                 |s1| flat.exact_length_at(s1).0,
                 0.0,
                 t.sin_heel_off.max(0.1 * sin_end),
             ),
-            Chebyshev::fit(|s1| t.exact_length_at(s1).0, t.sin_heel_off, held),
+            Chebyshev::fit(|s1| t.exact_length_at(s1).0, t.sin_heel_off, half),
+            Chebyshev::fit(|s1| t.exact_length_at(s1).0, half, held),
         ];
         t
     }
@@ -271,19 +284,22 @@ impl TerminalStance {
 
     /// W(θ1) and dW/dθ1 from sin θ1, cos θ1, from the table: W(sin θ1) is smooth on each piece
     /// (the pelvis's sines, the foot's rotation and a square root), so that its coefficients
-    /// fall fast (to 1e-12 of W by the 20th) and the 20 Chebyshev terms meet
-    /// [`Self::exact_length`] to ≤ 2e-12 m and dW/dθ1 to ≤ 2.2e-9 m/rad (0.6–2.0 m/s, tested),
-    /// for two Estrin sums, a fraction of the formula's cost (the stance right-hand side
+    /// fall fast (to 1e-12 of W by the 20th) and the 20 Chebyshev terms on each of the three
+    /// pieces meet [`Self::exact_length`] to ≤ 3e-13 m and dW/dθ1 to ≤ 4.5e-10 m/rad (0.6–2.0
+    /// m/s, tested; one piece for the rising heel met it only to 1.4e-10 m and 2e-7 m/rad once
+    /// [`PITCH_BULGE`] lifted the heel mid-way), for two Estrin sums, a fraction of the formula's cost (the stance right-hand side
     /// evaluates it at every stage). Outside the table (θ1 < 0, or the pitch held), the formula
     /// itself.
     pub(crate) fn length(&self, s1: f64, c1: f64) -> (f64, f64) {
-        let [flat, heel_off] = &self.table;
-        let piece = if s1 < flat.lo() || s1 > heel_off.hi() {
+        let [flat, rising, rolling] = &self.table;
+        let piece = if s1 < flat.lo() || s1 > rolling.hi() {
             return self.exact_length(s1, c1);
-        } else if s1 < heel_off.lo() {
+        } else if s1 < rising.lo() {
             flat
+        } else if s1 < rolling.lo() {
+            rising
         } else {
-            heel_off
+            rolling
         };
         let (w, dw) = piece.eval(s1);
         (w, dw * c1)
@@ -297,12 +313,13 @@ impl TerminalStance {
         let (p, dp) = if s <= 0.0 {
             (0.0, 0.0)
         } else {
+            let (g, dg) = pitch_shape(s, c, PITCH_BULGE);
             let rate = if s < PAST_END {
-                self.pitch_end * s * s * s * (4.0 + c * (5.0 * s - 4.0)) * c1 / span
+                self.pitch_end * dg * c1 / span
             } else {
                 0.0
             };
-            (self.pitch_end * s * s * s * s * (1.0 + c * (s - 1.0)), rate)
+            (self.pitch_end * g, rate)
         };
         // flat foot: the ankle is the pivot
         let (ankle, dankle) = if p == 0.0 {
@@ -328,6 +345,16 @@ impl TerminalStance {
         let ada = a[0] * da[0] + a[1] * da[1];
         (w, (w * (e1a + eda) - ada + 0.5 * dr2) / (w - ea))
     }
+}
+
+/// The heel-off pitch as a fraction of p_hs, g(s) = s⁴ (1 + c (s − 1) + D (1 − s)²), and
+/// dg/ds = s³ (4 (1 + c (s − 1) + D (1 − s)²) + s (c − 2 D (1 − s))) ([`TerminalStance`]).
+#[inline(always)]
+fn pitch_shape(s: f64, c: f64, d: f64) -> (f64, f64) {
+    let u = 1.0 - s;
+    let shape = 1.0 - c * u + d * u * u;
+    let s3 = s * s * s;
+    (s3 * s * shape, s3 * (4.0 * shape + s * (c - 2.0 * d * u)))
 }
 
 #[cfg(test)]
@@ -473,7 +500,9 @@ mod tests {
             let s1 = t.sin_heel_off + f * (t.sin_end - t.sin_heel_off);
             let c1 = (1.0 - s1 * s1).sqrt();
             let w = t.length(s1, c1).0;
-            let p = t.pitch_end * f.powi(4) * (1.0 + t.end_rate * (f - 1.0));
+            let p = t.pitch_end
+                * f.powi(4)
+                * (1.0 + t.end_rate * (f - 1.0) + PITCH_BULGE * (1.0 - f).powi(2));
             // P − M turned clockwise (heel up) by p
             let (sp, cp) = p.sin_cos();
             let (vx, vy) = (-mx, -my);
@@ -520,5 +549,40 @@ mod tests {
                 "θ1 {th}: {y}"
             );
         }
+    }
+
+    /// The pitch's shape: 0 with its first three derivatives at heel-off (g(h) / h⁴ → 1 − c + D),
+    /// 1 with rate 4 + c at heel strike whatever D, its rate against central differences, and
+    /// monotone over [0, 1] for every c ∈ [−4, 1] at D = PITCH_BULGE; past D = 10 it turns back
+    /// at c = −4 (the bound [`PITCH_BULGE`] states).
+    #[test]
+    fn the_heel_off_pitch_is_c3_at_heel_off_monotone_and_meets_its_ends() {
+        let d = PITCH_BULGE;
+        for k in 0..=20 {
+            let c = -4.0 + 5.0 * k as f64 / 20.0;
+            let h = 1e-3;
+            let (g0, _) = pitch_shape(h, c, d);
+            assert!(
+                (g0 / h.powi(4) - (1.0 - c + d)).abs() < 0.05 * (1.0 + d),
+                "c {c}"
+            );
+            let (g1, dg1) = pitch_shape(1.0, c, d);
+            assert!(
+                (g1 - 1.0).abs() < 1e-15 && (dg1 - (4.0 + c)).abs() < 1e-12,
+                "c {c}"
+            );
+            let mut last = 0.0;
+            for i in 1..=1000 {
+                let s = i as f64 / 1000.0;
+                let (g, dg) = pitch_shape(s, c, d);
+                let e = 1e-6;
+                let fd = (pitch_shape(s + e, c, d).0 - pitch_shape(s - e, c, d).0) / (2.0 * e);
+                assert!((fd - dg).abs() < 1e-7, "c {c} s {s}: {fd} vs {dg}");
+                assert!(g >= last && dg >= 0.0, "c {c} s {s}: not monotone");
+                last = g;
+            }
+        }
+        let turns_back = (1..1000).any(|i| pitch_shape(i as f64 / 1000.0, -4.0, 10.5).1 < 0.0);
+        assert!(turns_back);
     }
 }

@@ -4,6 +4,7 @@ use nalgebra::{Vector2, Vector3};
 
 use crate::dynamics::impact;
 use crate::numerics::ode::{self, IntegrationError, Segment};
+use crate::numerics::roots;
 use crate::numerics::trig::sin_cos;
 
 use super::{StanceForces, StanceSetup, StanceState, TORQUE_OFF};
@@ -157,6 +158,31 @@ impl StanceRun {
             .min(self.segments.len() - 1);
         let (seg, locked) = &self.segments[i];
         (seg.state(t), *locked)
+    }
+
+    /// The time of the hip reference's heel-off, where θ1 rises through θ_ho past mid-stance
+    /// ([`TerminalStance`](super::TerminalStance)): the reference is C³ there, and the hip
+    /// acceleration's third derivative jumps. `None` where heel-off is at mid-stance (already a
+    /// segment boundary) or not reached.
+    pub(crate) fn heel_off_time(&self, setup: &StanceSetup) -> Option<f64> {
+        let sin_ho = setup.terminal.sin_heel_off;
+        if sin_ho <= 0.0 {
+            return None;
+        }
+        let theta_ho = sin_ho.asin();
+        let (seg, _) = self
+            .segments
+            .iter()
+            .find(|(seg, _)| seg.y0[1] < theta_ho && seg.y1[1] >= theta_ho)?;
+        let g = |t: f64| seg.state(t)[1] - theta_ho;
+        let (a, b) = roots::illinois(
+            g,
+            (seg.t0, seg.y0[1] - theta_ho),
+            (seg.t1, seg.y1[1] - theta_ho),
+            1e-13,
+            60,
+        );
+        Some(0.5 * (a + b))
     }
 
     /// Hip position at t (relative to the stance ankle's x): [`Self::hip`]`[0]` without the
