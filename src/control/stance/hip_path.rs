@@ -10,7 +10,7 @@ use super::{StanceRun, StanceSetup};
 /// boundary — the leg torque switching off, the position actuator's blend starting, the leg
 /// locking or releasing, the leg force's clamp — since the acceleration or its derivative jumps
 /// there, and at the reference's heel-off, where its third derivative jumps (a quintic across
-/// it missed by 1.4e-5 m/s² once [`PITCH_BULGE`](super::reference::PITCH_BULGE) lifted the heel
+/// it missed by 1.4e-5 m/s² once the reference's pitch bulge lifted the heel
 /// mid-way). The swing integrations stop at the same [`HipPath::breaks`], so that no integrator
 /// step straddles a jump (a step across one leaves a global error far above the integrator's
 /// tolerance). The grid step is at most [`HIP_PATH_STEP`]. A kinematic offset of the swing-side
