@@ -69,13 +69,13 @@ pub struct StanceLeg {
 }
 
 /// The heel rocker's sole angle as a fraction of φ_hs at s = t / t_FGM, (1 − s)² (1 + s/2)
-/// \[ours\]: the foot starts down at 1.5 × the rate of the straight line to foot flat and its
+/// \[ours\]: the foot starts down at 1.5 × the rate of the straight line to foot flat, and its
 /// rate, −(3/2)(1 − s²), falls from there to zero at foot flat (the rate's size
-/// (1 − s)(2 − β + 3βs) of (1 − s)² (1 + βs) is non-increasing only for β ≤ ½). A smoothstep (spec §7) held the sole at its heel-strike
-/// angle at first while the stance knee flexed into the loading response, rocking the ankle into
-/// dorsiflexion and then slapping the foot down mid-way; with β = 1 (from the straight line's
-/// rate, the fastest at a third of the way) the foot's fall outran the hip's approach there and
-/// the knee paused or extended by up to 0.1° at 3–5 % of the cycle (docs/realism.md).
+/// (1 − s)(2 − β + 3βs) of (1 − s)² (1 + βs) is non-increasing only for β ≤ ½). A smoothstep
+/// (spec §7) held the sole at its heel-strike angle at first while the stance knee flexed into
+/// the loading response, rocking the ankle into dorsiflexion and then slapping the foot down
+/// mid-way; with β = 1 the foot's fall, fastest a third of the way, outran the hip's approach
+/// and paused the loading-response knee (docs/realism.md, "The heel in terminal stance").
 fn rocker_sole(s: f64) -> f64 {
     (1.0 - s) * (1.0 - s) * (1.0 + 0.5 * s)
 }

@@ -9,11 +9,9 @@ use super::{StanceRun, StanceSetup};
 /// the hip of the same step's stance). The table is split wherever the stance run has a segment
 /// boundary — the leg torque switching off, the position actuator's blend starting, the leg
 /// locking or releasing, the leg force's clamp — since the acceleration or its derivative jumps
-/// there, and at the reference's heel-off, where its third derivative jumps (a quintic across
-/// it missed by 1.4e-5 m/s² once the reference's pitch bulge lifted the heel
-/// mid-way). The swing integrations stop at the same [`HipPath::breaks`], so that no integrator
-/// step straddles a jump (a step across one leaves a global error far above the integrator's
-/// tolerance). The grid step is at most [`HIP_PATH_STEP`]. A kinematic offset of the swing-side
+/// there, and at the reference's heel-off, where its third derivative jumps. The swing
+/// integrations stop at the same [`HipPath::breaks`], so that no integrator step straddles a
+/// jump (a step across one leaves a global error far above the integrator's tolerance). The grid step is at most [`HIP_PATH_STEP`]. A kinematic offset of the swing-side
 /// hip joint from the dynamic hip (the determinants of gait, spec §7) adds its acceleration, by
 /// central second differences (step [`OFFSET_DIFFERENCE_STEP`]: truncation ≈ h² f⁗ / 12 ≈
 /// 1e-8 m/s²).

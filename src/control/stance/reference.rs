@@ -109,12 +109,11 @@ pub(crate) const END_MARGIN: f64 = 1e-2;
 pub(crate) const END_RISE: f64 = 0.004;
 
 /// D of the heel-off pitch's shape s⁴ (1 + c (s − 1) + D (1 − s)²) \[ours\]: the bulge
-/// D s⁴ (1 − s)² lifts the heel in mid terminal stance and leaves the pitch, its end rate and
-/// its C³ start at heel-off alone. The pitch stays monotone for every c ∈ [−4, 1] while D ≤ 10
-/// (at c = −4 its rate is s³ u (20 − 2D + 6D u), u = 1 − s). With D = 0 the heel rose late
-/// (the pitch 0.2 p_hs at s = 0.68, where people have raised it to over half its heel-strike
-/// value), the flat foot's arc let the hip fall early, and the trailing ankle dorsiflexed to
-/// 17.2–18.6° at 44 % of the cycle (norm 8–15°); 8 brings it to 14.2–14.7° (docs/realism.md).
+/// D s⁴ (1 − s)² lifts the heel in mid terminal stance and leaves the pitch's C³ start at
+/// heel-off, its heel-strike value and its end rate alone. The pitch stays monotone for every
+/// c ∈ [−4, 1] while D ≤ 10 (at c = −4 its rate is s³ u (20 − 2D + 6D u), u = 1 − s). Without
+/// it the heel rose late, the flat foot's arc let the hip fall early and the trailing ankle
+/// dorsiflexed past its norm (docs/realism.md, "The heel in terminal stance").
 pub(crate) const PITCH_BULGE: f64 = 8.0;
 
 /// How far past heel strike (in s and u, where heel strike is 1) the pitch and the pelvis's
@@ -284,12 +283,11 @@ impl TerminalStance {
 
     /// W(θ1) and dW/dθ1 from sin θ1, cos θ1, from the table: W(sin θ1) is smooth on each piece
     /// (the pelvis's sines, the foot's rotation and a square root), so that its coefficients
-    /// fall fast (to 1e-12 of W by the 20th) and the 20 Chebyshev terms on each of the three
-    /// pieces meet [`Self::exact_length`] to ≤ 3e-13 m and dW/dθ1 to ≤ 4.5e-10 m/rad (0.6–2.0
-    /// m/s, tested; one piece for the rising heel met it only to 1.4e-10 m and 2e-7 m/rad once
-    /// [`PITCH_BULGE`] lifted the heel mid-way), for two Estrin sums, a fraction of the formula's cost (the stance right-hand side
-    /// evaluates it at every stage). Outside the table (θ1 < 0, or the pitch held), the formula
-    /// itself.
+    /// fall fast (to 1e-12 of W by the 20th) and the 20 Chebyshev terms of each piece (the rising
+    /// heel's in two halves, since [`PITCH_BULGE`] bends it) meet [`Self::exact_length`] to
+    /// ≤ 3e-13 m and dW/dθ1 to ≤ 4.5e-10 m/rad (0.6–2.0 m/s, tested), for two Estrin sums, a
+    /// fraction of the formula's cost (the stance right-hand side evaluates it at every stage).
+    /// Outside the table (θ1 < 0, or the pitch held), the formula itself.
     pub(crate) fn length(&self, s1: f64, c1: f64) -> (f64, f64) {
         let [flat, rising, rolling] = &self.table;
         let piece = if s1 < flat.lo() || s1 > rolling.hi() {
