@@ -86,8 +86,8 @@ fn walk_data_round_trips_through_json_and_csv() {
 /// The measured layout written from klaw's walk (steps 2…5 at 100 frames/s) reads back as the
 /// prototype extracted from the walk itself: the step lengths to 0.1 mm, heel-off to a frame,
 /// foot flat and toe-off to three, the attributes at heel strike to 0.5° and at toe-off to 2°, the hip at heel strike to
-/// 1.5 mm (the heel strike dated where the heel comes within 1 mm of the floor, which it nears
-/// slowly: the hip is then ≈ 1 mm higher);
+/// 2 mm (the heel strike dated where the heel comes within 1 mm of the floor, which it nears
+/// slowly: the hip is then 1–1.5 mm higher; 1.50 mm since the metatarsal limit is 40°);
 /// and it walks on klaw's body.
 #[test]
 fn a_measured_walk_reads_as_the_walks_own_prototype() {
@@ -125,7 +125,7 @@ fn a_measured_walk_reads_as_the_walks_own_prototype() {
         assert!((a - b).abs() < f64::to_radians(tol), "{a} vs {b}");
     }
     let dy = m.hip.last()[1] - k.hip.last()[1];
-    assert!(dy.abs() < 1.5e-3, "{dy}");
+    assert!(dy.abs() < 2e-3, "{dy}");
     let body = *walk.body();
     let kin = KinematicWalk::new(
         &m,

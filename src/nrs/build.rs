@@ -15,7 +15,7 @@ use crate::nrs::segment::{K, Segment};
 use crate::nrs::specs::{FootAngles, Side, StepType};
 use crate::nrs::state::{WalkerState, hanging_arm};
 use crate::nrs::walking::WalkingStep;
-use crate::numerics::smooth::smoothstep;
+use crate::numerics::smooth::{smootherstep, smoothstep};
 
 /// How the centre site's height goes over a step.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -113,10 +113,12 @@ fn foot_pitches(state: &WalkerState, plan: &Plan) -> Pitches {
             (idx(0.1), idx(0.7), idx(tom), ramp.clone(), ramp)
         }
     };
-    // a TOM of the plan's own: the swing foot rolls up to it by a smoothstep
+    // a TOM of the plan's own (a start from standing): the swing foot rolls up to it by a
+    // smootherstep, from rest without a jump in acceleration \[ours\]: with a smoothstep the
+    // stepping hip went from rest to ≈ 280°/s in 10 ms (docs/nrs.md, "Starting and stopping")
     if plan.toe_off.is_some() {
         for (i, q) in sw_w.iter_mut().enumerate().take(toe_off + 1) {
-            *q = smoothstep(i as f64 / toe_off.max(1) as f64);
+            *q = smootherstep(i as f64 / toe_off.max(1) as f64);
         }
     }
     let heel_off = heel_off.max(flat).min(n);
