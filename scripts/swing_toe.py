@@ -23,22 +23,19 @@ import argparse
 import math
 import pathlib
 import sys
-import tomllib
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from normative_compare import default_cache, norm_folder, read_norms  # noqa: E402
+from terminal_stance import segments as terminal_segments  # noqa: E402
 
-ROOT = pathlib.Path(__file__).resolve().parent.parent
 PERCENTS = (74, 76, 78, 80, 82, 84)
 
 
 def segments(h):
-    """Thigh, shank, ankle height and the toe tip's reach ahead of the ankle (m) at height h."""
-    t = tomllib.loads((ROOT / "models" / "body-winter.toml").read_text())
-    f = t["foot"]
-    l9, l12 = f["ankle_height"] * h, f["ankle_to_metatarsal"] * h
-    toe = math.sqrt(l12 * l12 - l9 * l9) + f["metatarsal_to_toe"] * h
-    return dict(l3=t["thigh"]["length"] * h, l4=t["shank"]["length"] * h, l9=l9, toe=toe)
+    """Thigh, shank, ankle height and the toe tip's reach ahead of the ankle (m) at height h:
+    scripts/terminal_stance.py's segments, the toe past the metatarsal joint added."""
+    s = terminal_segments(h)
+    return dict(l3=s["l3"], l4=s["l4"], l9=s["l9"], toe=s["mx"] + s["l13"])
 
 
 def toe_below_hip(s, thigh, knee, ankle):

@@ -43,7 +43,7 @@ def segments(h):
     l9, l12 = f["ankle_height"] * h, f["ankle_to_metatarsal"] * h
     return dict(l3=t["thigh"]["length"] * h, l4=t["shank"]["length"] * h, l9=l9,
                 l8=f["hind_foot"] * h, l11=f["heel_to_ankle"] * h,
-                mx=math.sqrt(l12 * l12 - l9 * l9))
+                mx=math.sqrt(l12 * l12 - l9 * l9), l13=f["metatarsal_to_toe"] * h)
 
 
 def posture(c, s):
