@@ -130,7 +130,7 @@ fn a_measured_walk_reads_as_the_walks_own_prototype() {
     let kin = KinematicWalk::new(
         &m,
         body,
-        walk.attributes().clone(),
+        klaw::model::attributes::AttributeTable::builtin().defaults(),
         walk.gaits()[0],
         4,
         &params(),

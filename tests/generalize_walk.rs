@@ -60,7 +60,7 @@ fn the_prototype_reposed_reproduces_klaws_joint_angles() {
     let kin = KinematicWalk::new(
         &data,
         *walk.body(),
-        walk.attributes().clone(),
+        common::default_attributes(),
         g,
         10,
         &params(),
@@ -113,7 +113,7 @@ fn the_prototype_reposed_reproduces_klaws_joint_angles() {
 #[test]
 fn generalized_walks_keep_the_walking_constraints() {
     let (walk, data) = prototype();
-    let attrs = walk.attributes().clone();
+    let attrs = common::default_attributes();
     let sl = data.step_length;
     for (body, k) in [
         (*walk.body(), 0.7),
@@ -147,7 +147,7 @@ fn generalized_walks_keep_the_walking_constraints() {
 fn too_long_a_step_names_the_limit() {
     let (walk, data) = prototype();
     let body = *walk.body();
-    let attrs = walk.attributes().clone();
+    let attrs = common::default_attributes();
     let g = Gait {
         step_length: 1.6 * body.l1,
         ..walk.gaits()[0]

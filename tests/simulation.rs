@@ -4,7 +4,7 @@
 //! simulated; every export re-parses with the expected number of rows.
 use std::fs;
 
-use klaw::engine::walker::simulate;
+use klaw::engine::walker::{simulate, walk_attributes};
 use klaw::export::bvh;
 use klaw::figure::frames;
 use klaw::model::InputError;
@@ -34,7 +34,11 @@ fn default_walk_is_the_engines_walk_of_the_same_inputs() {
 
     let walk = Simulation::default().run().unwrap();
     assert_eq!(walk.body(), &body);
-    assert_eq!(walk.attributes(), &attrs);
+    assert_eq!(
+        walk.attributes(),
+        &walk_attributes(&body, &attrs, &[gait; 10])
+    );
+    assert_eq!(walk.attributes(), &engine.attrs);
     assert_eq!(walk.gaits(), &[gait; 10]);
     assert_eq!(walk.duration(), engine.duration());
     let fps = 100.0;

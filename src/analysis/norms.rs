@@ -13,6 +13,7 @@ use super::extent;
 use crate::engine::walker::Walk;
 use crate::figure::skeleton::Side;
 use crate::model::{GRAVITY, InputError};
+use crate::numerics::sampled::piecewise_linear;
 
 /// The bundled norm table (`models/gait-norms.toml`).
 pub(crate) const NORMS_TABLE: &str = include_str!("../../models/gait-norms.toml");
@@ -165,21 +166,6 @@ impl BySpeed {
         let half = self.sd_multiple * piecewise_linear(&self.speed, &self.sd, v);
         Some((mean - half, mean + half))
     }
-}
-
-/// ys at x, linear between the points (xs increasing, as long as ys, not empty) and held at the
-/// end values beyond them.
-fn piecewise_linear(xs: &[f64], ys: &[f64], x: f64) -> f64 {
-    let n = xs.len();
-    if x <= xs[0] {
-        return ys[0];
-    }
-    if x >= xs[n - 1] {
-        return ys[n - 1];
-    }
-    let i = xs.partition_point(|&p| p <= x) - 1;
-    let u = (x - xs[i]) / (xs[i + 1] - xs[i]);
-    ys[i] + u * (ys[i + 1] - ys[i])
 }
 
 /// A norm's range: the same at every speed, or by the walk's speed.

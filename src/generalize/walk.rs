@@ -4,6 +4,7 @@
 use crate::analysis::events::Event;
 use crate::engine::report::StateFrame;
 use crate::engine::step::last_frame;
+use crate::engine::walker::walk_attributes;
 use crate::figure::{Landmarks, LegPoints};
 use crate::generalize::condition::BodyCondition;
 use crate::generalize::error::GeneralizeError;
@@ -38,7 +39,8 @@ pub struct KinematicWalk {
 
 impl KinematicWalk {
     /// `prototype` generalized to `body` at the step length of `gait` (the step before as
-    /// long), lasting 60 / sf s, checked at `params.check_samples` instants of either leg's step
+    /// long), lasting 60 / sf s, with the pelvis of the engine's walk at that gait
+    /// ([`walk_attributes`]), checked at `params.check_samples` instants of either leg's step
     /// (no leg stretched, no foot under the floor, no swing foot sliding on it) before anything
     /// is walked.
     pub fn new(
@@ -50,6 +52,7 @@ impl KinematicWalk {
         params: &GeneralizeParameters,
     ) -> Result<Self, GeneralizeError> {
         prototype.check()?;
+        let attrs = walk_attributes(&body, &attrs, &[gait]);
         let pelvis = Pelvis {
             rotation: attrs.pelvic_rotation,
             step_width: attrs.step_width,

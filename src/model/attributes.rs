@@ -287,6 +287,9 @@ attribute_struct! {
     pelvic_rotation,
     /// Pelvic list amplitude (rad).
     pelvic_list,
+    /// How much the list and rotation follow the walk's speed, 0 (fixed) to 1 (see
+    /// [`PelvisSpeedLaw`](crate::model::pelvis_speed::PelvisSpeedLaw)).
+    pelvis_speed_law,
     /// Lateral displacement amplitude of the pelvis centre (m).
     lateral_displacement,
     /// Distance between the feet (m).

@@ -1,6 +1,21 @@
-//! Functions known by their samples: local Lagrange interpolation between frames, and
+//! Functions known by their samples: piecewise-linear and local Lagrange interpolation, and
 //! finite-difference derivatives on a uniform grid (Fornberg's weights, second order, one-sided
 //! at the grid's ends).
+
+/// ys at x, linear between the points (xs increasing, as long as ys, not empty) and held at the
+/// end values beyond them.
+pub fn piecewise_linear(xs: &[f64], ys: &[f64], x: f64) -> f64 {
+    let n = xs.len();
+    if x <= xs[0] {
+        return ys[0];
+    }
+    if x >= xs[n - 1] {
+        return ys[n - 1];
+    }
+    let i = xs.partition_point(|&p| p <= x) - 1;
+    let u = (x - xs[i]) / (xs[i + 1] - xs[i]);
+    ys[i] + u * (ys[i + 1] - ys[i])
+}
 
 /// Nodes of the local interpolation: a polynomial of degree 5 through the 6 samples around `t`.
 const NODES: usize = 6;

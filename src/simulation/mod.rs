@@ -309,7 +309,8 @@ impl Walk {
         &self.walk.body
     }
 
-    /// The attributes (SI units).
+    /// The attributes the walk was simulated with (SI units): the resolved ones with the pelvic
+    /// list and rotation at the walk's speed ([`walk_attributes`](crate::engine::walker::walk_attributes)).
     pub fn attributes(&self) -> &Attributes {
         &self.walk.attrs
     }

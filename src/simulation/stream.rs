@@ -5,7 +5,7 @@
 //! gathered on the side, each only when asked for.
 use crate::analysis::events::{Event, step_events};
 use crate::engine::report::{StateFrame, StepReport};
-use crate::engine::walker::{Step, Walker};
+use crate::engine::walker::{Step, Walker, walk_attributes};
 use crate::error::{Error, Result};
 use crate::figure::clinical::{Clinical, clinical};
 use crate::figure::{Landmarks, landmarks};
@@ -62,12 +62,13 @@ pub struct WalkStream<'a> {
 }
 
 impl<'a> WalkStream<'a> {
-    /// One step per gait, frames at `fps` from t = 0 to the last heel strike (inclusive).
+    /// One step per gait, frames at `fps` from t = 0 to the last heel strike (inclusive), with
+    /// the walk's attributes ([`walk_attributes`]).
     pub fn new(body: Body, attrs: Attributes, gaits: &'a [Gait], fps: f64, gather: Gather) -> Self {
         // the walk lasts Σ 60 / sf, known before anything is simulated
         let duration = crate::plan::gait::walk_duration(gaits);
         WalkStream {
-            walker: Walker::new(body, attrs),
+            walker: Walker::new(body, walk_attributes(&body, &attrs, gaits)),
             gaits: gaits.iter(),
             fps,
             next_frame: 0,

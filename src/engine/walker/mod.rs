@@ -20,9 +20,12 @@ use crate::kinematics::pelvis::{Determinants, PelvisMotion, Side};
 use crate::kinematics::stance_leg::StanceLeg;
 use crate::model::attributes::Attributes;
 use crate::model::body::Body;
+use crate::model::pelvis_speed::PelvisSpeedLaw;
 use crate::numerics::ode::Segment;
 use crate::plan::StepConstraints;
 use crate::plan::gait::Gait;
+
+use std::sync::OnceLock;
 
 // the step records, the walk and the swing hip's velocity at the walker's paths, where the
 // rest of the crate reads them
@@ -132,8 +135,23 @@ impl StepPlan {
     }
 }
 
-/// Simulate one step per entry of `gaits` (parameters may change from step to step).
+/// `attrs` for a walk of `gaits` by `body`: the pelvic list and rotation at the gaits' mean
+/// velocity ([`PelvisSpeedLaw::scale`]), the same in every step, so that the pelvis hands over
+/// smoothly when the speed changes; the walk records these.
+pub fn walk_attributes(body: &Body, attrs: &Attributes, gaits: &[Gait]) -> Attributes {
+    static LAW: OnceLock<PelvisSpeedLaw> = OnceLock::new();
+    if gaits.is_empty() {
+        return attrs.clone();
+    }
+    let v = gaits.iter().map(|g| g.velocity).sum::<f64>() / gaits.len() as f64;
+    LAW.get_or_init(PelvisSpeedLaw::default)
+        .scale(attrs, v, body.l1)
+}
+
+/// Simulate one step per entry of `gaits` (parameters may change from step to step), with the
+/// walk's attributes ([`walk_attributes`]).
 pub fn simulate(body: Body, attrs: Attributes, gaits: &[Gait]) -> Result<Walk, SimulationError> {
+    let attrs = walk_attributes(&body, &attrs, gaits);
     let mut walker = Walker::new(body, attrs.clone());
     let steps = gaits
         .iter()
