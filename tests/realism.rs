@@ -205,10 +205,11 @@ fn default_walks_against_the_published_ranges() {
             // the push-off plantarflexion around toe-off: norm −15…−25° at 60–65 %
             let (pmin, _) = peak(&ankle, 55..75, false);
             within("ankle plantarflexion at push-off", pmin, -25.0, -15.0, &at);
-            // pelvis: list ±4–5°, rotation ±3–5°, vertical excursion 4–5 cm (± 1 cm)
+            // pelvis: list ±4–5° (the 1 % samples miss the half-sine's crest by < 0.001°),
+            // rotation ±3–5°, vertical excursion 4–5 cm (± 1 cm)
             let list = c.col("pelvis_list");
             let rot = c.col("pelvis_rotation");
-            within("pelvic list", peak(&list, 0..101, true).0, 3.5, 5.0, &at);
+            within("pelvic list", peak(&list, 0..101, true).0, 3.999, 5.0, &at);
             within("pelvic rotation", peak(&rot, 0..101, true).0, 3.0, 5.0, &at);
             // 4–5 cm is the norm (± 1 cm); 3.3 cm at 1.2 m/s (the ε·E bounce grows with the
             // step, and the hip's lead raises the heel-strike height)
