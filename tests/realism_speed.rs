@@ -24,41 +24,29 @@ const HEIGHTS: [f64; 2] = [1.75, 1.85];
 
 /// Known misses of today's engine: (v, H, norm, value measured when listed).
 /// - At 1.8 m/s the step (1.03 leg lengths for H 1.75 m) fades the hip's lead by a third
-///   (`hip_lead_step_from`): the ankle's stance dorsiflexion (16–19° against ≈ 6–15°; at
-///   1.0–1.6 m/s it passes since the heel rises mid-way in terminal stance), the push-off for
-///   H 1.75 m (−12.5° against ≤ −15.7°) and the knee's stance extension for H 1.75 m.
+///   (`hip_lead_step_from`): the ankle's stance dorsiflexion (16–18° against ≈ 6–15°; at
+///   1.0–1.6 m/s it passes since the heel rises mid-way in terminal stance) and the push-off for
+///   H 1.75 m (−12.2° against ≤ −15.7°).
 /// - The pelvic rotation from 1.6 m/s: the list and rotation follow the children's means by
 ///   speed since 2026-12-05 (`pelvis_speed_law`, models/pelvis-speed.toml), but at the adult
 ///   size the attribute gives at free speed (±4°, gait-norms.md ±3–5°), which is 2/3 of the
 ///   children's mean there; their band's lower end rises to 0.68 of the mean at 1.6 m/s. At
 ///   1.4 m/s the rotation passes since the law; at 1.5 m/s the adult range (≤ ±5°) and the
 ///   children's at 1.6 m/s (≥ ±5.15°) leave no room for a rotation that keeps both.
-/// - The pelvic list at 1.8 m/s for H 1.75 m: the law asks 5.4°, but with it the straight
-///   stance leg falls 0.14–0.36 mm short of the hip over the flat foot in 4 of 8 steps, which the
-///   walker then walks with half the list (at 1.8 m/s for H 1.85 m the list passes since the law).
 ///
-/// Remove an entry when it passes (the test says which).
+/// The pelvic list at 1.8 m/s and the knee's stance extension at 1.8 m/s for H 1.75 m pass since
+/// the same day: the law's larger list, and the walker's retry that lowers it by fifths where
+/// the straight stance leg falls short of the hip (halving it before: the list fell to 2.7°
+/// and the knee bent to 5–8.6° in mid stance). Remove an entry when it passes (the test says
+/// which).
 const EXPECTED_MISSES: &[(f64, f64, &str, f64)] = &[
     (1.6, 1.75, "pelvic rotation range, by speed", 10.10),
-    (1.8, 1.75, "knee peak extension in stance, by speed", 5.00),
-    (1.8, 1.75, "ankle peak plantarflexion, by speed", -12.53),
+    (1.8, 1.75, "ankle peak plantarflexion, by speed", -12.18),
     (
         1.8,
         1.75,
         "ankle peak dorsiflexion in stance, by speed",
-        18.57,
-    ),
-    (
-        1.8,
-        1.75,
-        "pelvic list, right side up (right stance), by speed",
-        4.05,
-    ),
-    (
-        1.8,
-        1.75,
-        "pelvic list, left side up (left stance), by speed",
-        -4.05,
+        18.09,
     ),
     (1.8, 1.75, "pelvic rotation range, by speed", 11.28),
     (1.6, 1.85, "pelvic rotation range, by speed", 9.85),

@@ -216,15 +216,19 @@ impl Walker {
     /// Simulate the next step with gait `gait`. When the step fails with the attributes'
     /// pelvic list in a way less list can mend ([`SimulationError::is_list_failure`]: the swing
     /// foot under the ground, no convergence of the swing, the stance hip under its heel-strike
-    /// height), the step is tried again with half the list, then none \[ours\]: the list lowers
-    /// the swing hip by (l0/2) sin L at mid step, ≈ 5 mm, which the fastest walks of short
-    /// bodies (v = 2 m/s at H = 1.5 m) cannot spare, and raises the stance hip joint by as much
-    /// above the pelvis centre at mid-stance, which the slowest walks of tall ones (0.4 m/s at
-    /// H ≥ 1.7 m, height budget E ≈ 14 mm) cannot. The list used is in the step's
-    /// `determinants`.
+    /// height, the straight leg short of the hip over the flat foot), the step is tried again
+    /// with the list lowered by a fifth of the attribute's at a time, down to none
+    /// ([`EngineParameters::list_retries`]) \[ours\]: the list lowers the swing hip by
+    /// (l0/2) sin L at mid step, ≈ 5 mm, which the fastest walks of short bodies (v = 2 m/s at
+    /// H = 1.5 m) cannot spare, and raises the stance hip joint by as much above the pelvis
+    /// centre at mid-stance, which the slowest walks of tall ones (0.4 m/s at H ≥ 1.7 m, height
+    /// budget E ≈ 14 mm) cannot. The list used is in the step's `determinants`.
     pub fn step(&mut self, gait: Gait) -> Result<Step, SimulationError> {
         let saved = self.memories();
-        let mut list = self.attrs.pelvic_list;
+        let full_list = self.attrs.pelvic_list;
+        let retries = self.parameters.list_retries;
+        let mut lowered = 0;
+        let mut list = full_list;
         let mut impulse = self.attrs.heel_strike_impulse;
         self.evaluations = 0;
         loop {
@@ -237,13 +241,10 @@ impl Walker {
                         1.0
                     };
                 }
-                Err(e) if list > 0.0 && e.is_list_failure() => {
+                Err(e) if lowered < retries && e.is_list_failure() => {
                     self.restore(saved);
-                    list = if list > self.parameters.least_halved_list {
-                        0.5 * list
-                    } else {
-                        0.0
-                    };
+                    lowered += 1;
+                    list = full_list * (1.0 - lowered as f64 / retries as f64);
                 }
                 result => return result,
             }
