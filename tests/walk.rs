@@ -468,3 +468,34 @@ fn the_hip_lead_walks_up_to_the_walk_run_transition() {
         check_step(s, &label);
     }
 }
+
+/// A step that the attributes' pelvic list cannot walk is walked with the list lowered by
+/// fifths of it (`EngineParameters::list_retries` = 5), the most that walks: at 1.8 m/s the
+/// default body's list (±5.36°, the speed law's) leaves the straight stance leg short of the hip
+/// in every other step, which then walk at 80 %. Read from the figure's pelvis, per step.
+#[test]
+fn a_list_that_does_not_walk_is_lowered_by_fifths() {
+    let walk = klaw::Simulation::default()
+        .velocity(1.8)
+        .steps(10)
+        .run()
+        .unwrap();
+    let full = walk.attributes().pelvic_list.to_degrees();
+    assert!((full - 5.36).abs() < 0.01, "{full}");
+    let mut peaks = vec![0.0f64; 10];
+    for c in walk.clinical_angles(1000.0).unwrap() {
+        let p = &mut peaks[c.step.min(9)];
+        *p = p.max(c.pelvis_list.abs().to_degrees());
+    }
+    let mut lowered = 0;
+    for (k, p) in peaks.iter().enumerate() {
+        let fifths = p / full * 5.0;
+        assert!(
+            (fifths - fifths.round()).abs() < 0.01,
+            "step {k}: {p}° of {full}°"
+        );
+        assert!(fifths.round() >= 4.0, "step {k}: {p}°");
+        lowered += (fifths.round() == 4.0) as usize;
+    }
+    assert!(lowered >= 3, "{peaks:?}");
+}
