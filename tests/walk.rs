@@ -470,11 +470,13 @@ fn the_hip_lead_walks_up_to_the_walk_run_transition() {
 }
 
 /// A step that the attributes' pelvic list cannot walk is walked with the list lowered by
-/// fifths of it (`EngineParameters::list_retries` = 5), the most that walks: at 1.8 m/s the
-/// default body's list (±5.36°, the speed law's) leaves the straight stance leg short of the hip
-/// in every other step, which then walk at 80 %. Read from the figure's pelvis, per step.
+/// fifths of it (`EngineParameters::list_retries` = 5), the most that walks, and the later steps
+/// keep that list: at 1.8 m/s the default body's list (±5.36°, the speed law's) leaves the
+/// straight stance leg short of the hip from step 2 on, which walks at 80 %, as every step after
+/// it, so that the steady pelvis is the same on both sides. Read from the figure's pelvis, per
+/// step.
 #[test]
-fn a_list_that_does_not_walk_is_lowered_by_fifths() {
+fn a_list_that_does_not_walk_is_lowered_by_fifths_and_kept() {
     let walk = klaw::Simulation::default()
         .velocity(1.8)
         .steps(10)
@@ -487,15 +489,16 @@ fn a_list_that_does_not_walk_is_lowered_by_fifths() {
         let p = &mut peaks[c.step.min(9)];
         *p = p.max(c.pelvis_list.abs().to_degrees());
     }
-    let mut lowered = 0;
-    for (k, p) in peaks.iter().enumerate() {
-        let fifths = p / full * 5.0;
+    let fifths: Vec<f64> = peaks.iter().map(|p| p / full * 5.0).collect();
+    for (k, f) in fifths.iter().enumerate() {
         assert!(
-            (fifths - fifths.round()).abs() < 0.01,
-            "step {k}: {p}° of {full}°"
+            (f - f.round()).abs() < 0.01,
+            "step {k}: {} of {full}°",
+            peaks[k]
         );
-        assert!(fifths.round() >= 4.0, "step {k}: {p}°");
-        lowered += (fifths.round() == 4.0) as usize;
     }
-    assert!(lowered >= 3, "{peaks:?}");
+    let rungs: Vec<i64> = fifths.iter().map(|f| f.round() as i64).collect();
+    let first_lowered = rungs.iter().position(|&r| r < 5).expect("a lowered step");
+    assert!(first_lowered >= 1, "{rungs:?}");
+    assert!(rungs[first_lowered..].iter().all(|&r| r == 4), "{rungs:?}");
 }

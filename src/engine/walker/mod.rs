@@ -59,6 +59,9 @@ pub struct Walker {
     index: usize,
     /// Right-hand-side evaluations of the current step, over all trials.
     pub(super) evaluations: u64,
+    /// Fifths of the attributes' pelvic list that the steps from the second on leave out: the
+    /// most any of them needed (see [`Walker::step`]).
+    list_lowered: usize,
     /// Start the first steps' solves from the fitted guesses (`engine::startup`).
     startup_guesses: bool,
 }
@@ -184,6 +187,7 @@ impl Walker {
             x_ankle: 0.0,
             index: 0,
             evaluations: 0,
+            list_lowered: 0,
             startup_guesses: true,
         }
     }
@@ -218,20 +222,22 @@ impl Walker {
     /// foot under the ground, no convergence of the swing, the stance hip under its heel-strike
     /// height, the straight leg short of the hip over the flat foot), the step is tried again
     /// with the list lowered by a fifth of the attribute's at a time, down to none
-    /// ([`EngineParameters::list_retries`]) \[ours\]: the list lowers the swing hip by
+    /// ([`EngineParameters::list_retries`]), and the later steps start from the list it walked
+    /// with, so that the steady steps' pelvis is the same on both sides; the first step, from
+    /// the start-up posture, lowers its own list only \[ours\]. The list lowers the swing hip by
     /// (l0/2) sin L at mid step, ≈ 5 mm, which the fastest walks of short bodies (v = 2 m/s at
     /// H = 1.5 m) cannot spare, and raises the stance hip joint by as much above the pelvis
     /// centre at mid-stance, which the slowest walks of tall ones (0.4 m/s at H ≥ 1.7 m, height
     /// budget E ≈ 14 mm) cannot. The list used is in the step's `determinants`.
     pub fn step(&mut self, gait: Gait) -> Result<Step, SimulationError> {
         let saved = self.memories();
-        let full_list = self.attrs.pelvic_list;
+        let first = self.index == 0;
         let retries = self.parameters.list_retries;
-        let mut lowered = 0;
-        let mut list = full_list;
+        let mut lowered = self.list_lowered;
         let mut impulse = self.attrs.heel_strike_impulse;
         self.evaluations = 0;
         loop {
+            let list = self.attrs.pelvic_list * (1.0 - lowered as f64 / retries as f64);
             match self.step_with(gait, list, impulse) {
                 Err(e) if e.is_loading_failure() && impulse < 1.0 => {
                     self.restore(saved);
@@ -244,9 +250,13 @@ impl Walker {
                 Err(e) if lowered < retries && e.is_list_failure() => {
                     self.restore(saved);
                     lowered += 1;
-                    list = full_list * (1.0 - lowered as f64 / retries as f64);
                 }
-                result => return result,
+                result => {
+                    if !first {
+                        self.list_lowered = lowered;
+                    }
+                    return result;
+                }
             }
         }
     }
