@@ -484,7 +484,7 @@ fn a_list_that_does_not_walk_is_lowered_by_fifths_and_kept() {
         .unwrap();
     let full = walk.attributes().pelvic_list.to_degrees();
     assert!((full - 5.36).abs() < 0.01, "{full}");
-    let mut peaks = vec![0.0f64; 10];
+    let mut peaks = [0.0f64; 10];
     for c in walk.clinical_angles(1000.0).unwrap() {
         let p = &mut peaks[c.step.min(9)];
         *p = p.max(c.pelvis_list.abs().to_degrees());
