@@ -165,7 +165,9 @@ pub fn simulate(body: Body, attrs: Attributes, gaits: &[Gait]) -> Result<Walk, S
 
 impl Walker {
     /// A walker for `body` and `attrs` at the first step, with the engine's parameters
-    /// ([`EngineParameters::default`]) and the start-up guesses on.
+    /// ([`EngineParameters::default`]) and the start-up guesses on. The attributes are used as
+    /// given: [`simulate`] passes the walk's ([`walk_attributes`], the pelvis at the walk's
+    /// speed).
     pub fn new(body: Body, attrs: Attributes) -> Self {
         let determinants = Determinants::new(&attrs, body.l0);
         Walker {
