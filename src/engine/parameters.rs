@@ -47,8 +47,8 @@ pub struct EngineParameters {
     /// of 8000 per segment (`tests/work.rs`).
     pub work_panels: usize,
     /// How many times a step that less pelvic list can mend is tried again, each time with the
-    /// list lowered by this fraction of the attribute's, the last time with none (count; 5:
-    /// 80, 60, 40, 20 and 0 %). Halving instead (50 %, 25 %, …) gave up 2.7° of a 5.4° list
+    /// list lowered by 1 / `list_retries` of the attribute's, the last time with none (count;
+    /// 5: 80, 60, 40, 20 and 0 %; 0: never). Halving instead (50 %, 25 %, …) gave up 2.7° of a 5.4° list
     /// where 4.3° walks (1.8 m/s, H 1.8 m; docs/realism.md).
     pub list_retries: usize,
 }

@@ -59,8 +59,8 @@ pub struct Walker {
     index: usize,
     /// Right-hand-side evaluations of the current step, over all trials.
     pub(super) evaluations: u64,
-    /// Fifths of the attributes' pelvic list that the steps from the second on leave out: the
-    /// most any of them needed (see [`Walker::step`]).
+    /// Retries' worth of the attributes' pelvic list (each 1 / `list_retries` of it) that the
+    /// steps from the second on leave out: the most any of them needed (see [`Walker::step`]).
     list_lowered: usize,
     /// Start the first steps' solves from the fitted guesses (`engine::startup`).
     startup_guesses: bool,
@@ -239,7 +239,7 @@ impl Walker {
         let mut impulse = self.attrs.heel_strike_impulse;
         self.evaluations = 0;
         loop {
-            let list = self.attrs.pelvic_list * (1.0 - lowered as f64 / retries as f64);
+            let list = self.attrs.pelvic_list * (1.0 - lowered as f64 / retries.max(1) as f64);
             match self.step_with(gait, list, impulse) {
                 Err(e) if e.is_loading_failure() && impulse < 1.0 => {
                     self.restore(saved);
