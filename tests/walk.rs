@@ -501,4 +501,11 @@ fn a_list_that_does_not_walk_is_lowered_by_fifths_and_kept() {
     let first_lowered = rungs.iter().position(|&r| r < 5).expect("a lowered step");
     assert!(first_lowered >= 1, "{rungs:?}");
     assert!(rungs[first_lowered..].iter().all(|&r| r == 4), "{rungs:?}");
+    // the report says which list each step walked with
+    for (step, peak) in walk.report().steps.iter().zip(&peaks) {
+        assert!(
+            (step.pelvic_list.to_degrees() - peak).abs() < 1e-3,
+            "{peak}"
+        );
+    }
 }

@@ -125,6 +125,11 @@ pub struct StepReport {
     /// heel_strike_impulse, or more where the loading response would have let the hip sink
     /// under its heel-strike height (`Walker::step`).
     pub impact_fraction: f64,
+    /// The pelvic list amplitude the step walked with (rad; in degrees in the JSON, as
+    /// `pelvic_list_deg`): the walk's attribute at its speed, or less where a step could not
+    /// walk it (`Walker::step`).
+    #[serde(rename = "pelvic_list_deg", serialize_with = "degrees")]
+    pub pelvic_list: f64,
     /// Height of the swing foot's lowest point over the whole swing (m; ≥ −1e-6 by invariant,
     /// spec §5).
     pub min_foot_height: f64,
@@ -149,12 +154,13 @@ pub struct StepReport {
 
 impl StepReport {
     /// The report of step `index` before its measurements (`Step::measure`; NaN until then):
-    /// its target, duration, bounce reference, impact and work.
+    /// its target, duration, bounce reference, impact, pelvic list and work.
     pub(super) fn unmeasured(
         index: usize,
         gait: &Gait,
         c: &StepConstraints,
         (impact_speed_ratio, impact_fraction): (f64, f64),
+        pelvic_list: f64,
         work: Work,
     ) -> Self {
         StepReport {
@@ -177,6 +183,7 @@ impl StepReport {
             hip_min_margin: f64::NAN,
             impact_speed_ratio,
             impact_fraction,
+            pelvic_list,
             min_foot_height: f64::NAN,
             min_toe_clearance: f64::NAN,
             heel_contact_velocity: f64::NAN,

@@ -303,7 +303,8 @@ impl Walker {
         self.swing_meshes = [&s1, &s2, &s3].map(|s| Some(s.segment.clone()));
         let work = self.work(&sw, &setup, &stance, [&s1, &s2, &s3]);
         let impact = (impact.speed_ratio, plan.impulse);
-        let report = StepReport::unmeasured(plan.index, &gait, &plan.c, impact, work);
+        let report =
+            StepReport::unmeasured(plan.index, &gait, &plan.c, impact, plan.det.list, work);
         let step = Step {
             index: plan.index,
             t_start: plan.t0,
