@@ -1,12 +1,12 @@
 //! The pelvis's list and rotation by walking speed \[ours\]: the attributes `pelvic_list` and
-//! `pelvic_rotation` are the amplitudes up to a free walking speed, and a faster walk, at
-//! dimensionless speed v̂ = v / √(g l1), scales them by the ratio of measured means,
-//! mean(v̂) / mean(anchor), of Schwartz, Rozumalski & Trost 2008 (J Biomech 41:1639,
-//! supplementary workbook: children at five speed categories; `models/pelvis-speed.toml` names
-//! the cells). gait-norms.md: rotation "more at higher speed"; KLAW 1989 §2.1 keeps both fixed
-//! (`pelvis_speed_law` = 0). Below the anchor the amplitudes stay the attributes': the
-//! children's list falls there, but the adult ranges (±4–5°) hold from 1.2 m/s, under the
-//! anchor for tall bodies, and no adult data by speed were at hand (docs/realism.md).
+//! `pelvic_rotation` are the amplitudes at the style's preferred speed (`preferred_velocity`)
+//! and below it, and a faster walk, at dimensionless speed v̂ = v / √(g l1), scales them by the
+//! ratio of measured means, mean(v̂) / mean(v̂_pref), of Schwartz, Rozumalski & Trost 2008
+//! (J Biomech 41:1639, supplementary workbook: children at five speed categories;
+//! `models/pelvis-speed.toml` names the cells). gait-norms.md: rotation "more at higher speed";
+//! KLAW 1989 §2.1 keeps both fixed (`pelvis_speed_law` = 0). Below the preferred speed the
+//! amplitudes stay the attributes': the children's list falls there, but the adult ranges
+//! (±4–5°) hold from 1.2 m/s, and no adult data by speed were at hand (docs/realism.md).
 use std::path::Path;
 
 use serde::Deserialize;
@@ -27,8 +27,6 @@ pub struct PelvisSpeedLaw {
     pub list: Vec<f64>,
     /// Mean pelvic rotation range, peak to peak, at each speed (deg).
     pub rotation: Vec<f64>,
-    /// The speed v̂ at which the attributes' amplitudes hold.
-    pub anchor: f64,
 }
 
 impl Default for PelvisSpeedLaw {
@@ -41,7 +39,7 @@ impl Default for PelvisSpeedLaw {
 
 impl PelvisSpeedLaw {
     /// Parse and check a table in `models/pelvis-speed.toml`'s layout: speeds finite and
-    /// strictly increasing, one finite positive mean per speed in each column, a finite anchor.
+    /// strictly increasing, one finite positive mean per speed in each column.
     pub fn parse(text: &str, path: &Path) -> Result<Self, InputError> {
         const WHAT: &str = "pelvis speed table";
         let bad = |why: String| InputError::malformed(WHAT, path, why);
@@ -61,29 +59,28 @@ impl PelvisSpeedLaw {
                 )));
             }
         }
-        if !law.anchor.is_finite() {
-            return Err(bad("anchor must be a finite speed".into()));
-        }
         Ok(law)
     }
 
-    /// The factors (list, rotation) at dimensionless speed `v_hat`: mean(v̂) / mean(anchor)
-    /// above the anchor, 1 up to it; each mean linear in v̂ between the rows and held beyond the
-    /// first and last.
-    pub fn factors(&self, v_hat: f64) -> (f64, f64) {
-        let v_hat = v_hat.max(self.anchor);
+    /// The factors (list, rotation) at dimensionless speed `v_hat` for amplitudes given at
+    /// `anchor`: mean(v̂) / mean(anchor) above the anchor, 1 up to it; each mean linear in v̂
+    /// between the rows and held beyond the first and last.
+    pub fn factors(&self, v_hat: f64, anchor: f64) -> (f64, f64) {
+        let v_hat = v_hat.max(anchor);
         let ratio = |column: &[f64]| {
             piecewise_linear(&self.speed, column, v_hat)
-                / piecewise_linear(&self.speed, column, self.anchor)
+                / piecewise_linear(&self.speed, column, anchor)
         };
         (ratio(&self.list), ratio(&self.rotation))
     }
 
     /// `attrs` for a walk at velocity `v` (m/s) of a body with leg length `l1` (m): the list
-    /// and rotation scaled by 1 + g (f − 1), f [`Self::factors`] at v / √(g l1) and g the
-    /// attribute `pelvis_speed_law` (0 keeps the attributes' amplitudes, KLAW 1989).
+    /// and rotation scaled by 1 + g (f − 1), f [`Self::factors`] at v / √(g l1) for amplitudes
+    /// given at `preferred_velocity` / √(g l1), and g the attribute `pelvis_speed_law` (0 keeps
+    /// the attributes' amplitudes, KLAW 1989).
     pub fn scale(&self, attrs: &Attributes, v: f64, l1: f64) -> Attributes {
-        let (list, rotation) = self.factors(v / (GRAVITY * l1).sqrt());
+        let unit = (GRAVITY * l1).sqrt();
+        let (list, rotation) = self.factors(v / unit, attrs.preferred_velocity / unit);
         let g = attrs.pelvis_speed_law;
         Attributes {
             pelvic_list: attrs.pelvic_list * (1.0 + g * (list - 1.0)),
@@ -106,37 +103,43 @@ mod tests {
     #[test]
     fn factors_are_ratios_of_the_table_means() {
         let l = law();
-        let (a, b) = l.factors(l.anchor);
+        let (a, b) = l.factors(0.5, 0.5);
         assert!((a - 1.0).abs() < 1e-15 && (b - 1.0).abs() < 1e-15);
-        // the fourth row (the fast category) against the third (free, the anchor)
-        let (list, rot) = l.factors(0.560);
+        // the fourth row (the fast category) against the third (free)
+        let (list, rot) = l.factors(0.560, 0.429);
         assert!((list - 5.54 / 4.40).abs() < 1e-12, "{list}");
         assert!((rot - 15.22 / 11.98).abs() < 1e-12, "{rot}");
     }
 
     /// Midway between two rows the mean is the average of theirs; beyond the last row it
-    /// holds; up to the anchor both factors are 1 (the children's slower rows unused).
+    /// holds; up to the anchor both factors are 1.
     #[test]
     fn factors_are_linear_between_rows_and_held_beyond() {
         let l = law();
         let mid = 0.5 * (0.560 + 0.694);
-        let (list, _) = l.factors(mid);
+        let (list, _) = l.factors(mid, 0.429);
         assert!((list - 0.5 * (5.54 + 6.37) / 4.40).abs() < 1e-12, "{list}");
-        let (_, rot) = l.factors(0.5 * (0.429 + 0.560));
-        assert!((rot - 0.5 * (11.98 + 15.22) / 11.98).abs() < 1e-12, "{rot}");
-        assert_eq!(l.factors(0.9), l.factors(0.694));
-        assert_eq!(l.factors(0.01), (1.0, 1.0));
-        assert_eq!(l.factors(0.3), (1.0, 1.0));
+        let (_, rot) = l.factors(0.694, 0.5 * (0.429 + 0.560));
+        assert!(
+            (rot - 18.65 / (0.5 * (11.98 + 15.22))).abs() < 1e-12,
+            "{rot}"
+        );
+        assert_eq!(l.factors(0.9, 0.429), l.factors(0.694, 0.429));
+        assert_eq!(l.factors(0.01, 0.429), (1.0, 1.0));
+        assert_eq!(l.factors(0.3, 0.429), (1.0, 1.0));
     }
 
-    /// The gain blends from the attributes' own amplitudes (0) to the law's (1), and nothing
-    /// but the list and the rotation changes.
+    /// The gain blends from the attributes' own amplitudes (0) to the law's (1), the anchor is
+    /// the preferred velocity, and nothing but the list and the rotation changes.
     #[test]
-    fn the_gain_blends_the_scaling() {
+    fn the_gain_blends_the_scaling_from_the_preferred_speed() {
         let l = law();
         let attrs = Attributes::default();
         let l1 = 0.8676;
-        let v = 0.694 * (GRAVITY * l1).sqrt();
+        let unit = (GRAVITY * l1).sqrt();
+        let (v, v_pref) = (0.694 * unit, attrs.preferred_velocity);
+        let pref_list = piecewise_linear(&l.speed, &l.list, v_pref / unit);
+        let pref_rot = piecewise_linear(&l.speed, &l.rotation, v_pref / unit);
         let off = l.scale(
             &Attributes {
                 pelvis_speed_law: 0.0,
@@ -149,8 +152,10 @@ mod tests {
         assert_eq!(off.pelvic_rotation, attrs.pelvic_rotation);
         let on = l.scale(&attrs, v, l1);
         assert_eq!(attrs.pelvis_speed_law, 1.0);
-        assert!((on.pelvic_list / attrs.pelvic_list - 6.37 / 4.40).abs() < 1e-9);
-        assert!((on.pelvic_rotation / attrs.pelvic_rotation - 18.65 / 11.98).abs() < 1e-9);
+        assert!((on.pelvic_list / attrs.pelvic_list - 6.37 / pref_list).abs() < 1e-9);
+        assert!((on.pelvic_rotation / attrs.pelvic_rotation - 18.65 / pref_rot).abs() < 1e-9);
+        let at_pref = l.scale(&attrs, v_pref, l1);
+        assert_eq!(at_pref.pelvic_list, attrs.pelvic_list);
         let half = l.scale(
             &Attributes {
                 pelvis_speed_law: 0.5,
@@ -159,7 +164,7 @@ mod tests {
             v,
             l1,
         );
-        let expect = attrs.pelvic_list * 0.5 * (1.0 + 6.37 / 4.40);
+        let expect = attrs.pelvic_list * 0.5 * (1.0 + 6.37 / pref_list);
         assert!((half.pelvic_list - expect).abs() < 1e-12);
         let rest = Attributes {
             pelvic_list: attrs.pelvic_list,
@@ -173,17 +178,11 @@ mod tests {
     #[test]
     fn malformed_tables_are_refused() {
         let p = Path::new("t.toml");
-        let e = PelvisSpeedLaw::parse(
-            "speed = [0.2, 0.1]\nlist = [1, 2]\nrotation = [1, 2]\nanchor = 0.1",
-            p,
-        )
-        .unwrap_err();
+        let e = PelvisSpeedLaw::parse("speed = [0.2, 0.1]\nlist = [1, 2]\nrotation = [1, 2]", p)
+            .unwrap_err();
         assert!(e.to_string().contains("strictly increasing"), "{e}");
-        let e = PelvisSpeedLaw::parse(
-            "speed = [0.1, 0.2]\nlist = [1]\nrotation = [1, 2]\nanchor = 0.1",
-            p,
-        )
-        .unwrap_err();
+        let e = PelvisSpeedLaw::parse("speed = [0.1, 0.2]\nlist = [1]\nrotation = [1, 2]", p)
+            .unwrap_err();
         assert!(e.to_string().contains("list needs 2"), "{e}");
     }
 }

@@ -146,7 +146,9 @@ pub fn walk_attributes(body: &Body, attrs: &Attributes, gaits: &[Gait]) -> Attri
     if gaits.is_empty() {
         return attrs.clone();
     }
-    let v = gaits.iter().map(|g| g.velocity).sum::<f64>() / gaits.len() as f64;
+    // the first velocity plus the mean difference: exactly the velocity of a steady walk
+    let v0 = gaits[0].velocity;
+    let v = v0 + gaits.iter().map(|g| g.velocity - v0).sum::<f64>() / gaits.len() as f64;
     LAW.get_or_init(PelvisSpeedLaw::default)
         .scale(attrs, v, body.l1)
 }
