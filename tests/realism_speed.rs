@@ -33,7 +33,7 @@ const HEIGHTS: [f64; 2] = [1.75, 1.85];
 ///   children's mean there; their band's lower end is 0.67–0.68 of the mean.
 ///
 /// The pelvic list at 1.8 m/s and the knee's stance extension at 1.8 m/s for H 1.75 m pass since
-/// the same day: the law's larger list, and the walker's retry that lowers it by fifths where
+/// the same day: the law's larger list, and the walker's retry that lowers it by tenths where
 /// the straight stance leg falls short of the hip (halving it before: the list fell to 2.7°
 /// and the knee bent to 5–8.6° in mid stance). Remove an entry when it passes (the test says
 /// which).

@@ -49,8 +49,8 @@ pub struct EngineParameters {
     /// How many times a step that less pelvic list can mend is tried again, each time with the
     /// list lowered by 1 / `list_retries` of the attribute's, the last time with none (count;
     /// 10: 90, 80, …, 0 %; 0: never). Halving instead (50 %, 25 %, …) gave up 2.7° of a 5.4°
-    /// list where 4.3° walks, fifths 20 % of a 4.87° list where 4.38° walks (1.8 m/s, H 1.8 m;
-    /// docs/realism.md).
+    /// list where 4.3° walks; fifths gave up 20 % of a 4.87° list where 10 % less walks
+    /// (1.8 m/s, H 1.8 m; docs/realism.md).
     pub list_retries: usize,
 }
 

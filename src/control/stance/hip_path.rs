@@ -11,10 +11,10 @@ use super::{StanceRun, StanceSetup};
 /// locking or releasing, the leg force's clamp — since the acceleration or its derivative jumps
 /// there, and at the reference's heel-off, where its third derivative jumps. The swing
 /// integrations stop at the same [`HipPath::breaks`], so that no integrator step straddles a
-/// jump (a step across one leaves a global error far above the integrator's tolerance). The grid step is at most [`HIP_PATH_STEP`]. A kinematic offset of the swing-side
-/// hip joint from the dynamic hip (the determinants of gait, spec §7) adds its acceleration, by
-/// central second differences (step [`OFFSET_DIFFERENCE_STEP`]: truncation ≈ h² f⁗ / 12 ≈
-/// 1e-8 m/s²).
+/// jump (a step across one leaves a global error far above the integrator's tolerance). The
+/// grid step is at most [`HIP_PATH_STEP`]. A kinematic offset of the swing-side hip joint from
+/// the dynamic hip (the determinants of gait, spec §7) adds its acceleration, by central second
+/// differences (step [`OFFSET_DIFFERENCE_STEP`]: truncation ≈ h² f⁗ / 12 ≈ 1e-8 m/s²).
 #[derive(Clone, Debug)]
 pub struct HipPath {
     pieces: Vec<Piece>,

@@ -225,7 +225,7 @@ impl Walker {
     /// pelvic list in a way less list can mend ([`SimulationError::is_list_failure`]: the swing
     /// foot under the ground, no convergence of the swing, the stance hip under its heel-strike
     /// height, the straight leg short of the hip over the flat foot), the step is tried again
-    /// with the list lowered by a fifth of the attribute's at a time, down to none
+    /// with the list lowered by a tenth of the attribute's at a time, down to none
     /// ([`EngineParameters::list_retries`]), and the later steps start from the list it walked
     /// with, so that the steady steps' pelvis is the same on both sides; the first step, from
     /// the start-up posture, lowers its own list only \[ours\]. The list lowers the swing hip by
