@@ -27,19 +27,18 @@ const HEIGHTS: [f64; 2] = [1.75, 1.85];
 ///   (`hip_lead_step_from`): the ankle's stance dorsiflexion (16–19° against ≈ 6–15°; at
 ///   1.0–1.6 m/s it passes since the heel rises mid-way in terminal stance) and the push-off for
 ///   H 1.75 m (−12.3° against ≤ −15.7°).
-/// - The pelvic rotation from 1.4 m/s: the list and rotation grow with the children's means
-///   above the preferred speed since 2026-12-05 (`pelvis_speed_law`, models/pelvis-speed.toml),
-///   at the adult size the attribute gives at 1.4 m/s (±4°, gait-norms.md ±3–5°), 0.6 of the
-///   children's mean there; their band's lower end is 0.67–0.68 of the mean.
 ///
-/// The pelvic list at 1.8 m/s and the knee's stance extension at 1.8 m/s for H 1.75 m pass since
-/// the same day: the law's larger list, and the walker's retry that lowers it by tenths where
-/// the straight stance leg falls short of the hip (halving it before: the list fell to 2.7°
-/// and the knee bent to 5–8.6° in mid stance). Remove an entry when it passes (the test says
-/// which).
+/// Passing since 2026-12-05:
+/// - the pelvic rotation from 1.4 m/s: the attribute's ±4.6° (inside gait-norms.md's adult
+///   ±3–5° up to 1.5 m/s) grown by `pelvis_speed_law` meets the children's band, which ±4°
+///   (0.6 of their mean at 1.4 m/s) did not (docs/realism.md);
+/// - the pelvic list at 1.8 m/s and the knee's stance extension at 1.8 m/s for H 1.75 m: the
+///   law's larger list, and the walker's retry that lowers it by tenths where the straight
+///   stance leg falls short of the hip (halving it before: the list fell to 2.7° and the knee
+///   bent to 5–8.6° in mid stance).
+///
+/// Remove an entry when it passes (the test says which).
 const EXPECTED_MISSES: &[(f64, f64, &str, f64)] = &[
-    (1.4, 1.75, "pelvic rotation range, by speed", 8.00),
-    (1.6, 1.75, "pelvic rotation range, by speed", 9.03),
     (1.8, 1.75, "ankle peak plantarflexion, by speed", -12.31),
     (
         1.8,
@@ -47,16 +46,12 @@ const EXPECTED_MISSES: &[(f64, f64, &str, f64)] = &[
         "ankle peak dorsiflexion in stance, by speed",
         18.52,
     ),
-    (1.8, 1.75, "pelvic rotation range, by speed", 10.09),
-    (1.4, 1.85, "pelvic rotation range, by speed", 8.00),
-    (1.6, 1.85, "pelvic rotation range, by speed", 9.02),
     (
         1.8,
         1.85,
         "ankle peak dorsiflexion in stance, by speed",
         16.23,
     ),
-    (1.8, 1.85, "pelvic rotation range, by speed", 10.07),
 ];
 
 /// The bundled table's rows by speed.
@@ -134,9 +129,9 @@ fn speed_dependent_ranges_over_1_to_1_8_m_s() {
 }
 
 /// The figure's pelvis follows the speed law (`pelvis_speed_law`): at 1.8 m/s for H 1.85 m its
-/// averaged list peak and half its rotation range are the attributes' ±4° times the law's
-/// factors at the walk's measured speed, anchored at the preferred speed (1.4 m/s), to 0.02°;
-/// with the law off, and at 1.2 m/s (under the anchor), they are ±4°.
+/// averaged list peak and half its rotation range are the attributes' (±4°, ±4.6°) times the
+/// law's factors at the walk's measured speed, anchored at the preferred speed (1.4 m/s), to
+/// 0.02°; with the law off, and at 1.2 m/s (under the anchor), they are the attributes'.
 #[test]
 fn the_pelvis_grows_with_speed_above_the_preferred_one() {
     let body = body_of_height(1.85);
@@ -164,24 +159,29 @@ fn the_pelvis_grows_with_speed_above_the_preferred_one() {
                 - rot.iter().cloned().fold(f64::MAX, f64::min));
         (list, half_range, WalkSpeed::of_walk(&walk).dimensionless())
     };
+    let defaults = common::default_attributes();
+    let (list0, rot0) = (
+        defaults.pelvic_list.to_degrees(),
+        defaults.pelvic_rotation.to_degrees(),
+    );
     let (list, rot, v_hat) = amplitudes(1.8, 1.0);
-    let anchor = common::default_attributes().preferred_velocity / (9.81 * body.l1).sqrt();
+    let anchor = defaults.preferred_velocity / (9.81 * body.l1).sqrt();
     let (f_list, f_rot) = PelvisSpeedLaw::default().factors(v_hat, anchor);
     assert!(f_list > 1.15 && f_rot > 1.2, "{f_list} {f_rot}");
     assert!(
-        (list - 4.0 * f_list).abs() < 0.02,
+        (list - list0 * f_list).abs() < 0.02,
         "list {list} vs {}",
-        4.0 * f_list
+        list0 * f_list
     );
     assert!(
-        (rot - 4.0 * f_rot).abs() < 0.02,
+        (rot - rot0 * f_rot).abs() < 0.02,
         "rotation {rot} vs {}",
-        4.0 * f_rot
+        rot0 * f_rot
     );
     for (v, gain) in [(1.8, 0.0), (1.2, 1.0)] {
         let (list, rot, _) = amplitudes(v, gain);
         assert!(
-            (list - 4.0).abs() < 0.02 && (rot - 4.0).abs() < 0.02,
+            (list - list0).abs() < 0.02 && (rot - rot0).abs() < 0.02,
             "v {v}: {list} {rot}"
         );
     }

@@ -163,8 +163,8 @@ fn swing_net_work_is_the_energy_balance_in_the_hip_frame() {
                     sub.name(),
                     w.net
                 );
-                // the torques do work (the check is not 0 = 0)
-                assert!(w.net.abs() > 1e-3, "{}: {w:?}", sub.name());
+                // the torques do work (the check is not 0 = 0); their net may be near 0
+                assert!(w.positive > 1e-2, "{}: {w:?}", sub.name());
                 checked += 1;
             }
             assert_eq!(checked, 3);
