@@ -127,15 +127,21 @@ fn evaluate_prints_and_writes_the_criteria() {
     assert!(!json["norms"].as_array().unwrap().is_empty());
     // the speed-dependent norms are read at the file's own speed: the pelvis advances at the
     // walk's 1.4 m/s (to the start-up's transient), v / √(g l1) = 1.4 / √(9.81 · 0.868) = 0.480
-    let speeds: Vec<f64> = json["norms"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .filter_map(|n| n["speed"].as_f64())
-        .collect();
-    assert!(!speeds.is_empty());
+    // (Orendurff's excursion row in m/s: 1.4)
+    let speeds = |scale: &str| -> Vec<f64> {
+        json["norms"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|n| n["speed_scale"] == scale)
+            .filter_map(|n| n["speed"].as_f64())
+            .collect()
+    };
+    let (hof, ms) = (speeds("v/sqrt(g l1)"), speeds("m/s"));
+    assert!(!hof.is_empty() && ms.len() == 1, "{hof:?} {ms:?}");
     let want = 1.4 / (9.81 * body.l1).sqrt();
-    assert!(speeds.iter().all(|v| (v - want).abs() < 0.01), "{speeds:?}");
+    assert!(hof.iter().all(|v| (v - want).abs() < 0.01), "{hof:?}");
+    assert!((ms[0] - 1.4).abs() < 0.01, "{ms:?}");
     // the same walk in two formats compares to zero
     let out = klaw(d, &["evaluate", "w.mot", "--against", "w.csv"]);
     let stdout = String::from_utf8_lossy(&out.stdout);

@@ -483,8 +483,9 @@ fn default_walk_figure_and_errors() {
     assert!(matches!(e, CycleError::NoSteadyCycle { .. }), "{e}");
 }
 
-/// `klaw plot`: writes the figure and prints one line per check (44 for the bundled table: 9 +
-/// 9 by speed on both legs, 5 + 3 by speed on the pelvis); a bad extension exits 2 before simulating.
+/// `klaw plot`: writes the figure and prints one line per check (45 for the bundled table at
+/// 1.4 m/s: 9 + 9 by speed on both legs, 5 + 4 by speed on the pelvis); a bad extension exits 2
+/// before simulating.
 #[test]
 fn cli_writes_the_figure_and_prints_the_checks() {
     let dir = tempfile::tempdir().unwrap();
@@ -502,7 +503,7 @@ fn cli_writes_the_figure_and_prints_the_checks() {
         .lines()
         .filter(|l| l.ends_with(": inside") || l.ends_with(": OUTSIDE"))
         .count();
-    assert_eq!(checks, 44, "{stdout}");
+    assert_eq!(checks, 45, "{stdout}");
     assert_eq!(
         image::open(&out).unwrap().to_rgb8().dimensions(),
         CYCLE_FIGURE_SIZE

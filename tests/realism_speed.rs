@@ -87,8 +87,10 @@ fn speed_dependent_ranges_over_1_to_1_8_m_s() {
     for h in HEIGHTS {
         for v in SPEEDS {
             let (speed, checks) = checks(v, h, &norms);
-            // every speed row holds at every walk here (v̂ 0.33–0.63 inside the span 0.09–0.84)
-            assert_eq!(checks.len(), 9 + 3, "v {v} H {h}");
+            // Schwartz's rows hold at every walk here (v̂ 0.33–0.63 inside the span 0.09–0.84);
+            // Orendurff's excursion up to its fastest speed, 1.6 m/s
+            let orendurff = usize::from(v <= 1.6);
+            assert_eq!(checks.len(), 9 + 3 + orendurff, "v {v} H {h}");
             println!("v {v} H {h}: v/√(g l1) = {:.3}", speed.dimensionless());
             for c in &checks {
                 let known = listed(v, h, &c.name);

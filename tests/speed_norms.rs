@@ -1,12 +1,13 @@
 //! The speed-dependent norms (`[norm.by_speed]` of models/gait-norms.toml, issue 16): the
 //! interpolation in the dimensionless speed worked by hand on tables of a few dyadic numbers,
 //! the walk's dimensionless speed, the check taking each range at the walk's speed, the typed
-//! errors of malformed rows, and the bundled rows against Schwartz et al. 2008's workbook
-//! (values typed from its ANOVA sheet, docs/realism.md "Speed dependence").
+//! errors of malformed rows, tables in m/s, and the bundled rows against Schwartz et al. 2008's
+//! workbook (values typed from its ANOVA sheet, docs/realism.md "Speed dependence") and
+//! Orendurff et al. 2004's abstract.
 use std::path::Path;
 
 use klaw::analysis::cycle::{Curve, GaitCycle, Panel};
-use klaw::analysis::norms::{BySpeed, NormTable, Range, WalkSpeed, check};
+use klaw::analysis::norms::{BySpeed, NormTable, Range, SpeedScale, WalkSpeed, check};
 use klaw::figure::skeleton::Side;
 use klaw::model::InputError;
 
@@ -163,7 +164,10 @@ fn the_check_takes_the_range_at_the_walks_speed() {
     assert_eq!((slow[0].low, slow[0].high), (48.0, 52.0));
     assert!((slow[0].value - 60.0).abs() < 1e-12 && slow[0].at_pct == Some(72.0));
     assert!(!slow[0].inside());
-    assert!((slow[0].speed.unwrap() - 0.25).abs() < 1e-12);
+    assert!(
+        (slow[0].speed.unwrap().0 - 0.25).abs() < 1e-12
+            && slow[0].speed.unwrap().1 == SpeedScale::Dimensionless
+    );
     assert!(slow[0].describe().contains("48.0…52.0° at v/√(g l1) 0.25"));
     assert_eq!((slow[1].name.as_str(), slow[1].speed), ("fixed", None));
     let mid = check(&cycle, &t, speed(0.5));
@@ -259,7 +263,7 @@ fn malformed_speed_rows_are_typed_errors() {
 /// The bundled rows "…, by speed" hold Schwartz et al. 2008's numbers (their workbook's ANOVA
 /// sheet, typed here to 3 decimals; the table keeps 2): the five categories' dimensionless
 /// speeds, the span of the slowest and fastest subject, mean and SD of three quantities; every
-/// row 1 SD wide over the same speeds.
+/// row 1 SD wide over the same speeds. The last row, in m/s, is Orendurff et al. 2004's.
 #[test]
 fn the_bundled_speed_rows_are_schwartz_2008() {
     let t = NormTable::builtin();
@@ -307,9 +311,50 @@ fn the_bundled_speed_rows_are_schwartz_2008() {
         close(&b.span, &[0.090, 0.844], name);
     }
     let speed_rows: Vec<&BySpeed> = t.norms.iter().filter_map(|n| n.range.by_speed()).collect();
-    assert_eq!(speed_rows.len(), 12);
-    for b in speed_rows {
+    assert_eq!(speed_rows.len(), 13);
+    for b in speed_rows
+        .iter()
+        .filter(|b| b.scale == SpeedScale::Dimensionless)
+    {
         assert_eq!(b.sd_multiple, 1.0);
         close(&b.speed, &speeds, &b.cite);
     }
+    // the last, in m/s: Orendurff et al. 2004's abstract, 2.7 ± 0.5 cm at 0.7 m/s and
+    // 4.8 ± 0.9 cm at 1.6 m/s
+    let excursion = row("vertical excursion, by speed");
+    assert_eq!(excursion.scale, SpeedScale::MetresPerSecond);
+    close(&excursion.speed, &[0.7, 1.6], "excursion");
+    close(&excursion.span, &[0.7, 1.6], "excursion");
+    close(&excursion.mean, &[2.7, 4.8], "excursion");
+    close(&excursion.sd, &[0.5, 0.9], "excursion");
+}
+
+/// A table in m/s (`scale = "m/s"`) reads the walk's velocity, whatever its leg: midway between
+/// 0.5 and 1.5 m/s the mean of the ends ± the mean of their SDs, for legs of 0.5 and 1 m alike
+/// (a v̂ table would read two speeds); its span's ends hold to a few ulps of the velocity
+/// (a walk's speed is a sum over its steps), not to 1e-6; an unknown scale is malformed.
+#[test]
+fn a_table_in_metres_per_second_reads_the_velocity() {
+    let text = table(
+        "max",
+        &by_speed("[0.5, 1.5]", "[0.5, 1.5]", "[10.0, 30.0]", "[2.0, 4.0]"),
+    )
+    .replace("cite = \"test\"\n", "cite = \"test\"\nscale = \"m/s\"\n");
+    let t = parse(&text).unwrap();
+    let range = &t.norms[0].range;
+    for leg in [0.5, 1.0] {
+        let walk = WalkSpeed {
+            velocity: 1.0,
+            leg_length: leg,
+        };
+        assert_eq!(range.at(walk), Some((17.0, 23.0)), "leg {leg}");
+    }
+    let b = range.by_speed().unwrap();
+    assert_eq!(b.scale, SpeedScale::MetresPerSecond);
+    assert_eq!(b.range(1.5 + 4.0 * f64::EPSILON), Some((26.0, 34.0)));
+    assert_eq!(b.range(1.5 + 1e-6), None);
+    assert_eq!(b.range(0.5 - 1e-6), None);
+    assert_eq!(SpeedScale::MetresPerSecond.describe(1.2), "1.20 m/s");
+    let bad = text.replace("\"m/s\"", "\"km/h\"");
+    assert!(matches!(parse(&bad), Err(InputError::Malformed { .. })));
 }

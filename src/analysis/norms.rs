@@ -97,18 +97,52 @@ pub struct Norm {
     pub source: String,
 }
 
+/// The speed a [`BySpeed`] table lists its rows by: the source's own.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+pub enum SpeedScale {
+    /// v̂ = v / √(g l1), Hof's (1996) scaling (Schwartz et al. 2008 bin their speeds by it).
+    #[default]
+    #[serde(rename = "v/sqrt(g l1)")]
+    Dimensionless,
+    /// The velocity in m/s, for sources that give no leg lengths to scale by.
+    #[serde(rename = "m/s")]
+    MetresPerSecond,
+}
+
+impl SpeedScale {
+    /// A walk's speed on this scale.
+    pub fn of(self, speed: WalkSpeed) -> f64 {
+        match self {
+            SpeedScale::Dimensionless => speed.dimensionless(),
+            SpeedScale::MetresPerSecond => speed.velocity,
+        }
+    }
+
+    /// `v/√(g l1) 0.48` or `1.20 m/s`.
+    pub fn describe(self, value: f64) -> String {
+        match self {
+            SpeedScale::Dimensionless => format!("v/√(g l1) {value:.2}"),
+            SpeedScale::MetresPerSecond => format!("{value:.2} m/s"),
+        }
+    }
+}
+
 /// A range given at listed speeds (`[norm.by_speed]`): the mean and SD of the quantity at
-/// dimensionless speeds v̂ = v / √(g l1), each linear in v̂ between the listed speeds and held
-/// at the end values out to `span`, the speeds the source's subjects walked at; the range is
-/// mean ± `sd_multiple` SD. Outside `span` the source says nothing, and neither does the norm.
+/// the listed speeds (dimensionless v̂ = v / √(g l1), or m/s: `scale`), each linear in the
+/// speed between them and held at the end values out to `span`, the speeds the source's
+/// subjects walked at; the range is mean ± `sd_multiple` SD. Outside `span` the source says
+/// nothing, and neither does the norm.
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BySpeed {
     /// The source in a few words, for a figure's legend, e.g. `Schwartz et al. 2008 (children)`.
     pub cite: String,
-    /// The listed dimensionless speeds v̂, increasing.
+    /// The scale of `speed` and `span`: v̂ unless the row says `scale = "m/s"`.
+    #[serde(default)]
+    pub scale: SpeedScale,
+    /// The listed speeds, increasing.
     pub speed: Vec<f64>,
-    /// [slowest, fastest] v̂ the norm holds for.
+    /// [slowest, fastest] speed the norm holds for.
     pub span: [f64; 2],
     /// The quantity's mean at each listed speed, in the norm's unit.
     pub mean: Vec<f64>,
@@ -156,10 +190,12 @@ impl BySpeed {
         None
     }
 
-    /// [low, high] at dimensionless speed `v`, or `None` outside `span` (or for a speed that
-    /// is not a number).
+    /// [low, high] at speed `v` on the table's `scale`, or `None` outside `span` (or for a
+    /// speed that is not a number). The span's ends hold to 1e-9 of their size: a walk asked
+    /// at 1.6 m/s measures its speed as a sum over steps, a few ulps away.
     pub fn range(&self, v: f64) -> Option<(f64, f64)> {
-        if !(self.span[0]..=self.span[1]).contains(&v) {
+        let slack = 1e-9 * self.span[1].abs().max(1.0);
+        if !(self.span[0] - slack..=self.span[1] + slack).contains(&v) {
             return None;
         }
         let mean = piecewise_linear(&self.speed, &self.mean, v);
@@ -195,7 +231,7 @@ impl Range {
     pub fn at(&self, speed: WalkSpeed) -> Option<(f64, f64)> {
         match self {
             Range::Fixed { low, high } => Some((*low, *high)),
-            Range::BySpeed(b) => b.range(speed.dimensionless()),
+            Range::BySpeed(b) => b.range(b.scale.of(speed)),
         }
     }
 }
@@ -354,9 +390,9 @@ pub struct NormCheck {
     pub low: f64,
     /// Upper end of the norm's range, in `unit`.
     pub high: f64,
-    /// The dimensionless speed v / √(g l1) a speed-dependent range was evaluated at (`None`
-    /// for a fixed range).
-    pub speed: Option<f64>,
+    /// The speed a speed-dependent range was evaluated at, on its table's scale (`None` for a
+    /// fixed range).
+    pub speed: Option<(f64, SpeedScale)>,
     /// `deg` or `cm`.
     pub unit: String,
 }
@@ -371,7 +407,7 @@ impl NormCheck {
 
     /// One line for people: `knee peak swing flexion, right: 61.2° at 72 % (norm 55…65°): inside`;
     /// a speed-dependent norm's range to 0.1 with the speed it holds at, `(norm 55.9…65.7° at
-    /// v/√(g l1) 0.48)`.
+    /// v/√(g l1) 0.48)` or `(norm 3.2…4.6 cm at 1.20 m/s)`.
     pub fn describe(&self) -> String {
         let unit = if self.unit == "deg" { "°" } else { " cm" };
         let side = match self.side {
@@ -382,7 +418,12 @@ impl NormCheck {
             .at_pct
             .map_or(String::new(), |p| format!(" at {p:.0} %"));
         let norm = match self.speed {
-            Some(v) => format!("{:.1}…{:.1}{unit} at v/√(g l1) {v:.2}", self.low, self.high),
+            Some((v, scale)) => format!(
+                "{:.1}…{:.1}{unit} at {}",
+                self.low,
+                self.high,
+                scale.describe(v)
+            ),
             None => format!("{}…{}{unit}", self.low, self.high),
         };
         format!(
@@ -410,10 +451,7 @@ pub fn check(cycle: &GaitCycle, norms: &NormTable, speed: WalkSpeed) -> Vec<Norm
         let Some((low, high)) = n.range.at(speed) else {
             continue;
         };
-        let evaluated_at = match n.range {
-            Range::Fixed { .. } => None,
-            Range::BySpeed(_) => Some(speed.dimensionless()),
-        };
+        let evaluated_at = n.range.by_speed().map(|b| (b.scale.of(speed), b.scale));
         for c in cycle.panel_curves(n.panel) {
             if c.values.len() < 2 {
                 continue;
