@@ -180,6 +180,29 @@ fn evaluate_prints_and_writes_the_criteria() {
     );
 }
 
+/// A reader that stops early (`klaw evaluate … | head -1`) is not an error of klaw's: with its
+/// standard output closed before it prints, the command still writes the JSON and exits 0,
+/// not 101 with a panic ("failed printing to stdout", before the lines were written with
+/// `writeln!`).
+#[test]
+fn a_closed_standard_output_is_not_a_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    walk_files(dir.path());
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_klaw"))
+        .current_dir(dir.path())
+        .args(["evaluate", "w.csv", "--report", "w.json", "--json", "c.json"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(dir.path().join("c.json").exists());
+}
+
 /// The columns `keep` of a CSV text.
 fn select(text: &str, keep: &[&str]) -> String {
     let header: Vec<&str> = text.lines().next().unwrap().split(',').collect();

@@ -129,7 +129,7 @@ pub(crate) fn run(args: &EvaluateArgs) -> Result<()> {
     print(&e);
     if let Some(path) = &args.json {
         klaw::export::write_report_json(path, &to_json(&e))?;
-        println!("json: {}", path.display());
+        let _ = writeln!(std::io::stdout(), "json: {}", path.display());
     }
     Ok(())
 }

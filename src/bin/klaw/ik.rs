@@ -1,5 +1,6 @@
 //! `klaw ik`: lower-limb angles from a poulaine by inverse kinematics with biomechanical
 //! secondary tasks (Pronost et al.; docs/ik.md), the whole figure written like `klaw walk`'s.
+use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
@@ -305,7 +306,8 @@ pub(crate) fn run(a: &IkArgs) -> Result<()> {
     if let Some(r) = &a.report {
         export::write_report_json(r, &report)?;
     }
-    println!(
+    let _ = writeln!(
+        std::io::stdout(),
         "ik: {} frames per cycle ({:.3} s, v {:.3} m/s), {cycles} cycles, ankles within {:.1e} m, \
          angles {} their limits, f3 towards {}: {}",
         report.frames_per_cycle,

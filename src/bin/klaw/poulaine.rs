@@ -150,7 +150,8 @@ fn extract(a: &ExtractArgs) -> Result<()> {
         .run()?;
     let (t, _) = Trajectory::from_walk(&walk, a.rate)?;
     t.write_csv(&a.out)?;
-    println!(
+    let _ = writeln!(
+        std::io::stdout(),
         "poulaine: {} samples over a cycle of {:.3} s (v {:.3} m/s): {}",
         t.time.len(),
         t.period,
@@ -208,7 +209,8 @@ fn fit_file(a: &FitArgs) -> Result<()> {
             },
         )?,
     }
-    println!(
+    let _ = writeln!(
+        std::io::stdout(),
         "model of {}: fit error {:.4} m RMS, {:.4} m at worst (as shapes {:.4}, {:.4}): {}",
         a.poulaine.display(),
         error.rms,
