@@ -190,7 +190,9 @@ fn a_closed_standard_output_is_not_a_panic() {
     walk_files(dir.path());
     let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_klaw"))
         .current_dir(dir.path())
-        .args(["evaluate", "w.csv", "--report", "w.json", "--json", "c.json"])
+        .args([
+            "evaluate", "w.csv", "--report", "w.json", "--json", "c.json",
+        ])
         .stdout(std::process::Stdio::piped())
         .stderr(std::process::Stdio::piped())
         .spawn()
