@@ -206,7 +206,9 @@ pub fn landmarks(step: &Step, t: f64, attrs: &Attributes) -> Result<Landmarks, F
         pelvis_list: p.list,
         pelvis_rotation: p.rotation,
         lumbar_extension: tilt - theta2,
-        lumbar_bending: -p.list,
+        // the spine undoes the list (spec §7 "spine compensates the pelvis"; its "−list" bent
+        // the trunk the other way, 2 × the list off the vertical: docs/realism.md)
+        lumbar_bending: p.list,
         lumbar_rotation: -1.8 * p.rotation,
         neck_rotation: 0.0,
         right_arm: arm(&left),

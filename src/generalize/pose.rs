@@ -181,7 +181,7 @@ impl StepPose {
             tilt: self.attrs.pelvis_tilt + w.trunk.at(t),
             list: pm.list,
             lumbar_extension: self.attrs.pelvis_tilt - self.attrs.trunk_lean,
-            lumbar_bending: -pm.list,
+            lumbar_bending: pm.list,
             lumbar_rotation: -1.8 * pm.rotation,
             neck_rotation: 0.0,
             arms: Default::default(),

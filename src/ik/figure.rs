@@ -18,7 +18,7 @@
 //! - A swinging foot stays square to its shank (the ankle at 0° of dorsiflexion), clamped to
 //!   keep the heel and the toe above the floor (`Foot::clear_pitch`).
 //! - The trunk keeps its lean (attribute `trunk_lean`): lumbar extension = tilt − lean, bending
-//!   = −list, rotation = −1.8 × pelvic rotation; each arm swings with the opposite thigh, half
+//!   = list (the spine undoes the pelvis's list), rotation = −1.8 × pelvic rotation; each arm swings with the opposite thigh, half
 //!   the attribute `arm_swing` at that thigh's largest forward angle.
 use glam::DVec3;
 
@@ -240,7 +240,7 @@ fn pose_frame(
         pelvis_list: theta[1],
         pelvis_rotation: theta[2],
         lumbar_extension: theta[0] - attrs.trunk_lean,
-        lumbar_bending: -theta[1],
+        lumbar_bending: theta[1],
         lumbar_rotation: -1.8 * theta[2],
         neck_rotation: 0.0,
         right: leg(0),
