@@ -199,9 +199,11 @@ fn a_sliding_heel_is_refused() {
 }
 
 /// At ρ = 1 on each body, the right knee's flexion over a stride follows the clip's own (the
-/// angle between the thigh and the shank of the clip's markers, computed here) to 5° RMS
-/// (measured 4.0°, 4.2° and 4.2°: the bodies' thigh : shank ratios and feet are not the
-/// clip's), and closer than at 1.2 × the clip's step (7.9–10.1°).
+/// angle between the thigh and the shank of the clip's markers, computed here) to 5.5° RMS
+/// (measured 4.8°, 5.1° and 5.2°: the bodies' thigh : shank ratios and feet are not the
+/// clip's, and klaw's list, hung on the clip's pelvis, has people's timing since 2026-12-05,
+/// which holds the stance hip joint 3 mm lower at mid-stance than the paper's half-sine did:
+/// 4.0°, 4.2° and 4.2° with it), and closer than at 1.2 × the clip's step (8.5–10.6°).
 #[test]
 fn at_its_own_step_the_knee_keeps_the_clips_curve() {
     let w = prototype();
@@ -240,7 +242,7 @@ fn at_its_own_step_the_knee_keeps_the_clips_curve() {
             "H {} ({} leg): knee RMS {one:.2}° at ρ 1, {longer:.2}° at 1.2",
             body.height, body.l1
         );
-        assert!(one < 5.0, "{one}");
+        assert!(one < 5.5, "{one}");
         assert!(longer > one, "{longer} vs {one}");
     }
 }

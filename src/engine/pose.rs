@@ -50,6 +50,8 @@ pub(crate) struct Instant {
     pub pelvis: PelvisMotion,
     /// [`Determinants::hip_offset`] of the right and the left hip joint.
     pub hip_offsets: [[f64; 3]; 2],
+    /// [`Determinants::centre_shift`]: the pelvis centre relative to the dynamic hip.
+    pub shift: [f64; 3],
     /// [`Determinants::ankle_z`] of the right and the left ankle.
     pub ankle_z: [f64; 2],
 }
@@ -71,10 +73,21 @@ impl Instant {
     /// and [`Determinants::lateral_offset`] from that leg's ankle.
     pub fn hip_joint(&self, leg: Side) -> ([f64; 2], f64) {
         let o = self.hip_offset(leg);
+        let d = self.shift;
         (
-            [self.centre[0] + o[0], self.centre[1] + o[1]],
-            self.pelvis.lateral + o[2] - self.ankle_z[Self::index(leg)],
+            [self.centre[0] + d[0] + o[0], self.centre[1] + d[1] + o[1]],
+            self.pelvis.lateral + d[2] + o[2] - self.ankle_z[Self::index(leg)],
         )
+    }
+
+    /// The pelvis centre (x relative to the stance ankle, world y, world z).
+    pub fn pelvis_centre(&self) -> [f64; 3] {
+        let d = self.shift;
+        [
+            self.centre[0] + d[0],
+            self.centre[1] + d[1],
+            self.pelvis.lateral + d[2],
+        ]
     }
 }
 
@@ -105,6 +118,7 @@ impl Step {
             .hip(&Vector3::new(state[0], state[1], state[2]));
         let pelvis = self.pelvis(tau);
         let right = self.determinants.hip_offset(Side::Right, &pelvis);
+        let shift = self.determinants.centre_shift(self.side, &pelvis);
         Instant {
             tau,
             state,
@@ -113,6 +127,7 @@ impl Step {
             pelvis,
             // hip_offset(Left) is hip_offset(Right) with the half width negated: exactly −right
             hip_offsets: [right, right.map(|x| -x)],
+            shift,
             ankle_z: [
                 self.determinants.ankle_z(Side::Right),
                 self.determinants.ankle_z(Side::Left),
@@ -275,7 +290,7 @@ fn shift_pose(p: &mut LegPose, dx: f64) {
     }
 }
 
-/// The swing-side hip joint relative to the pelvis centre, in the swing leg's plane (spec §7):
+/// The swing-side hip joint relative to the dynamic hip, in the swing leg's plane (spec §7):
 /// the determinants' offset, raised by the fold of the leg's lateral offset (with the striking
 /// leg's in-plane drop, exact at heel strike).
 pub(super) fn swing_hip_offset(
@@ -285,7 +300,7 @@ pub(super) fn swing_hip_offset(
     p: &PelvisMotion,
 ) -> [f64; 2] {
     let leg = stance.other();
-    let o = det.hip_offset(leg, p);
-    let dz = det.lateral_offset(leg, p);
+    let o = det.engine_offset(leg, stance, p);
+    let dz = det.engine_lateral_offset(leg, stance, p);
     [o[0], o[1] + fold_height(c.fold_length, dz)]
 }

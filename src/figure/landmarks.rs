@@ -63,7 +63,9 @@ pub struct Landmarks {
     pub time: f64,
     /// Index of the step (heel strike to heel strike) the instant belongs to.
     pub step: usize,
-    /// Pelvis centre C, the dynamic model's hip (spec §7), midpoint of the hip joints.
+    /// Pelvis centre C, midpoint of the hip joints: the dynamic model's hip (spec §7) moved so
+    /// that the stance hip joint keeps the paper's half-sine list while the pelvis lists as
+    /// people do (docs/realism.md, "The list's shape").
     pub pelvis: [f64; 3],
     /// Pelvic tilt, + anterior (rad).
     pub pelvis_tilt: f64,
@@ -161,15 +163,16 @@ pub fn landmarks(step: &Step, t: f64, attrs: &Attributes) -> Result<Landmarks, F
     let tau = (t - step.t_start).clamp(0.0, c.timing.t_step);
     let x0 = step.x_ankle;
     let now = step.at(tau);
-    let (state, centre, p) = (now.state, now.centre, now.pelvis);
+    let (state, p) = (now.state, now.pelvis);
     let (l3, l4) = (step.stance_leg.l3, step.stance_leg.l4);
     let pose = |source| FigureError::Pose {
         step: step.index,
         source,
     };
+    let c3 = now.pelvis_centre();
     let hip3 = |side: Side| {
         let o = now.hip_offset(side);
-        [x0 + centre[0] + o[0], centre[1] + o[1], p.lateral + o[2]]
+        [x0 + c3[0] + o[0], c3[1] + o[1], c3[2] + o[2]]
     };
     let stance = step.stance_pose_at(&now).map_err(pose)?;
     let (_, dz_stance) = now.hip_joint(step.side);
@@ -201,7 +204,7 @@ pub fn landmarks(step: &Step, t: f64, attrs: &Attributes) -> Result<Landmarks, F
     Ok(Landmarks {
         time: t,
         step: step.index,
-        pelvis: [x0 + centre[0], centre[1], p.lateral],
+        pelvis: [x0 + c3[0], c3[1], c3[2]],
         pelvis_tilt: tilt,
         pelvis_list: p.list,
         pelvis_rotation: p.rotation,

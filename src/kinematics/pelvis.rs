@@ -12,6 +12,30 @@ use std::f64::consts::PI;
 
 use crate::model::attributes::Attributes;
 
+/// The list's shape over a step, peak 1 \[ours\]: g(s) = a1 sin πs + a3 sin 3πs + b (sin 2πs −
+/// ½ sin 4πs), s = τ / t_step, fitted by least squares to Schwartz et al. 2008's Free mean
+/// obliquity curve (the stance side up, both steps averaged, its heel-strike offset removed) and
+/// scaled to a peak of 1 (at s = 0.341). Every term is 0 at both heel strikes and the rates meet
+/// g'(1) = −g'(0), so the list stays C¹ where the stance side changes; the paper's half-sine
+/// peaks at mid-step, people's in the loading response (16 % of the cycle) and are near level
+/// by mid-stance.
+const LIST_SHAPE: [f64; 3] = [0.5395805, 0.05195615, 0.40902743];
+
+/// The list's shape g(s) and its first two derivatives in s ([`LIST_SHAPE`]).
+pub(crate) fn list_shape(s: f64) -> [f64; 3] {
+    let [a1, a3, b] = LIST_SHAPE;
+    let x = PI * s;
+    let (s1, c1) = crate::numerics::trig::sin_cos(x);
+    let (s2, c2) = crate::numerics::trig::sin_cos(2.0 * x);
+    let (s3, c3) = crate::numerics::trig::sin_cos(3.0 * x);
+    let (s4, c4) = crate::numerics::trig::sin_cos(4.0 * x);
+    [
+        a1 * s1 + a3 * s3 + b * (s2 - 0.5 * s4),
+        PI * (a1 * c1 + 3.0 * a3 * c3 + b * (2.0 * c2 - 2.0 * c4)),
+        -PI * PI * (a1 * s1 + 9.0 * a3 * s3 + b * (4.0 * s2 - 8.0 * s4)),
+    ]
+}
+
 /// A side of the body: +1 right, −1 left (the sign of its world z).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 pub enum Side {
@@ -69,6 +93,9 @@ impl Side {
 pub struct PelvisMotion {
     pub(crate) rotation: f64,
     pub(crate) list: f64,
+    /// The paper's half-sine list L sin πs (stance side up), on which the stance references
+    /// and the engine's hip are built ([`Determinants::centre_shift`]).
+    pub(crate) klaw_list: f64,
     pub(crate) lateral: f64,
     pub(crate) rotation_rate: f64,
     pub(crate) list_rate: f64,
@@ -109,12 +136,14 @@ impl Determinants {
         let s = tau / t_step;
         let w = PI / t_step;
         let (sn, cs) = crate::numerics::trig::sin_cos(PI * s);
+        let [g, g1, _] = list_shape(s);
         PelvisMotion {
             rotation: sign * self.rotation * cs,
-            list: sign * self.list * sn,
+            list: sign * self.list * g,
+            klaw_list: sign * self.list * sn,
             lateral: sign * self.lateral * sn,
             rotation_rate: -sign * self.rotation * w * sn,
-            list_rate: sign * self.list * w * cs,
+            list_rate: sign * self.list * g1 / t_step,
             lateral_rate: sign * self.lateral * w * cs,
         }
     }
@@ -123,10 +152,35 @@ impl Determinants {
     /// and list (tilt turns about the hip axis and moves neither hip):
     /// R_y(rot) R_x(−list) (0, 0, ±l0/2).
     pub(crate) fn hip_offset(&self, side: Side, p: &PelvisMotion) -> [f64; 3] {
+        self.hip_offset_listed(side, p.list, p.rotation)
+    }
+
+    /// [`Self::hip_offset`] for the list `list`.
+    fn hip_offset_listed(&self, side: Side, list: f64, rotation: f64) -> [f64; 3] {
         let h = side.sign() * self.half_width;
-        let (sl, cl) = crate::numerics::trig::sin_cos(p.list);
-        let (sr, cr) = crate::numerics::trig::sin_cos(p.rotation);
+        let (sl, cl) = crate::numerics::trig::sin_cos(list);
+        let (sr, cr) = crate::numerics::trig::sin_cos(rotation);
         [h * cl * sr, h * sl, h * cl * cr]
+    }
+
+    /// Where the pelvis centre is relative to the engine's dynamic hip (m, world axes) \[ours\]:
+    /// the engine's stance model, its bounce and its virtual leg (spec §4, §7) hang the stance
+    /// hip joint from its hip by the paper's half-sine list, and the figure's pelvis lists as
+    /// people's do ([`list_shape`]); the centre moves by the difference, so that the stance hip
+    /// joint stays where the engine put it: (stance hip joint with the half-sine list) − (with
+    /// people's). 0 at heel strike, where both lists are 0.
+    pub(crate) fn centre_shift(&self, stance: Side, p: &PelvisMotion) -> [f64; 3] {
+        let klaw = self.hip_offset_listed(stance, p.klaw_list, p.rotation);
+        let own = self.hip_offset(stance, p);
+        [klaw[0] - own[0], klaw[1] - own[1], klaw[2] - own[2]]
+    }
+
+    /// The hip joint of `leg` relative to the engine's dynamic hip of a step standing on
+    /// `stance`: [`Self::centre_shift`] + [`Self::hip_offset`].
+    pub(crate) fn engine_offset(&self, leg: Side, stance: Side, p: &PelvisMotion) -> [f64; 3] {
+        let shift = self.centre_shift(stance, p);
+        let o = self.hip_offset(leg, p);
+        [shift[0] + o[0], shift[1] + o[1], shift[2] + o[2]]
     }
 
     /// The stance hip joint at mid-stance relative to its flat foot's ankle, to first order in
@@ -143,15 +197,18 @@ impl Determinants {
         side.sign() * self.half_step_width
     }
 
-    /// Lateral offset Δz from the ankle of `side` to its hip joint (m) at pelvis state `p`.
-    pub(crate) fn lateral_offset(&self, side: Side, p: &PelvisMotion) -> f64 {
-        p.lateral + self.hip_offset(side, p)[2] - self.ankle_z(side)
+    /// Lateral offset Δz from the ankle of `side` to its hip joint (m) at pelvis state `p`, the
+    /// hip joint hung from the engine's hip of a step standing on `stance`
+    /// ([`Self::engine_offset`]).
+    pub(crate) fn engine_lateral_offset(&self, side: Side, stance: Side, p: &PelvisMotion) -> f64 {
+        p.lateral + self.engine_offset(side, stance, p)[2] - self.ankle_z(side)
     }
 }
 
 impl Determinants {
-    /// The second time derivative of the swing-side hip offset `[hip_offset(leg)[0],
-    /// hip_offset(leg)[1] + fold_height(d_v, lateral_offset(leg))]` (`leg` = `stance.other()`) at
+    /// The second time derivative of the swing-side hip offset from the engine's hip
+    /// `[engine_offset(leg)[0], engine_offset(leg)[1] + fold_height(d_v, engine_lateral_offset(leg))]`
+    /// (`leg` = `stance.other()`) at
     /// step time τ, in closed form (the determinants are sinusoids in τ); `None` when the fold
     /// is degenerate (a lateral offset as long as the leg), where the caller differences
     /// numerically.
@@ -168,29 +225,42 @@ impl Determinants {
         let w = PI / t_step;
         let (sn, cs) = crate::numerics::trig::sin_cos(PI * tau / t_step);
         let w2 = w * w;
-        // list L, rotation R, lateral displacement D and their rates
-        let l = sign * self.list * sn;
-        let l1 = sign * self.list * w * cs;
-        let l2 = -w2 * l;
+        // rotation R, lateral displacement D and their rates
         let r = sign * self.rotation * cs;
         let r1 = -sign * self.rotation * w * sn;
         let r2 = -w2 * r;
         let d1 = sign * self.lateral * w * cs;
         let d2 = -w2 * sign * self.lateral * sn;
-        let (sl, cl) = crate::numerics::trig::sin_cos(l);
         let (sr, cr) = crate::numerics::trig::sin_cos(r);
-        // x: h cos L sin R
-        let ax = h
-            * (-cl * sr * (l1 * l1 + r1 * r1) - sl * l2 * sr - 2.0 * sl * l1 * cr * r1
-                + cl * cr * r2);
-        // y: h sin L
-        let ay = h * (-sl * l1 * l1 + cl * l2);
-        // the fold of dz = D + h cos L cos R − ankle z
-        let dz = sign * self.lateral * sn + h * cl * cr - self.ankle_z(leg);
-        let dz1 = d1 + h * (-sl * l1 * cr - cl * sr * r1);
-        let dz2 = d2
-            + h * (-cl * cr * (l1 * l1 + r1 * r1) - sl * l2 * cr + 2.0 * sl * l1 * sr * r1
-                - cl * sr * r2);
+        // the swing hip joint relative to the engine's hip, [`Self::engine_offset`]: twice the
+        // offset of people's list less the paper's, each h (cos L sin R, sin L, cos L cos R);
+        // per list L (with its rates) its x and y accelerations and its z with two rates
+        let terms = |l: f64, l1: f64, l2: f64| {
+            let (sl, cl) = crate::numerics::trig::sin_cos(l);
+            let ax = h
+                * (-cl * sr * (l1 * l1 + r1 * r1) - sl * l2 * sr - 2.0 * sl * l1 * cr * r1
+                    + cl * cr * r2);
+            let ay = h * (-sl * l1 * l1 + cl * l2);
+            let z = h * cl * cr;
+            let z1 = h * (-sl * l1 * cr - cl * sr * r1);
+            let z2 = h
+                * (-cl * cr * (l1 * l1 + r1 * r1) - sl * l2 * cr + 2.0 * sl * l1 * sr * r1
+                    - cl * sr * r2);
+            [ax, ay, z, z1, z2]
+        };
+        let [g, g1, g2] = list_shape(tau / t_step);
+        let own = terms(
+            sign * self.list * g,
+            sign * self.list * g1 / t_step,
+            sign * self.list * g2 / (t_step * t_step),
+        );
+        let kl = sign * self.list * sn;
+        let klaw = terms(kl, sign * self.list * w * cs, -w2 * kl);
+        let [ax, ay, z, z1, z2] = std::array::from_fn(|k| 2.0 * own[k] - klaw[k]);
+        // the fold of dz = D + z − ankle z
+        let dz = sign * self.lateral * sn + z - self.ankle_z(leg);
+        let dz1 = d1 + z1;
+        let dz2 = d2 + z2;
         let q = d_v * d_v - dz * dz;
         if q <= 0.0 {
             return None;
@@ -234,13 +304,15 @@ mod tests {
         assert!(r0.lateral.abs() < 1e-15);
         let mid = d.at(Side::Right, 0.5 * t, t);
         assert!(mid.rotation.abs() < 1e-15);
-        assert!((mid.list - d.list).abs() < 1e-15 && (mid.lateral - 0.02).abs() < 1e-15);
+        assert!((mid.klaw_list - d.list).abs() < 1e-15 && (mid.lateral - 0.02).abs() < 1e-15);
+        assert!((mid.list - d.list * list_shape(0.5)[0]).abs() < 1e-15);
         let end = d.at(Side::Right, t, t);
         let next = d.at(Side::Left, 0.0, t);
         assert!((end.rotation + d.rotation).abs() < 1e-15);
         for (a, b) in [
             (end.rotation, next.rotation),
             (end.list, next.list),
+            (end.klaw_list, next.klaw_list),
             (end.lateral, next.lateral),
             (end.rotation_rate, next.rotation_rate),
             (end.list_rate, next.list_rate),
@@ -292,8 +364,11 @@ mod tests {
             let offset = |tau: f64| {
                 let p = d.at(stance, tau, t_step);
                 let leg = stance.other();
-                let o = d.hip_offset(leg, &p);
-                [o[0], o[1] + fold_height(d_v, d.lateral_offset(leg, &p))]
+                let o = d.engine_offset(leg, stance, &p);
+                [
+                    o[0],
+                    o[1] + fold_height(d_v, d.engine_lateral_offset(leg, stance, &p)),
+                ]
             };
             // the ends included: the determinants continue smoothly past them
             for k in 0..=20 {
@@ -315,6 +390,61 @@ mod tests {
                 d.swing_offset_acceleration(stance, 0.1, t_step, 0.01)
                     .is_none()
             );
+        }
+    }
+
+    /// The list's shape: 0 at both heel strikes with g'(1) = −g'(0) (C¹ where the stance side
+    /// changes), a peak of 1 (to 1e-7, sampled every 1e-5 of the step) at a third of the step
+    /// as Schwartz's Free obliquity (16 % of the cycle: s 0.32), below 1/2 at mid-step, and its
+    /// derivatives against finite differences.
+    #[test]
+    fn the_list_shape_peaks_early_and_is_c1_across_heel_strike() {
+        let [g0, d0, _] = list_shape(0.0);
+        let [g1, d1, _] = list_shape(1.0);
+        assert!(g0.abs() < 1e-15 && g1.abs() < 1e-15, "{g0} {g1}");
+        assert!((d0 + d1).abs() < 1e-12, "{d0} {d1}");
+        let (peak, at) = (0..=100_000)
+            .map(|k| (list_shape(k as f64 * 1e-5)[0], k as f64 * 1e-5))
+            .fold((f64::MIN, 0.0), |a, b| if b.0 > a.0 { b } else { a });
+        assert!((peak - 1.0).abs() < 1e-7, "{peak}");
+        assert!((0.3..0.38).contains(&at), "{at}");
+        assert!(list_shape(0.5)[0] < 0.5);
+        let h = 1e-4;
+        for s in [0.1, 0.34, 0.5, 0.8] {
+            let [_, d, dd] = list_shape(s);
+            let (a, b) = (list_shape(s - h), list_shape(s + h));
+            assert!(((b[0] - a[0]) / (2.0 * h) - d).abs() < 1e-6, "{s}");
+            assert!(((b[1] - a[1]) / (2.0 * h) - dd).abs() < 1e-5, "{s}");
+        }
+    }
+
+    /// The pelvis centre moves so that the stance hip joint stays where the half-sine list put
+    /// it: centre shift + the stance hip's offset is the offset with the paper's list, to 1e-15;
+    /// the shift is 0 at heel strike and lifts the centre at mid-step (people's list is lower
+    /// there), so the swing hip rises by twice that.
+    #[test]
+    fn the_stance_hip_joint_keeps_the_papers_list() {
+        let d = det();
+        let t = 0.55;
+        for stance in [Side::Right, Side::Left] {
+            for k in 0..=10 {
+                let p = d.at(stance, t * k as f64 / 10.0, t);
+                let e = d.engine_offset(stance, stance, &p);
+                let klaw = PelvisMotion {
+                    list: p.klaw_list,
+                    ..p
+                };
+                let o = d.hip_offset(stance, &klaw);
+                for i in 0..3 {
+                    assert!((e[i] - o[i]).abs() < 1e-15, "{stance:?} {k} {i}");
+                }
+            }
+            let zero = d.centre_shift(stance, &d.at(stance, 0.0, t));
+            assert!(zero.iter().all(|x| x.abs() < 1e-15), "{zero:?}");
+            let p = d.at(stance, 0.5 * t, t);
+            let lift = d.centre_shift(stance, &p)[1];
+            let want = d.half_width * (d.list.sin() - (d.list * list_shape(0.5)[0]).sin());
+            assert!((lift - want).abs() < 1e-15 && lift > 0.0, "{lift} {want}");
         }
     }
 

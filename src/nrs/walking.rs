@@ -179,8 +179,8 @@ mod tests {
     use super::*;
     use crate::plan::GaitRequest;
 
-    /// The sampled step agrees with the engine's own records: its heights are the dynamic hip's
-    /// (`Step::hip`), its phase moments lie in the order FGM ≤ heel-off, TOM at t_ds, the
+    /// The sampled step agrees with the engine's own records: its heights are the pelvis
+    /// centre's (`Instant::pelvis_centre`: the dynamic hip moved by the list's centre shift), its phase moments lie in the order FGM ≤ heel-off, TOM at t_ds, the
     /// stance foot is flat between FGM and heel-off, and the reach at heel strike is at most the
     /// leg's length.
     #[test]
@@ -198,7 +198,7 @@ mod tests {
         let s = &walk.steps[1];
         for i in [0, 37, 100] {
             let tau = s.constraints.timing.t_step * i as f64 / 100.0;
-            assert!((w.height[i] - s.hip(tau)[1]).abs() < 1e-12);
+            assert!((w.height[i] - s.at(tau).pelvis_centre()[1]).abs() < 1e-12);
         }
         assert!(w.travel[0] == 0.0 && (w.travel[100] - 1.0).abs() < 1e-15);
         assert!(

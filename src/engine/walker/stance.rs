@@ -31,10 +31,10 @@ impl HipJoints<'_> {
         let det = &self.plan.det;
         let h = self.stance.hip_position(self.setup, tau);
         let p = self.plan.pelvis(tau);
-        let o = det.hip_offset(leg, &p);
+        let o = det.engine_offset(leg, self.plan.side, &p);
         (
             [self.plan.x0 + h[0] + o[0], h[1] + o[1]],
-            det.lateral_offset(leg, &p),
+            det.engine_lateral_offset(leg, self.plan.side, &p),
         )
     }
 }
