@@ -21,14 +21,13 @@ use crate::model::attributes::Attributes;
 /// by mid-stance.
 const LIST_SHAPE: [f64; 3] = [0.5395805, 0.05195615, 0.40902743];
 
-/// The list's shape g(s) and its first two derivatives in s ([`LIST_SHAPE`]).
-pub(crate) fn list_shape(s: f64) -> [f64; 3] {
+/// The list's shape g(s) and its first two derivatives in s ([`LIST_SHAPE`]) from (sin πs,
+/// cos πs): the multiple angles by their recurrences (one `sin_cos` for all four harmonics).
+pub(crate) fn list_shape_sc((s1, c1): (f64, f64)) -> [f64; 3] {
     let [a1, a3, b] = LIST_SHAPE;
-    let x = PI * s;
-    let (s1, c1) = crate::numerics::trig::sin_cos(x);
-    let (s2, c2) = crate::numerics::trig::sin_cos(2.0 * x);
-    let (s3, c3) = crate::numerics::trig::sin_cos(3.0 * x);
-    let (s4, c4) = crate::numerics::trig::sin_cos(4.0 * x);
+    let (s2, c2) = (2.0 * s1 * c1, c1 * c1 - s1 * s1);
+    let (s3, c3) = (s1 * (3.0 - 4.0 * s1 * s1), c1 * (4.0 * c1 * c1 - 3.0));
+    let (s4, c4) = (2.0 * s2 * c2, c2 * c2 - s2 * s2);
     [
         a1 * s1 + a3 * s3 + b * (s2 - 0.5 * s4),
         PI * (a1 * c1 + 3.0 * a3 * c3 + b * (2.0 * c2 - 2.0 * c4)),
@@ -136,7 +135,7 @@ impl Determinants {
         let s = tau / t_step;
         let w = PI / t_step;
         let (sn, cs) = crate::numerics::trig::sin_cos(PI * s);
-        let [g, g1, _] = list_shape(s);
+        let [g, g1, _] = list_shape_sc((sn, cs));
         PelvisMotion {
             rotation: sign * self.rotation * cs,
             list: sign * self.list * g,
@@ -248,7 +247,7 @@ impl Determinants {
                     - cl * sr * r2);
             [ax, ay, z, z1, z2]
         };
-        let [g, g1, g2] = list_shape(tau / t_step);
+        let [g, g1, g2] = list_shape_sc((sn, cs));
         let own = terms(
             sign * self.list * g,
             sign * self.list * g1 / t_step,
@@ -282,6 +281,10 @@ pub(crate) fn fold_height(d_v: f64, dz: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn list_shape(s: f64) -> [f64; 3] {
+        list_shape_sc(crate::numerics::trig::sin_cos(PI * s))
+    }
 
     fn det() -> Determinants {
         Determinants {
@@ -409,6 +412,17 @@ mod tests {
         assert!((peak - 1.0).abs() < 1e-7, "{peak}");
         assert!((0.3..0.38).contains(&at), "{at}");
         assert!(list_shape(0.5)[0] < 0.5);
+        // the recurrences against the harmonics' own sines and cosines
+        let [a1, a3, b] = LIST_SHAPE;
+        for k in 0..=50 {
+            let x = PI * k as f64 / 50.0;
+            let direct =
+                a1 * x.sin() + a3 * (3.0 * x).sin() + b * ((2.0 * x).sin() - 0.5 * (4.0 * x).sin());
+            assert!(
+                (list_shape(k as f64 / 50.0)[0] - direct).abs() < 1e-14,
+                "{k}"
+            );
+        }
         let h = 1e-4;
         for s in [0.1, 0.34, 0.5, 0.8] {
             let [_, d, dd] = list_shape(s);
