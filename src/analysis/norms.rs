@@ -6,7 +6,7 @@
 //! and compared at the resolution the values are shown to (0.1 ° or cm, `CHECK_RESOLUTION`).
 use std::path::Path;
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 use super::cycle::{CYCLE_SKIP, GaitCycle, Panel};
 use super::extent;
@@ -98,7 +98,7 @@ pub struct Norm {
 }
 
 /// The speed a [`BySpeed`] table lists its rows by: the source's own.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
 pub enum SpeedScale {
     /// v̂ = v / √(g l1), Hof's (1996) scaling (Schwartz et al. 2008 bin their speeds by it).
     #[default]

@@ -301,6 +301,6 @@ pub(super) fn swing_hip_offset(
 ) -> [f64; 2] {
     let leg = stance.other();
     let o = det.engine_offset(leg, stance, p);
-    let dz = det.engine_lateral_offset(leg, stance, p);
+    let dz = det.lateral_offset(leg, p, o);
     [o[0], o[1] + fold_height(c.fold_length, dz)]
 }

@@ -18,8 +18,9 @@
 //! - A swinging foot stays square to its shank (the ankle at 0° of dorsiflexion), clamped to
 //!   keep the heel and the toe above the floor (`Foot::clear_pitch`).
 //! - The trunk keeps its lean (attribute `trunk_lean`): lumbar extension = tilt − lean, bending
-//!   = list (the spine undoes the pelvis's list), rotation = −1.8 × pelvic rotation; each arm swings with the opposite thigh, half
-//!   the attribute `arm_swing` at that thigh's largest forward angle.
+//!   = list (the spine undoes the pelvis's list), rotation = −1.8 × pelvic rotation; each arm
+//!   swings with the opposite thigh, half the attribute `arm_swing` at that thigh's largest
+//!   forward angle.
 use glam::DVec3;
 
 use crate::figure::landmarks::arm_swing;

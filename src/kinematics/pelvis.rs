@@ -165,7 +165,7 @@ impl Determinants {
     /// Where the pelvis centre is relative to the engine's dynamic hip (m, world axes) \[ours\]:
     /// the engine's stance model, its bounce and its virtual leg (spec §4, §7) hang the stance
     /// hip joint from its hip by the paper's half-sine list, and the figure's pelvis lists as
-    /// people's do ([`list_shape`]); the centre moves by the difference, so that the stance hip
+    /// people's do ([`list_shape_sc`]); the centre moves by the difference, so that the stance hip
     /// joint stays where the engine put it: (stance hip joint with the half-sine list) − (with
     /// people's). 0 at heel strike, where both lists are 0.
     pub(crate) fn centre_shift(&self, stance: Side, p: &PelvisMotion) -> [f64; 3] {
@@ -175,11 +175,16 @@ impl Determinants {
     }
 
     /// The hip joint of `leg` relative to the engine's dynamic hip of a step standing on
-    /// `stance`: [`Self::centre_shift`] + [`Self::hip_offset`].
+    /// `stance`: [`Self::centre_shift`] + [`Self::hip_offset`], i.e. the half-sine list's offset
+    /// for the stance hip and that less twice people's for the other (the offsets of the two
+    /// hips are opposite).
     pub(crate) fn engine_offset(&self, leg: Side, stance: Side, p: &PelvisMotion) -> [f64; 3] {
-        let shift = self.centre_shift(stance, p);
-        let o = self.hip_offset(leg, p);
-        [shift[0] + o[0], shift[1] + o[1], shift[2] + o[2]]
+        let klaw = self.hip_offset_listed(stance, p.klaw_list, p.rotation);
+        if leg == stance {
+            return klaw;
+        }
+        let own = self.hip_offset(stance, p);
+        std::array::from_fn(|k| klaw[k] - 2.0 * own[k])
     }
 
     /// The stance hip joint at mid-stance relative to its flat foot's ankle, to first order in
@@ -197,17 +202,16 @@ impl Determinants {
     }
 
     /// Lateral offset Δz from the ankle of `side` to its hip joint (m) at pelvis state `p`, the
-    /// hip joint hung from the engine's hip of a step standing on `stance`
-    /// ([`Self::engine_offset`]).
-    pub(crate) fn engine_lateral_offset(&self, side: Side, stance: Side, p: &PelvisMotion) -> f64 {
-        p.lateral + self.engine_offset(side, stance, p)[2] - self.ankle_z(side)
+    /// hip joint `offset` from the engine's hip ([`Self::engine_offset`]).
+    pub(crate) fn lateral_offset(&self, side: Side, p: &PelvisMotion, offset: [f64; 3]) -> f64 {
+        p.lateral + offset[2] - self.ankle_z(side)
     }
 }
 
 impl Determinants {
-    /// The second time derivative of the swing-side hip offset from the engine's hip
-    /// `[engine_offset(leg)[0], engine_offset(leg)[1] + fold_height(d_v, engine_lateral_offset(leg))]`
-    /// (`leg` = `stance.other()`) at
+    /// The second time derivative of the swing-side hip offset from the engine's hip, `o =
+    /// engine_offset(leg)`, `[o[0], o[1] + fold_height(d_v, lateral_offset(leg, o))]` (`leg` =
+    /// `stance.other()`) at
     /// step time τ, in closed form (the determinants are sinusoids in τ); `None` when the fold
     /// is degenerate (a lateral offset as long as the leg), where the caller differences
     /// numerically.
@@ -368,10 +372,7 @@ mod tests {
                 let p = d.at(stance, tau, t_step);
                 let leg = stance.other();
                 let o = d.engine_offset(leg, stance, &p);
-                [
-                    o[0],
-                    o[1] + fold_height(d_v, d.engine_lateral_offset(leg, stance, &p)),
-                ]
+                [o[0], o[1] + fold_height(d_v, d.lateral_offset(leg, &p, o))]
             };
             // the ends included: the determinants continue smoothly past them
             for k in 0..=20 {
@@ -449,8 +450,16 @@ mod tests {
                     ..p
                 };
                 let o = d.hip_offset(stance, &klaw);
+                // the other hip: the shifted centre plus its own offset with people's list
+                let other = d.engine_offset(stance.other(), stance, &p);
+                let shift = d.centre_shift(stance, &p);
+                let own = d.hip_offset(stance.other(), &p);
                 for i in 0..3 {
                     assert!((e[i] - o[i]).abs() < 1e-15, "{stance:?} {k} {i}");
+                    assert!(
+                        (other[i] - shift[i] - own[i]).abs() < 1e-15,
+                        "{stance:?} {k} {i}"
+                    );
                 }
             }
             let zero = d.centre_shift(stance, &d.at(stance, 0.0, t));

@@ -354,10 +354,7 @@ fn norm_json(c: &NormCheck) -> serde_json::Value {
         "value": c.value,
         "at_pct": c.at_pct,
         "speed": c.speed.map(|(v, _)| v),
-        "speed_scale": c.speed.map(|(_, scale)| match scale {
-            klaw::analysis::norms::SpeedScale::Dimensionless => "v/sqrt(g l1)",
-            klaw::analysis::norms::SpeedScale::MetresPerSecond => "m/s",
-        }),
+        "speed_scale": c.speed.map(|(_, scale)| scale),
         "low": c.low,
         "high": c.high,
         "unit": c.unit,

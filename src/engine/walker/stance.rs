@@ -34,7 +34,7 @@ impl HipJoints<'_> {
         let o = det.engine_offset(leg, self.plan.side, &p);
         (
             [self.plan.x0 + h[0] + o[0], h[1] + o[1]],
-            det.engine_lateral_offset(leg, self.plan.side, &p),
+            det.lateral_offset(leg, &p, o),
         )
     }
 }
