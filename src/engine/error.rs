@@ -115,4 +115,16 @@ impl SimulationError {
             SimulationError::Plan(_) => false,
         }
     }
+
+    /// The flat stance foot out of the straight leg's reach as the hip passes over it: a bounce
+    /// too high for the leg, which a larger reach margin mends where the reach cuts the bounce.
+    pub fn is_reach_failure(&self) -> bool {
+        matches!(
+            self,
+            SimulationError::Invariant {
+                source: Invariant::Geometry(GeometryError::FlatFootOutOfReach { .. }),
+                ..
+            }
+        )
+    }
 }

@@ -52,6 +52,13 @@ pub struct EngineParameters {
     /// list where 4.3° walks; fifths gave up 20 % of a 4.87° list where 10 % less walks
     /// (1.8 m/s, H 1.8 m; docs/realism.md).
     pub list_retries: usize,
+    /// How many times a step whose flat foot falls out of the straight leg's reach is tried
+    /// again before its list is lowered, each time with the bounce's reach margin
+    /// (`REACH_MARGIN`, a fraction of the bounce) larger by `reach_margin_step` (count; 0:
+    /// never): where the reach cuts the bounce, less list only lets the bounce rise again.
+    pub reach_retries: usize,
+    /// The reach margin's growth per retry (fraction of the bounce).
+    pub reach_margin_step: f64,
 }
 
 impl Default for EngineParameters {
@@ -69,6 +76,8 @@ impl Default for EngineParameters {
             foot_samples: 100,
             work_panels: 1,
             list_retries: 10,
+            reach_retries: 5,
+            reach_margin_step: 0.01,
         }
     }
 }

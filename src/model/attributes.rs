@@ -233,14 +233,22 @@ attribute_struct! {
     hip_lead_slope,
     /// s_φ: the sl/H at which the hip is midway between the ankles at heel strike.
     hip_lead_neutral,
-    /// φ_max: the largest hip lead at heel strike.
+    /// φ_max: the largest hip lead at heel strike (below `hip_lead_rise_froude`).
     hip_lead_max,
+    /// Δφ_max: how much φ_max grows from `hip_lead_rise_froude` to `hip_lead_froude` (see
+    /// [`lead_cap`](crate::plan::constraints::lead_cap)).
+    hip_lead_max_rise,
+    /// Fr_φ0: the Froude number from which φ_max grows by `hip_lead_max_rise`.
+    hip_lead_rise_froude,
     /// Fr_φ: the Froude number from which the hip's lead fades to none at `froude_max` (see
     /// [`lead_fade`](crate::plan::constraints::lead_fade)).
     hip_lead_froude,
     /// The step length per leg length sl / l1 from which the hip's lead fades (see
     /// [`lead_fade`](crate::plan::constraints::lead_fade)).
     hip_lead_step_from,
+    /// How much later (sl / l1) the step length's fade starts in fast walks (see
+    /// [`lead_fade`](crate::plan::constraints::lead_fade)).
+    hip_lead_step_rise,
     /// The step length per leg length sl / l1 at which the hip's lead has faded to none.
     hip_lead_step_to,
     /// ε: hip excursion as a fraction of the step's height budget.

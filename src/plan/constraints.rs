@@ -58,30 +58,59 @@ pub struct StepConstraints {
 /// The fraction of the hip's lead kept for a step of length `sl` at speed `v` for leg length
 /// `l1` \[ours\]: the product of two linear fades, each 1 before its start and 0 past its end:
 /// the Froude number v² / (g l1) from `hip_lead_froude` to the walk–run transition `froude_max`
-/// (1 throughout if that comes first), and the step length sl / l1 from `hip_lead_step_from` to
-/// `hip_lead_step_to`. People keep their lead up to the transition (Schwartz et al. 2008's very
-/// fast children, Fr ≈ 0.48, sl ≈ 0.95 l1: φ = 0.577), but klaw's legs cannot: near the
-/// transition the virtual leg's reference asks for the hip under y_hs before heel strike and de
-/// Leva's women's swing toe meets the floor; on steps longer than the leg the trailing foot
-/// cannot reach the hip in double support (docs/realism.md).
+/// (1 throughout if that comes first), and the step length sl / l1 from `hip_lead_step_from`,
+/// later by `hip_lead_step_rise` × [`lead_rise`], to `hip_lead_step_to`. People keep their lead
+/// up to the transition (Schwartz et al. 2008's very fast children, Fr ≈ 0.48, sl ≈ 0.95 l1:
+/// φ = 0.577), but klaw's legs cannot: near the transition the virtual leg's reference asks for
+/// the hip under y_hs before heel strike and de Leva's women's swing toe meets the floor; on
+/// steps longer than the leg the trailing foot cannot reach the hip in double support, the
+/// sooner the slower the walk (docs/realism.md).
 pub fn lead_fade(attrs: &Attributes, sl: f64, v: f64, l1: f64) -> f64 {
-    let fade = |x: f64, from: f64, to: f64| {
-        if to <= from {
-            1.0
-        } else {
-            ((to - x) / (to - from)).clamp(0.0, 1.0)
-        }
-    };
-    let froude = v * v / (crate::model::GRAVITY * l1);
-    fade(froude, attrs.hip_lead_froude, attrs.froude_max)
-        * fade(sl / l1, attrs.hip_lead_step_from, attrs.hip_lead_step_to)
+    let from = attrs.hip_lead_step_from + attrs.hip_lead_step_rise * lead_rise(attrs, v, l1);
+    fade(froude(v, l1), attrs.hip_lead_froude, attrs.froude_max)
+        * fade(sl / l1, from, attrs.hip_lead_step_to)
+}
+
+/// How far a walk at speed `v` for leg length `l1` is into the rise of the hip's lead
+/// \[ours\]: 0 up to the Froude number `hip_lead_rise_froude`, growing linearly to 1 at
+/// `hip_lead_froude`, where [`lead_fade`] takes over (0 throughout if the rise would not end
+/// after it starts). People's lead keeps growing with speed (Schwartz et al. 2008: 0.553 fast,
+/// 0.577 very fast); klaw's caps keep the slower walks walking, and their rise brings the
+/// trailing ankle of fast walks into its norm (docs/realism.md).
+pub fn lead_rise(attrs: &Attributes, v: f64, l1: f64) -> f64 {
+    1.0 - fade(
+        froude(v, l1),
+        attrs.hip_lead_rise_froude,
+        attrs.hip_lead_froude,
+    )
+}
+
+/// The largest hip lead at speed `v` for leg length `l1`: φ_max grown by `hip_lead_max_rise` ×
+/// [`lead_rise`].
+pub fn lead_cap(attrs: &Attributes, v: f64, l1: f64) -> f64 {
+    attrs.hip_lead_max + attrs.hip_lead_max_rise * lead_rise(attrs, v, l1)
+}
+
+/// The Froude number v² / (g l1).
+fn froude(v: f64, l1: f64) -> f64 {
+    v * v / (crate::model::GRAVITY * l1)
+}
+
+/// 1 up to `from`, falling linearly to 0 at `to` (1 throughout if `to` ≤ `from`).
+fn fade(x: f64, from: f64, to: f64) -> f64 {
+    if to <= from {
+        1.0
+    } else {
+        ((to - x) / (to - from)).clamp(0.0, 1.0)
+    }
 }
 
 impl StepConstraints {
     /// The heel-strike posture, spec §3 steps 1–4 with the hip's lead \[ours\]: at heel strike
     /// the hip is φ sl ahead of the stance ankle (0, l9), φ = min(1/2 + k_φ (sl/H − s_φ), φ_max)
     /// with φ − 1/2 scaled by [`lead_fade`] near the walk–run transition
-    /// (the attributes `hip_lead_slope`, `hip_lead_neutral`, `hip_lead_max`; φ = 1/2 is the
+    /// (the attributes `hip_lead_slope`, `hip_lead_neutral`, `hip_lead_max` grown by
+    /// [`lead_cap`] in fast walks; φ = 1/2 is the
     /// paper's step symmetry, eq. 3, the hip midway to the flat-foot position (sl, l9) of the
     /// swing ankle). Real gait puts the hip further ahead the longer the step, the trailing heel
     /// raised about its metatarsal joint (docs/realism.md). The swing leg (hip–ankle distance
@@ -112,7 +141,7 @@ impl StepConstraints {
         let r = r2.sqrt();
         let heel_x = sl - body.l8;
         let phi = (0.5 + attrs.hip_lead_slope * (sl / body.height - attrs.hip_lead_neutral))
-            .min(attrs.hip_lead_max);
+            .min(lead_cap(attrs, gait.velocity, body.l1));
         let phi = 0.5 + (phi - 0.5) * lead_fade(attrs, sl, gait.velocity, body.l1);
         let x_h = phi * sl;
         let half = 0.5 * body.l0;
@@ -170,14 +199,21 @@ impl StepConstraints {
     /// side of its ankle (step width b, lateral displacement D), so a straight leg on a flat foot
     /// holds the pelvis centre at most at y_r = l9 + √(l1² − d²) − (l0/2) sin L. The reference
     /// peaks at ȳ + e with ȳ the mean of the step's start height `y_start` and y_hs, so
-    /// e ≤ (y_r − ȳ) / (1 + [`REACH_MARGIN`]). Above that the hip passes over the ankle out of
-    /// the flat foot's reach, and the foot's pitch jumps from its heel to its metatarsal joint
-    /// (in 99 of the 181 walks of the valid range, with the hip midway at heel strike).
-    pub(crate) fn within_reach(mut self, body: &Body, det: &Determinants, y_start: f64) -> Self {
+    /// e ≤ (y_r − ȳ) / (1 + m), m the margin ([`REACH_MARGIN`], more where a step needed it:
+    /// `Walker::step`). Above that the hip passes over the ankle out of the flat foot's reach,
+    /// and the foot's pitch jumps from its heel to its metatarsal joint (in 99 of the 181 walks
+    /// of the valid range, with the hip midway at heel strike).
+    pub(crate) fn within_reach(
+        mut self,
+        body: &Body,
+        det: &Determinants,
+        y_start: f64,
+        margin: f64,
+    ) -> Self {
         let (rise, d) = det.mid_stance_hip();
         let top = body.l9 + (body.l1 * body.l1 - d * d).sqrt() - rise;
         let mean = 0.5 * (y_start + self.hip[1]);
-        self.bounce = self.bounce.min((top - mean) / (1.0 + REACH_MARGIN));
+        self.bounce = self.bounce.min((top - mean) / (1.0 + margin));
         self
     }
 }
@@ -351,13 +387,18 @@ mod tests {
         .unwrap();
         let plain = StepConstraints::new(&body, &attrs, gait).unwrap();
         let det = Determinants::new(&attrs, body.l0);
-        let c = plain.within_reach(&body, &det, plain.hip[1]);
+        let c = plain.within_reach(&body, &det, plain.hip[1], REACH_MARGIN);
         assert!(c.bounce < plain.bounce, "{} {}", c.bounce, plain.bounce);
         let joint = c.hip[1] + (1.0 + REACH_MARGIN) * c.bounce + det.half_width * det.list.sin();
         let d = det.half_width - det.half_step_width + det.lateral;
         assert!(((joint - body.l9).hypot(d) - body.l1).abs() < 1e-12);
         let flat = Determinants { list: 0.0, ..det };
-        assert!(plain.within_reach(&body, &flat, plain.hip[1]).bounce > c.bounce);
+        assert!(
+            plain
+                .within_reach(&body, &flat, plain.hip[1], REACH_MARGIN)
+                .bounce
+                > c.bounce
+        );
     }
 
     /// The bounce is capped so that the reference never asks for more than g/2 downward:
@@ -376,10 +417,13 @@ mod tests {
     #[test]
     fn the_hip_lead_fades_to_midway_at_the_walk_run_transition() {
         let body = Body::standard(1.8, 80.0).unwrap();
+        // the cap held, so that only the fade moves the hip here (its rise: the next test)
         let attrs = Attributes {
             hip_lead_slope: 0.595,
             hip_lead_froude: 0.4,
             froude_max: 0.5,
+            hip_lead_max_rise: 0.0,
+            hip_lead_step_rise: 0.0,
             ..Attributes::default()
         };
         let v_at = |fr: f64| (fr * GRAVITY * body.l1).sqrt();
@@ -422,5 +466,63 @@ mod tests {
         });
         assert!(whole > midway + 0.01, "{whole} {midway}");
         assert!((faded - midway - 0.5 * (whole - midway)).abs() < 1e-12);
+    }
+
+    /// The cap φ_max and the start of the step length's fade grow linearly in the Froude number
+    /// from `hip_lead_rise_froude` to `hip_lead_froude`: not below, halfway up halfway, all the
+    /// way from there on, not at all when the rise would end before it starts; and a lead that
+    /// reaches the cap puts the hip at heel strike φ_cap sl ahead of the trailing ankle.
+    #[test]
+    fn the_hip_leads_cap_rises_with_the_froude_number() {
+        let body = Body::standard(1.8, 80.0).unwrap();
+        let attrs = Attributes {
+            hip_lead_max: 0.54,
+            hip_lead_max_rise: 0.012,
+            hip_lead_rise_froude: 0.3,
+            hip_lead_froude: 0.4,
+            ..Attributes::default()
+        };
+        let v_at = |fr: f64| (fr * GRAVITY * body.l1).sqrt();
+        let cap = |a: &Attributes, fr: f64| lead_cap(a, v_at(fr), body.l1);
+        assert_eq!(cap(&attrs, 0.2), 0.54);
+        assert_eq!(cap(&attrs, 0.3), 0.54);
+        assert!((cap(&attrs, 0.35) - 0.546).abs() < 1e-12);
+        assert!((cap(&attrs, 0.4) - 0.552).abs() < 1e-12);
+        assert!((cap(&attrs, 0.48) - 0.552).abs() < 1e-12);
+        let none = Attributes {
+            hip_lead_rise_froude: 0.4,
+            ..attrs.clone()
+        };
+        assert_eq!(cap(&none, 0.45), 0.54);
+        // the step fade from 0.98 (+ 0.05 × the rise) to 1.12 leg lengths: at 1.05 l1 it keeps
+        // half of the lead below the rise, 0.07 / 0.115 of it halfway up (from 1.005), 0.07 /
+        // 0.09 at the top (from 1.03), where a step of 1.03 l1 keeps all of it
+        let steps = Attributes {
+            hip_lead_step_from: 0.98,
+            hip_lead_step_rise: 0.05,
+            hip_lead_step_to: 1.12,
+            ..attrs.clone()
+        };
+        let kept = |fr: f64, sl: f64| lead_fade(&steps, sl * body.l1, v_at(fr), body.l1);
+        assert!((kept(0.25, 1.05) - 0.5).abs() < 1e-12);
+        assert!((kept(0.35, 1.05) - 0.07 / 0.115).abs() < 1e-12);
+        assert!((kept(0.35, 1.075) - 0.045 / 0.115).abs() < 1e-12);
+        assert!((kept(0.4, 1.05) - 0.07 / 0.09).abs() < 1e-12);
+        assert_eq!(kept(0.4, 1.03), 1.0);
+        // a steep lead law meets the cap; no fade at Fr 0.35 (halfway up the rise: the step fade
+        // from 0.98 + 0.025 l1) for a step under 1.005 l1
+        let steep = Attributes {
+            hip_lead_slope: 1.5,
+            ..attrs.clone()
+        };
+        let gait = GaitRequest {
+            velocity: Some(v_at(0.35)),
+            ..Default::default()
+        }
+        .complete(&body, &steep)
+        .unwrap();
+        assert!(gait.step_length < 1.005 * body.l1, "{gait:?}");
+        let c = StepConstraints::new(&body, &steep, gait).unwrap();
+        assert!((c.hip[0] / gait.step_length - 0.546).abs() < 1e-12, "{c:?}");
     }
 }

@@ -23,6 +23,7 @@ use crate::model::body::Body;
 use crate::model::pelvis_speed::PelvisSpeedLaw;
 use crate::numerics::ode::Segment;
 use crate::plan::StepConstraints;
+use crate::plan::constraints::REACH_MARGIN;
 use crate::plan::gait::Gait;
 
 use std::sync::OnceLock;
@@ -62,6 +63,9 @@ pub struct Walker {
     /// Retries' worth of the attributes' pelvic list (each 1 / `list_retries` of it) that the
     /// steps from the second on leave out: the most any of them needed (see [`Walker::step`]).
     list_lowered: usize,
+    /// Retries' worth of reach margin (each `reach_margin_step` of the bounce) that the steps
+    /// from the second on add to `REACH_MARGIN`: the most any of them needed.
+    reach_raised: usize,
     /// Start the first steps' solves from the fitted guesses (`engine::startup`).
     startup_guesses: bool,
 }
@@ -192,6 +196,7 @@ impl Walker {
             index: 0,
             evaluations: 0,
             list_lowered: 0,
+            reach_raised: 0,
             startup_guesses: true,
         }
     }
@@ -232,17 +237,25 @@ impl Walker {
     /// (l0/2) sin L at mid step, ≈ 5 mm, which the fastest walks of short bodies (v = 2 m/s at
     /// H = 1.5 m) cannot spare, and raises the stance hip joint by as much above the pelvis
     /// centre at mid-stance, which the slowest walks of tall ones (0.4 m/s at H ≥ 1.7 m, height
-    /// budget E ≈ 14 mm) cannot. The list used is in the step's `determinants`.
+    /// budget E ≈ 14 mm) cannot. The list used is in the step's `determinants`. A flat stance
+    /// foot out of the straight leg's reach ([`SimulationError::is_reach_failure`]) is first
+    /// tried again with the bounce's reach margin raised by
+    /// [`EngineParameters::reach_margin_step`] at a time
+    /// ([`EngineParameters::reach_retries`]), kept by the later steps as the list is: where the
+    /// reach cuts the bounce, less list only lets the bounce rise again \[ours\].
     pub fn step(&mut self, gait: Gait) -> Result<Step, SimulationError> {
         let saved = self.memories();
         let first = self.index == 0;
-        let retries = self.parameters.list_retries;
+        let p = self.parameters;
         let mut lowered = self.list_lowered;
+        let mut raised = self.reach_raised;
         let mut impulse = self.attrs.heel_strike_impulse;
         self.evaluations = 0;
         loop {
-            let list = self.attrs.pelvic_list * (1.0 - lowered as f64 / retries.max(1) as f64);
-            match self.step_with(gait, list, impulse) {
+            let list =
+                self.attrs.pelvic_list * (1.0 - lowered as f64 / p.list_retries.max(1) as f64);
+            let margin = REACH_MARGIN + raised as f64 * p.reach_margin_step;
+            match self.step_with(gait, list, impulse, margin) {
                 Err(e) if e.is_loading_failure() && impulse < 1.0 => {
                     self.restore(saved);
                     impulse = if impulse < 0.5 {
@@ -251,13 +264,18 @@ impl Walker {
                         1.0
                     };
                 }
-                Err(e) if lowered < retries && e.is_list_failure() => {
+                Err(e) if raised < p.reach_retries && e.is_reach_failure() => {
+                    self.restore(saved);
+                    raised += 1;
+                }
+                Err(e) if lowered < p.list_retries && e.is_list_failure() => {
                     self.restore(saved);
                     lowered += 1;
                 }
                 result => {
                     if !first {
                         self.list_lowered = lowered;
+                        self.reach_raised = raised;
                     }
                     return result;
                 }
@@ -275,10 +293,16 @@ impl Walker {
         ) = saved;
     }
 
-    /// One step with pelvic list `list` and heel-strike impulse fraction `impulse`, phase after
-    /// phase.
-    fn step_with(&mut self, gait: Gait, list: f64, impulse: f64) -> Result<Step, SimulationError> {
-        let plan = self.plan(gait, list, impulse)?;
+    /// One step with pelvic list `list`, heel-strike impulse fraction `impulse` and reach
+    /// margin `margin`, phase after phase.
+    fn step_with(
+        &mut self,
+        gait: Gait,
+        list: f64,
+        impulse: f64,
+        margin: f64,
+    ) -> Result<Step, SimulationError> {
+        let plan = self.plan(gait, list, impulse, margin)?;
         let (prev_c, y0, impact) = self.heel_strike(&plan);
         let setup = self.stance_setup(&prev_c, &plan);
         let (stance, stance_solve) = self.solve_stance(&plan, &setup, y0)?;
@@ -330,14 +354,20 @@ impl Walker {
     }
 
     /// The step's constraints (the high level, KLAW 1989 §3, spec §3), side, determinants and start.
-    fn plan(&self, gait: Gait, list: f64, impulse: f64) -> Result<StepPlan, SimulationError> {
+    fn plan(
+        &self,
+        gait: Gait,
+        list: f64,
+        impulse: f64,
+        margin: f64,
+    ) -> Result<StepPlan, SimulationError> {
         let det = Determinants {
             list,
             ..self.determinants
         };
         let c = StepConstraints::new(&self.body, &self.attrs, gait)?;
         let y_start = self.prev.as_ref().map_or(c.hip[1], |(p, _)| p.hip[1]);
-        let c = c.within_reach(&self.body, &det, y_start);
+        let c = c.within_reach(&self.body, &det, y_start, margin);
         let index = self.index;
         Ok(StepPlan {
             index,
