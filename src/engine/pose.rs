@@ -304,3 +304,50 @@ pub(super) fn swing_hip_offset(
     let dz = det.lateral_offset(leg, p, o);
     [o[0], o[1] + fold_height(c.fold_length, dz)]
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::engine::walker::simulate;
+    use crate::kinematics::foot::{Foot, FootPoints, swing_floor};
+    use crate::model::attributes::AttributeTable;
+    use crate::model::body::Body;
+    use crate::plan::gait::GaitRequest;
+
+    /// The swing ankle leaves its rule (spec §7) only as far as the toe needs: over a steady
+    /// step's swing, wherever the foot's pitch differs from the rule's, the rule would put the
+    /// foot's lowest front point (metatarsal joint or toe tip) under the floor rising to
+    /// `toe_clearance` at mid swing, and the pitch used puts it on that floor; elsewhere it is
+    /// above. The bump of the swing ankle after 75 % of the cycle is this and nothing more.
+    #[test]
+    fn the_swing_ankle_leaves_its_rule_only_to_clear_the_floor() {
+        let body = Body::standard(1.8, 80.0).unwrap();
+        let attrs = AttributeTable::builtin().defaults();
+        let gait = GaitRequest {
+            velocity: Some(1.4),
+            ..Default::default()
+        }
+        .complete(&body, &attrs)
+        .unwrap();
+        let walk = simulate(body, attrs, &[gait; 4]).unwrap();
+        let foot = Foot::new(&body);
+        let low = |p: &FootPoints| p.meta[1].min(p.toe[1]);
+        let step = &walk.steps[2];
+        let t = step.constraints.timing;
+        let mut raised = 0;
+        for i in 1..400 {
+            let tau = t.t_ds + t.t_swing * i as f64 / 400.0;
+            let pose = step.swing_pose_at(&step.at(tau), &foot);
+            let (theta5, theta6) = step.swing_foot_angles(tau);
+            let rule = foot.points(pose.ankle, pose.theta3 + pose.theta4 - theta5, theta6);
+            let floor = swing_floor(step.toe_clearance, (tau - t.t_ds) / t.t_swing);
+            if (pose.foot.toe[1] - rule.toe[1]).abs() > 1e-12 {
+                raised += 1;
+                assert!(low(&rule) < floor, "τ {tau}: {rule:?}");
+                assert!((low(&pose.foot) - floor).abs() < 1e-9, "τ {tau}: {pose:?}");
+            } else {
+                assert!(low(&pose.foot) >= floor - 1e-9, "τ {tau}: {pose:?}");
+            }
+        }
+        assert!(raised > 20, "{raised}");
+    }
+}
