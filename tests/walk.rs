@@ -545,3 +545,55 @@ fn a_step_out_of_the_legs_reach_bounces_lower_else_lists_less() {
         );
     }
 }
+
+/// A step whose rolling hind foot cannot reach the hip in double support with the toe-off knee
+/// κ_TO is walked again with κ_TO lowered by `toe_off_knee_step` (5°) at a time, and the later
+/// steps keep it: a long step at a slow cadence (H 1.8 m, sl 0.8 m at 1.0 m/s, 75 steps/min,
+/// 0.92 leg lengths) fails in its second step's double support at 40° and walks at 35°, the
+/// swing starting from the knee the hind leg reached. The least is the attribute's 20°.
+#[test]
+fn a_hind_foot_out_of_reach_toes_off_with_a_straighter_knee() {
+    use klaw::engine::parameters::EngineParameters;
+    use klaw::engine::walker::{Walker, walk_attributes};
+    let p = EngineParameters::default();
+    assert_eq!(p.toe_off_retries, 4);
+    assert!((p.toe_off_knee_step - 5f64.to_radians()).abs() < 1e-15);
+    let sim = Simulation::new(klaw::Body::standard(1.8, 80.0).unwrap())
+        .gait(GaitRequest {
+            velocity: Some(1.0),
+            step_length: Some(0.8),
+            ..Default::default()
+        })
+        .steps(10);
+    let prepared = sim.prepare().unwrap();
+    let body = *prepared.body();
+    let attrs = walk_attributes(&body, prepared.attributes(), prepared.gaits());
+    assert!((attrs.toe_off_knee.to_degrees() - 40.0).abs() < 1e-12);
+    let walk = |p: EngineParameters| {
+        let mut walker = Walker::new(body, attrs.clone()).with_parameters(p);
+        prepared
+            .gaits()
+            .iter()
+            .map(|g| walker.step(*g))
+            .collect::<Result<Vec<_>, _>>()
+    };
+    let e = walk(EngineParameters {
+        toe_off_retries: 0,
+        ..p
+    })
+    .unwrap_err();
+    assert!(e.is_toe_off_failure(), "{e}");
+    assert!(e.to_string().contains("step 1, double_support"), "{e}");
+    let steps = walk(p).unwrap();
+    let knees: Vec<f64> = steps
+        .iter()
+        .map(|s| s.swing[0].1.y0[1].to_degrees())
+        .collect();
+    assert!((knees[0] - 40.0).abs() < 1e-9, "{knees:?}");
+    for k in &knees[1..] {
+        assert!((k - 35.0).abs() < 1e-9, "{knees:?}");
+    }
+    for s in &steps {
+        check_step(&s.report, "sl 0.8 m at 1.0 m/s");
+    }
+}

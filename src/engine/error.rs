@@ -116,6 +116,19 @@ impl SimulationError {
         }
     }
 
+    /// The rolling hind foot out of the hip's reach in double support with the toe-off knee
+    /// flexion it must reach: a straighter knee reaches further.
+    pub fn is_toe_off_failure(&self) -> bool {
+        matches!(
+            self,
+            SimulationError::Invariant {
+                phase: "double_support",
+                source: Invariant::Geometry(GeometryError::RollingFootOutOfReach { .. }),
+                ..
+            }
+        )
+    }
+
     /// The flat stance foot out of the straight leg's reach as the hip passes over it: a bounce
     /// too high for the leg, which a larger reach margin mends where the reach cuts the bounce.
     pub fn is_reach_failure(&self) -> bool {

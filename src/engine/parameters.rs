@@ -59,6 +59,13 @@ pub struct EngineParameters {
     pub reach_retries: usize,
     /// The reach margin's growth per retry (fraction of the bounce).
     pub reach_margin_step: f64,
+    /// How many times a step whose rolling hind foot cannot reach the hip in double support is
+    /// tried again, each time with the toe-off knee κ_TO lowered by `toe_off_knee_step`, never
+    /// under the attribute's least value (count; 0: never): a straighter trailing knee reaches
+    /// further, as long steps at a slow cadence need.
+    pub toe_off_retries: usize,
+    /// The toe-off knee's fall per retry (rad).
+    pub toe_off_knee_step: f64,
 }
 
 impl Default for EngineParameters {
@@ -78,6 +85,8 @@ impl Default for EngineParameters {
             list_retries: 10,
             reach_retries: 5,
             reach_margin_step: 0.01,
+            toe_off_retries: 4,
+            toe_off_knee_step: 5f64.to_radians(),
         }
     }
 }

@@ -60,12 +60,8 @@ pub struct Walker {
     index: usize,
     /// Right-hand-side evaluations of the current step, over all trials.
     pub(super) evaluations: u64,
-    /// Retries' worth of the attributes' pelvic list (each 1 / `list_retries` of it) that the
-    /// steps from the second on leave out: the most any of them needed (see [`Walker::step`]).
-    list_lowered: usize,
-    /// Retries' worth of reach margin (each `reach_margin_step` of the bounce) that the steps
-    /// from the second on add to `REACH_MARGIN`: the most any of them needed.
-    reach_raised: usize,
+    /// The retries' worth of change the steps from the second on start from.
+    kept: Kept,
     /// Start the first steps' solves from the fitted guesses (`engine::startup`).
     startup_guesses: bool,
 }
@@ -95,6 +91,43 @@ pub(super) struct StepPlan {
     /// The fraction of the new leg's axial velocity the heel-strike impulse removes
     /// ([`impact::heel_strike`](crate::dynamics::impact::heel_strike)).
     pub impulse: f64,
+    /// κ_TO: the knee flexion the hind leg reaches at toe-off in this step's double support
+    /// (rad).
+    pub toe_off_knee: f64,
+}
+
+/// What one try of a step varies ([`Walker::step`]).
+#[derive(Clone, Copy, Debug)]
+struct Attempt {
+    /// The pelvic list (rad).
+    list: f64,
+    /// The heel-strike impulse fraction.
+    impulse: f64,
+    /// The bounce's margin below the straight leg's reach (fraction of the bounce).
+    reach_margin: f64,
+    /// The toe-off knee κ_TO (rad).
+    toe_off_knee: f64,
+}
+
+/// The retries' worth of change the steps from the second on start from: the most any of them
+/// needed ([`Walker::step`]).
+#[derive(Clone, Copy, Debug, Default)]
+struct Kept {
+    /// Tenths (1 / `list_retries`) of the attributes' pelvic list left out.
+    list_lowered: usize,
+    /// Hundredths (`reach_margin_step`) of the bounce added to `REACH_MARGIN`.
+    reach_raised: usize,
+    /// `toe_off_knee_step`s taken off the toe-off knee.
+    knee_lowered: usize,
+}
+
+/// The least toe-off knee (rad): the bundled attribute table's least `toe_off_knee`.
+fn toe_off_knee_floor() -> f64 {
+    static FLOOR: OnceLock<f64> = OnceLock::new();
+    *FLOOR.get_or_init(|| {
+        let table = crate::model::attributes::AttributeTable::builtin();
+        table.0["toe_off_knee"].min.to_radians()
+    })
 }
 
 impl StepPlan {
@@ -195,8 +228,7 @@ impl Walker {
             x_ankle: 0.0,
             index: 0,
             evaluations: 0,
-            list_lowered: 0,
-            reach_raised: 0,
+            kept: Kept::default(),
             startup_guesses: true,
         }
     }
@@ -226,60 +258,78 @@ impl Walker {
         )
     }
 
-    /// Simulate the next step with gait `gait`. When the step fails with the attributes'
-    /// pelvic list in a way less list can mend ([`SimulationError::is_list_failure`]: the swing
-    /// foot under the ground, no convergence of the swing, the stance hip under its heel-strike
-    /// height, the straight leg short of the hip over the flat foot), the step is tried again
-    /// with the list lowered by a tenth of the attribute's at a time, down to none
-    /// ([`EngineParameters::list_retries`]), and the later steps start from the list it walked
-    /// with, so that the steady steps' pelvis is the same on both sides; the first step, from
-    /// the start-up posture, lowers its own list only \[ours\]. The list lowers the swing hip by
-    /// (l0/2) sin L at mid step, ≈ 5 mm, which the fastest walks of short bodies (v = 2 m/s at
-    /// H = 1.5 m) cannot spare, and raises the stance hip joint by as much above the pelvis
-    /// centre at mid-stance, which the slowest walks of tall ones (0.4 m/s at H ≥ 1.7 m, height
-    /// budget E ≈ 14 mm) cannot. The list used is in the step's `determinants`. A flat stance
-    /// foot out of the straight leg's reach ([`SimulationError::is_reach_failure`]) is first
-    /// tried again with the bounce's reach margin raised by
-    /// [`EngineParameters::reach_margin_step`] at a time
-    /// ([`EngineParameters::reach_retries`]), kept by the later steps as the list is: where the
-    /// reach cuts the bounce, less list only lets the bounce rise again \[ours\].
+    /// Simulate the next step with gait `gait`, trying it again where a failure has a mend
+    /// \[ours\]:
+    /// - the stance hip falling under y_hs in the loading response
+    ///   ([`SimulationError::is_loading_failure`]): a stronger heel-strike impulse;
+    /// - the flat stance foot out of the straight leg's reach
+    ///   ([`SimulationError::is_reach_failure`]): the bounce's reach margin raised by
+    ///   [`EngineParameters::reach_margin_step`] at a time ([`EngineParameters::reach_retries`]);
+    ///   where the reach cuts the bounce, less list only lets the bounce rise again;
+    /// - the rolling hind foot out of the hip's reach in double support
+    ///   ([`SimulationError::is_toe_off_failure`]): the toe-off knee κ_TO lowered by
+    ///   [`EngineParameters::toe_off_knee_step`] at a time ([`EngineParameters::toe_off_retries`],
+    ///   never under the attribute's least value): a straighter trailing knee reaches further,
+    ///   as long steps at a slow cadence need;
+    /// - a failure less pelvic list can mend ([`SimulationError::is_list_failure`]: the swing
+    ///   foot under the ground, no convergence of the swing, the stance hip under its
+    ///   heel-strike height, the flat foot out of reach once the margin's retries are spent):
+    ///   the list lowered by a tenth of the attribute's at a time, down to none
+    ///   ([`EngineParameters::list_retries`]). The list lowers the swing hip by (l0/2) sin L at
+    ///   mid step, ≈ 5 mm, which the fastest walks of short bodies (v = 2 m/s at H = 1.5 m)
+    ///   cannot spare, and raises the stance hip joint by as much above the pelvis centre at
+    ///   mid-stance, which the slowest walks of tall ones (0.4 m/s at H ≥ 1.7 m, height budget
+    ///   E ≈ 14 mm) cannot.
+    ///
+    /// The later steps start from the list, margin and toe-off knee the step walked with, so
+    /// that the steady steps are the same on both sides; the first step, from the start-up
+    /// posture, changes its own only. The list used is in the step's `determinants`.
     pub fn step(&mut self, gait: Gait) -> Result<Step, SimulationError> {
         let saved = self.memories();
         let first = self.index == 0;
         let p = self.parameters;
-        let mut lowered = self.list_lowered;
-        let mut raised = self.reach_raised;
+        let mut kept = self.kept;
         let mut impulse = self.attrs.heel_strike_impulse;
+        let knee_floor = toe_off_knee_floor();
         self.evaluations = 0;
         loop {
-            let list =
-                self.attrs.pelvic_list * (1.0 - lowered as f64 / p.list_retries.max(1) as f64);
-            let margin = REACH_MARGIN + raised as f64 * p.reach_margin_step;
-            match self.step_with(gait, list, impulse, margin) {
+            let knee = self.attrs.toe_off_knee - kept.knee_lowered as f64 * p.toe_off_knee_step;
+            let attempt = Attempt {
+                list: self.attrs.pelvic_list
+                    * (1.0 - kept.list_lowered as f64 / p.list_retries.max(1) as f64),
+                impulse,
+                reach_margin: REACH_MARGIN + kept.reach_raised as f64 * p.reach_margin_step,
+                toe_off_knee: knee.max(knee_floor),
+            };
+            match self.step_with(gait, attempt) {
                 Err(e) if e.is_loading_failure() && impulse < 1.0 => {
-                    self.restore(saved);
                     impulse = if impulse < 0.5 {
                         0.5 * (1.0 + impulse)
                     } else {
                         1.0
                     };
                 }
-                Err(e) if raised < p.reach_retries && e.is_reach_failure() => {
-                    self.restore(saved);
-                    raised += 1;
+                Err(e) if kept.reach_raised < p.reach_retries && e.is_reach_failure() => {
+                    kept.reach_raised += 1;
                 }
-                Err(e) if lowered < p.list_retries && e.is_list_failure() => {
-                    self.restore(saved);
-                    lowered += 1;
+                Err(e)
+                    if kept.knee_lowered < p.toe_off_retries
+                        && knee > knee_floor
+                        && e.is_toe_off_failure() =>
+                {
+                    kept.knee_lowered += 1;
+                }
+                Err(e) if kept.list_lowered < p.list_retries && e.is_list_failure() => {
+                    kept.list_lowered += 1;
                 }
                 result => {
                     if !first {
-                        self.list_lowered = lowered;
-                        self.reach_raised = raised;
+                        self.kept = kept;
                     }
                     return result;
                 }
             }
+            self.restore(saved);
         }
     }
 
@@ -293,16 +343,9 @@ impl Walker {
         ) = saved;
     }
 
-    /// One step with pelvic list `list`, heel-strike impulse fraction `impulse` and reach
-    /// margin `margin`, phase after phase.
-    fn step_with(
-        &mut self,
-        gait: Gait,
-        list: f64,
-        impulse: f64,
-        margin: f64,
-    ) -> Result<Step, SimulationError> {
-        let plan = self.plan(gait, list, impulse, margin)?;
+    /// One try of a step, phase after phase.
+    fn step_with(&mut self, gait: Gait, attempt: Attempt) -> Result<Step, SimulationError> {
+        let plan = self.plan(gait, attempt)?;
         let (prev_c, y0, impact) = self.heel_strike(&plan);
         let setup = self.stance_setup(&prev_c, &plan);
         let (stance, stance_solve) = self.solve_stance(&plan, &setup, y0)?;
@@ -354,20 +397,14 @@ impl Walker {
     }
 
     /// The step's constraints (the high level, KLAW 1989 §3, spec §3), side, determinants and start.
-    fn plan(
-        &self,
-        gait: Gait,
-        list: f64,
-        impulse: f64,
-        margin: f64,
-    ) -> Result<StepPlan, SimulationError> {
+    fn plan(&self, gait: Gait, attempt: Attempt) -> Result<StepPlan, SimulationError> {
         let det = Determinants {
-            list,
+            list: attempt.list,
             ..self.determinants
         };
         let c = StepConstraints::new(&self.body, &self.attrs, gait)?;
         let y_start = self.prev.as_ref().map_or(c.hip[1], |(p, _)| p.hip[1]);
-        let c = c.within_reach(&self.body, &det, y_start, margin);
+        let c = c.within_reach(&self.body, &det, y_start, attempt.reach_margin);
         let index = self.index;
         Ok(StepPlan {
             index,
@@ -382,7 +419,8 @@ impl Walker {
                 index,
                 froude: gait.velocity / (crate::model::GRAVITY * self.body.l1).sqrt(),
             },
-            impulse,
+            impulse: attempt.impulse,
+            toe_off_knee: attempt.toe_off_knee,
         })
     }
 

@@ -185,7 +185,7 @@ impl Walker {
     }
 
     /// Double support (spec §7): the previous step's stance leg completes its stance to toe-off
-    /// at t_ds, the knee reaching κ_TO; θ̇3 at toe-off by a 4th-order central difference.
+    /// at t_ds, the knee reaching the plan's κ_TO; θ̇3 at toe-off by a 4th-order central difference.
     /// The first step's hind leg mirrors this step's `stance_leg` one step earlier.
     pub(super) fn double_support(
         &self,
@@ -194,7 +194,7 @@ impl Walker {
         stance_leg: &StanceLeg,
     ) -> Result<ToeOff, SimulationError> {
         let (t, t0) = (plan.c.timing, plan.t0);
-        let kappa_to = self.attrs.toe_off_knee;
+        let kappa_to = plan.toe_off_knee;
         let mut hind = self
             .prev_leg
             .unwrap_or_else(|| self.first_hind_leg(plan, stance_leg));
@@ -251,7 +251,7 @@ impl Walker {
                 self.attrs.heel_strike_knee,
                 0.0,
                 t0 + t.t_ds,
-                self.attrs.toe_off_knee,
+                plan.toe_off_knee,
             ),
         });
         leg
