@@ -74,9 +74,10 @@ fn show(what: &str, r: &Recovery) {
 /// hip and knee angles within the bounds klaw's walks allow, above Table 2's (hip flexion 0.05,
 /// abduction 0.04, rotation 0.03, knee 0.02 rad): hip flexion 0.075 (0.072 at H 2.0 m, 1.8 m/s
 /// since the hip leads at heel strike; 0.07 before), adduction 0.07, rotation 0.26 (0.252 at
-/// H 2.0 m, 1.8 m/s since the list has people's timing; 0.25 before), knee 0.15 rad. Why (docs/ik.md): klaw's imposed determinants of gait (pelvic rotation
-/// and list ±4°) lie in the null space, where the secondary tasks choose other pelvis motions,
-/// and klaw's straight stance knee turns each millimetre of hip height into ≈ 0.1 rad of knee.
+/// H 2.0 m, 1.8 m/s since the list has people's timing; 0.25 before), knee 0.15 rad. Why
+/// (docs/ik.md): klaw's imposed determinants of gait (pelvic rotation and list ±4°) lie in the
+/// null space, where the secondary tasks choose other pelvis motions, and klaw's straight
+/// stance knee turns each millimetre of hip height into ≈ 0.1 rad of knee.
 #[test]
 fn the_hip_and_knee_angles_of_klaws_walks_are_recovered() {
     for (h, v) in SIX {

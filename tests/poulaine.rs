@@ -52,9 +52,9 @@ fn a_walks_poulaine_knows_the_walks_speed() {
 /// The four-point Hermite model of klaw's poulaines, with its speed profile, lies within 1.2 cm
 /// RMS (8.5 cm at worst, just after heel strike: 8.1 cm at H 2.0 m, 1.8 m/s since the hip's
 /// lead grows in fast walks (`hip_lead_max_rise`, `hip_lead_step_rise`), 6.7 cm before, 5.2
-/// before the hip led at heel strike at all, where the cubic rounds the ankle's corner and the real ankle does not follow
-/// it; the shape alone stays within 1.6 cm) of their samples at their times over speeds and heights
-/// (the model's error, reported in docs/ik.md; at the phase alone, without the profile, the
+/// before the hip led at heel strike at all, where the cubic rounds the ankle's corner and the
+/// real ankle does not follow it; the shape alone stays within 1.6 cm) of their samples at their
+/// times over speeds and heights (the model's error, reported in docs/ik.md; at the phase alone, without the profile, the
 /// same kind of fit misses by 1.7–2.6 cm RMS, so this bound catches the profile's loss).
 #[test]
 fn the_curve_model_fits_klaws_poulaines() {

@@ -180,9 +180,9 @@ mod tests {
     use crate::plan::GaitRequest;
 
     /// The sampled step agrees with the engine's own records: its heights are the pelvis
-    /// centre's (`Instant::pelvis_centre`: the dynamic hip moved by the list's centre shift), its phase moments lie in the order FGM ≤ heel-off, TOM at t_ds, the
-    /// stance foot is flat between FGM and heel-off, and the reach at heel strike is at most the
-    /// leg's length.
+    /// centre's (`Instant::pelvis_centre`: the dynamic hip moved by the list's centre shift),
+    /// its phase moments lie in the order FGM ≤ heel-off, TOM at t_ds, the stance foot is flat
+    /// between FGM and heel-off, and the reach at heel strike is at most the leg's length.
     #[test]
     fn a_walking_step_is_sampled_from_the_engine() {
         let body = Body::standard(1.8, 80.0).unwrap();

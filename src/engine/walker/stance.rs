@@ -185,8 +185,8 @@ impl Walker {
     }
 
     /// Double support (spec §7): the previous step's stance leg completes its stance to toe-off
-    /// at t_ds, the knee reaching the plan's κ_TO; θ̇3 at toe-off by a 4th-order central difference.
-    /// The first step's hind leg mirrors this step's `stance_leg` one step earlier.
+    /// at t_ds, the knee reaching the plan's κ_TO; θ̇3 at toe-off by a 4th-order central
+    /// difference. The first step's hind leg mirrors this step's `stance_leg` one step earlier.
     pub(super) fn double_support(
         &self,
         plan: &StepPlan,
