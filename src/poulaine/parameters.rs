@@ -16,10 +16,10 @@ pub struct FitParameters {
     /// Golden-section steps refining a nearest point between its grid neighbours (each keeps
     /// 0.618 of the bracket).
     pub golden_steps: usize,
-    /// The fewest samples strictly inside every knot segment for the shape fit to move the
-    /// samples' parameters; fewer, and the tangents are fitted at the phases alone (free
-    /// parameters on so few samples let the cubic wind through them: 8-sample curves reached
-    /// 10⁸ m between their samples).
+    /// The fewest samples strictly inside a knot segment for the shape fit to move their
+    /// parameters; in a segment with fewer, they keep their phases (free parameters on so few
+    /// samples let the cubic wind through them: 8-sample curves reached 10⁸ m between their
+    /// samples).
     pub min_inside: usize,
 }
 

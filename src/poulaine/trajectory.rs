@@ -42,6 +42,10 @@ pub const CSV_HEADER: [&str; 7] = [
 /// The CSV's optional last column: the pelvis's forward speed.
 pub const SPEED_COLUMN: &str = "pelvis_speed_m_s";
 
+/// The rate a walk's poulaine is sampled at unless asked otherwise: the paper's capture, a
+/// Vicon 370 "sampled at 60Hz" (Pronost et al. §4).
+pub const CAPTURE_RATE: f64 = 60.0;
+
 /// The figure of `walk`'s last complete gait cycle, right heel strike to right heel strike (a
 /// walk's even steps start on the right), at N = round(T · fps) uniform instants
 /// t₀ + i T / N; and t₀ and T. Err: a walk of fewer than 2 steps, or a rate out of [10, 1000].

@@ -15,9 +15,6 @@ use klaw::{GaitRequest, Result, Simulation, export};
 use crate::args::GaitArgs;
 use crate::outputs::{self, Output};
 
-/// The rate a walk's poulaine is sampled at, as the paper's capture (60 Hz).
-const DEFAULT_RATE: f64 = 60.0;
-
 #[derive(Subcommand)]
 pub(crate) enum PoulaineCommand {
     /// Simulate a walk and write its last gait cycle's poulaine (CSV)
@@ -31,7 +28,7 @@ pub(crate) struct ExtractArgs {
     #[command(flatten)]
     gait: GaitArgs,
     /// Samples per second of the poulaine, range [10, 1000]
-    #[arg(long, value_name = "HZ", default_value_t = DEFAULT_RATE, allow_negative_numbers = true)]
+    #[arg(long, value_name = "HZ", default_value_t = klaw::poulaine::trajectory::CAPTURE_RATE, allow_negative_numbers = true)]
     rate: f64,
     /// The poulaine to write (.csv: time_s, right_x/y/z_m, left_x/y/z_m)
     #[arg(long, value_name = "FILE.csv", default_value = "poulaine.csv")]
