@@ -3,7 +3,7 @@
 //! over speeds and heights; and leave-one-out: a walk's poulaine removed from the database, the
 //! poulaine the database gives for its parameters drives the IK. docs/ik.md has the numbers and
 //! why klaw's knee and hip rotation stay above Table 2; the larger grids are in
-//! `examples/ik_validation.rs`.
+//! `measure/ik_validation.rs`.
 use klaw::ik::Ik;
 use klaw::poulaine::Trajectory;
 use klaw::poulaine::build::{Grid, synthetic};

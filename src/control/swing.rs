@@ -4,7 +4,7 @@
 //! - swing1 [0, ½ t_swing]: hip torque A (1 − 1.5 s) and knee torque B s² − d₁ θ̇4, s the
 //!   fraction of swing1 \[ours\]; end conditions θ3 = θ3*, tibia vertical (θ3 + θ4 = 0, i.e.
 //!   x_ankle = x_knee). Constant torques whip the shank forward late and put the toe under the
-//!   ground (over the grid of examples/grid.rs); a hip push that turns into a brake and a knee
+//!   ground (over the grid of measure/grid.rs); a hip push that turns into a brake and a knee
 //!   extension that grows late keep the knee flexed while the foot passes under the hip. The
 //!   knee damper d₁ = 2ζ √(a22 m4 g r4) damps the shank's own pendulum at the servo damping
 //!   ratio ζ (the rectus femoris braking the knee's flexion in initial swing): without it the
@@ -153,7 +153,7 @@ pub enum Subphase {
 /// stiff — the coupled knee and hip servo have an eigenvalue ≈ −190 /s (default walk) — and
 /// DOP853's step size there is held at h|λ| ≈ 0.8 by accuracy, while the same stiff mode damps
 /// the local errors away: at 100 times the tolerance swing2's end condition, re-integrated at
-/// 1e-12, is met about as well as at the common tolerance (`examples/evals.rs`).
+/// 1e-12, is met about as well as at the common tolerance (`measure/evals.rs`).
 pub(crate) const SWING2_TOLERANCE_SCALE: f64 = 100.0;
 
 impl Subphase {

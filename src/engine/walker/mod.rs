@@ -241,14 +241,14 @@ impl Walker {
 
     /// The same walker with every solve started plainly (body-scaled constants, zero torques,
     /// difference Jacobians) instead of from the fitted start-up guesses: what
-    /// `examples/startup_fit.rs` fits, so that its output does not depend on its last output.
+    /// `measure/startup_fit.rs` fits, so that its output does not depend on its last output.
     pub fn without_startup_guesses(mut self) -> Self {
         self.startup_guesses = false;
         self
     }
 
     /// What the last step's solves leave for the next one's warm starts (stance, swing1,
-    /// swing2, swing3): `examples/startup_fit.rs` reads the cold Jacobians from it.
+    /// swing2, swing3): `measure/startup_fit.rs` reads the cold Jacobians from it.
     pub fn memories(&self) -> Memories {
         (
             self.stance_memory,

@@ -157,14 +157,26 @@ fn main() {
     let mut heel_v = f64::NEG_INFINITY;
     let mut late = Vec::new();
     let t0 = std::time::Instant::now();
+    let (mut refused, mut walked, mut steps) = (0, 0, 0);
     for hi in 0..4 {
         let h = 1.5 + 0.15 * hi as f64;
         for vi in 0..15 {
             let v = 0.6 + 0.1 * vi as f64;
             let body = Body::standard(h, 23.0 * h * h).unwrap();
-            match walk::simulate(body, attrs.clone(), &[gait(&body, v); 10]) {
+            // beyond the body's walk–run transition: refused before any work, not a walk
+            let request = GaitRequest {
+                velocity: Some(v),
+                ..Default::default()
+            };
+            let Ok(g) = request.complete(&body, &attrs) else {
+                refused += 1;
+                continue;
+            };
+            match walk::simulate(body, attrs.clone(), &[g; 10]) {
                 Ok(w) => {
+                    walked += 1;
                     for s in &w.steps {
+                        steps += 1;
                         exact = max4(exact, exact_residual(s, &body, &attrs));
                         let r = &s.report;
                         heel_v = heel_v.max(r.heel_contact_velocity);
@@ -191,11 +203,12 @@ fn main() {
     println!("grid: highest heel contact velocity {heel_v:.3e} m/s (the bound: <= 0)");
     let mean = late.iter().sum::<usize>() as f64 / late.len() as f64;
     println!(
-        "grid (60 walks x 10 steps): {:.0} evaluations per step, {:.2} trials per step, {:.0} per trial; \
+        "grid ({walked} walks x 10 steps; {refused} points past the walk–run transition refused): \
+         {:.0} evaluations per step, {:.2} trials per step, {:.0} per trial; \
          max {maxit} trials per solve, steps >= 3 mean {mean:.2} p95 {}; worst end condition {end_err:.1e}, \
          worst step length {:.3} %; residuals of the exact dynamics {:.1e} {:.1e} {:.1e} {:.1e}; {:.2} s",
-        evals as f64 / 600.0,
-        trials as f64 / 600.0,
+        evals as f64 / steps as f64,
+        trials as f64 / steps as f64,
         evals as f64 / trials as f64,
         late[(95 * late.len()).div_ceil(100) - 1],
         100.0 * sl_err,

@@ -1,6 +1,6 @@
 //! The quality criteria C1–C3 (Pronost et al. §6.2, eqs. 8–11, `src/analysis/criteria`) of the
 //! inverse kinematics' results next to the paper's Table 1, at the validation points of
-//! `examples/ik_validation.rs`: for each klaw walk (H × v) the criteria of the walk itself and of
+//! `measure/ik_validation.rs`: for each klaw walk (H × v) the criteria of the walk itself and of
 //! the IK on its own poulaine (60 Hz, the figure posed at the walk's speed, three cycles, the
 //! first left out as `klaw evaluate` does), and two cyclicities of the IK's sequence itself
 //! (eq. 9: the posture one frame after the last, at the first frame's target, against the first):

@@ -3,6 +3,7 @@ use klaw::*;
 fn main() {
     let attrs = Attributes::default();
     let mut fails = 0;
+    let mut refused = 0;
     let mut maxit = 0;
     let mut late = vec![];
     let mut worst_mid = f64::INFINITY;
@@ -12,12 +13,15 @@ fn main() {
         for vi in 0..15 {
             let v = 0.6 + 0.1 * vi as f64;
             let body = Body::standard(h, 23.0 * h * h).unwrap();
-            let gait = GaitRequest {
+            let request = GaitRequest {
                 velocity: Some(v),
                 ..Default::default()
-            }
-            .complete(&body, &attrs)
-            .unwrap();
+            };
+            // beyond the body's walk–run transition: refused before any work, not a walk
+            let Ok(gait) = request.complete(&body, &attrs) else {
+                refused += 1;
+                continue;
+            };
             match walk::simulate(body, attrs.clone(), &vec![gait; 10]) {
                 Ok(w) => {
                     for s in &w.steps {
@@ -42,7 +46,7 @@ fn main() {
     late.sort();
     let mean = late.iter().sum::<usize>() as f64 / late.len() as f64;
     println!(
-        "fails {fails} maxit {maxit} late mean {mean:.2} p95 {} worst_mid {worst_mid:.3e} exc_dev {exc_dev:.4}",
+        "fails {fails} refused {refused} (past the walk–run transition) maxit {maxit} late mean {mean:.2} p95 {} worst_mid {worst_mid:.3e} exc_dev {exc_dev:.4}",
         late.get(late.len() * 95 / 100).copied().unwrap_or(0)
     );
 }
