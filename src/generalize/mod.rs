@@ -27,7 +27,8 @@ pub mod measured;
 pub mod text;
 
 /// The bundled prototype: step 8 of klaw's default walk (10 steps at 1.4 m/s, H 1.8 m, M 80 kg,
-/// the default attributes), made by `klaw prototype --from-walk --out models/prototype-default.csv`.
+/// the default attributes), made by `klaw prototype --from-walk` and
+/// regenerated with the other generated tables by `cargo run --release --example regenerate -- models`.
 pub const DEFAULT_PROTOTYPE: &str = include_str!("../../models/prototype-default.csv");
 
 /// The bundled prototype ([`DEFAULT_PROTOTYPE`]), read.
