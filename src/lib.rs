@@ -33,47 +33,48 @@
 
 #![warn(missing_docs)]
 
-// The levels of the control hierarchy, lowest first; a module imports only from lower levels.
-// 1, numerics: ODE integration, root finding, trigonometry.
+// The levels of the control hierarchy, lowest first (tests/architecture.rs holds them); a module
+// imports only from lower levels.
+// 0, numerics: ODE integration, root finding, trigonometry.
 pub mod numerics;
-// 2, model: body segments, locomotion attributes.
+// 1, model: body segments, locomotion attributes.
 pub mod model;
-// 3, kinematics: the foot, the pelvis determinants, the virtual stance leg.
+// 2, kinematics: the foot, the pelvis determinants, the virtual stance leg.
 pub mod kinematics;
-// 3, dynamics: the stance and swing models, the heel-strike impulse.
+// 2, dynamics: the stance and swing models, the heel-strike impulse.
 pub mod dynamics;
-// 4, the high level: the gait completed by the normalizing formula, the step constraints.
+// 3, the high level: the gait completed by the normalizing formula, the step constraints.
 pub mod plan;
-// 5, the low level: the stance and swing controllers, their shooting solves.
+// 4, the low level: the stance and swing controllers, their shooting solves.
 pub mod control;
-// 6, engine: the step loop, the streamed walk, the per-step report, the actuators' work.
+// 5, engine: the step loop, the streamed walk, the per-step report, the actuators' work.
 pub mod engine;
+// 6, the figure around the dynamic model: landmarks, skeleton, clinical angles.
+pub mod figure;
 // 7, analysis of a walk: the gait events.
 pub mod analysis;
-// 7, the figure around the dynamic model: landmarks, skeleton, clinical angles.
-pub mod figure;
-// 7, non-rhythmic stepping: single steps and turnarounds (Ko & Badler 1993).
+// 8, non-rhythmic stepping: single steps and turnarounds (Ko & Badler 1993).
 pub mod nrs;
-// 8, walk data and its generalization to other step lengths and bodies (Ko & Badler 1992).
+// 9, walk data and its generalization to other step lengths and bodies (Ko & Badler 1992).
 pub mod generalize;
-// 8, motion files: clinical-angle CSV, OpenSim .mot / .sto, BVH, gait-cycle curves.
+// 10, motion files: clinical-angle CSV, OpenSim .mot / .sto, BVH, gait-cycle curves.
 pub mod export;
-// 8, figures: the walk, the gait cycle, the animated GIF, sweep heat maps.
-pub mod plot;
-// 8, sweeps: many walks over a grid of inputs, their summary rows.
-pub mod sweep;
-// 8, files in and out: atomic writes, frames, events, report, attribute and schedule files.
+// 10, files in and out: atomic writes, frames, events, report, attribute and schedule files.
 pub mod input;
-// 9, scenarios: stand, walk, step, turn and pause in one motion.
-pub mod scenario;
-// 9, beside the binary: the library API, the `Simulation` builder and the `Walk` it returns.
-pub mod simulation;
-// 9, inverse kinematics of the lower limbs from ankle trajectories (Pronost et al.).
+// 10, inverse kinematics of the lower limbs from ankle trajectories (Pronost et al.).
 pub mod ik;
-// 11, poulaines: ankle trajectories relative to the pelvis, their model and database.
+// 11, sweeps: many walks over a grid of inputs, their summary rows.
+pub mod sweep;
+// 11, scenarios: stand, walk, step, turn and pause in one motion.
+pub mod scenario;
+// 11, beside the binary: the library API, the `Simulation` builder and the `Walk` it returns.
+pub mod simulation;
+// 12, figures: the walk, the gait cycle, the animated GIF, sweep heat maps.
+pub mod plot;
+// 12, poulaines: ankle trajectories relative to the pelvis, their model and database.
 pub mod poulaine;
 
-// Beside the levels: the crate's error type; the memory policy of long-running callers.
+// 0, the memory policy of long-running callers; beside the levels, the crate's error type.
 pub mod error;
 pub mod memory;
 

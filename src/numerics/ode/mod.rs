@@ -256,7 +256,7 @@ pub enum Method {
 }
 
 /// The method of [`integrate_on`]: DOP853, whose longer steps take fewer evaluations than
-/// Dopri5's in every phase of the walk (docs/engine.md, "Speed").
+/// Dopri5's in every phase of the walk (measured in docs/journal/engine.md).
 pub(crate) const METHOD: Method = Method::Dop853;
 
 /// [`integrate_on`] by `method`.
