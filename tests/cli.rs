@@ -3,22 +3,10 @@
 //! output.
 use std::fs;
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
-/// Run `klaw args…` in `dir`; no invocation may panic.
-fn klaw(dir: &Path, args: &[&str]) -> Output {
-    let out = Command::new(env!("CARGO_BIN_EXE_klaw"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("the klaw binary runs");
-    let (stdout, stderr) = texts(&out);
-    assert!(
-        !stdout.contains("panicked") && !stderr.contains("panicked"),
-        "klaw {args:?} panicked:\n{stderr}"
-    );
-    out
-}
+mod common;
+use common::klaw;
 
 fn texts(out: &Output) -> (String, String) {
     (

@@ -2,17 +2,14 @@
 //! `klaw walk --mode kinematic`: their files, their refusals (exit 2, nothing written), and the
 //! bundled prototype, which must be what its documented command makes today.
 use std::path::Path;
-use std::process::Command;
+
+mod common;
 
 use klaw::generalize::extract::from_walk;
 use klaw::generalize::{GeneralizeParameters, default_prototype};
 
-fn klaw(args: &[&str], dir: &Path) -> (i32, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_klaw"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap();
+fn run(args: &[&str], dir: &Path) -> (i32, String) {
+    let out = common::klaw(dir, args);
     let text =
         String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
     (out.status.code().unwrap(), text)
@@ -23,7 +20,7 @@ fn klaw(args: &[&str], dir: &Path) -> (i32, String) {
 fn prototype_generalize_and_walk_write_their_files() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    let (code, text) = klaw(
+    let (code, text) = run(
         &[
             "prototype",
             "--from-walk",
@@ -35,7 +32,7 @@ fn prototype_generalize_and_walk_write_their_files() {
         d,
     );
     assert_eq!(code, 0, "{text}");
-    let (code, text) = klaw(
+    let (code, text) = run(
         &[
             "generalize",
             "--prototype",
@@ -51,7 +48,7 @@ fn prototype_generalize_and_walk_write_their_files() {
     );
     assert_eq!(code, 0, "{text}");
     assert!(d.join("g.csv").exists());
-    let (code, text) = klaw(
+    let (code, text) = run(
         &[
             "walk",
             "--mode",
@@ -153,7 +150,7 @@ fn refusals_exit_2_and_write_nothing() {
             "at least 3",
         ),
     ] {
-        let (code, text) = klaw(&args, d);
+        let (code, text) = run(&args, d);
         assert_eq!(code, 2, "{args:?}: {text}");
         assert!(text.contains(says), "{args:?}: {text}");
     }
@@ -161,9 +158,9 @@ fn refusals_exit_2_and_write_nothing() {
     assert!(left.is_empty(), "{left:?}");
 }
 
-/// The bundled prototype is what `klaw prototype --from-walk --out
-/// models/prototype-default.csv` makes from today's engine (regenerate it with that command
-/// when the engine changes).
+/// The bundled prototype is what `klaw prototype --from-walk` makes from today's engine
+/// (regenerate it with the other generated tables: `cargo run --release --example regenerate --
+/// models`).
 #[test]
 fn the_bundled_prototype_is_the_default_walks() {
     let walk = klaw::Simulation::default().steps(10).run().unwrap();
@@ -180,7 +177,7 @@ fn the_bundled_prototype_is_the_default_walks() {
     ] {
         assert!(
             (x - y).abs() < 1e-9,
-            "{x} vs {y}: regenerate with `klaw prototype --from-walk --out models/prototype-default.csv`"
+            "{x} vs {y}: regenerate with `cargo run --release --example regenerate -- models`"
         );
     }
     assert!(klaw::generalize::DEFAULT_PROTOTYPE.len() < 30_000);
@@ -195,6 +192,6 @@ fn the_bundled_prototype_is_the_default_walks() {
         data(&klaw::generalize::text::to_csv(&fresh).unwrap())
             == data(klaw::generalize::DEFAULT_PROTOTYPE),
         "the bundled prototype's samples differ from today's engine's: regenerate it with \
-         `klaw prototype --from-walk --out models/prototype-default.csv`"
+         `cargo run --release --example regenerate -- models`"
     );
 }

@@ -2,21 +2,9 @@
 //! write, and every bad input refused with exit status 2 before anything is written.
 use std::fs;
 use std::path::Path;
-use std::process::{Command, Output};
 
-fn klaw(dir: &Path, args: &[&str]) -> Output {
-    let out = Command::new(env!("CARGO_BIN_EXE_klaw"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("the klaw binary runs");
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(
-        !stderr.contains("panicked"),
-        "klaw {args:?} panicked:\n{stderr}"
-    );
-    out
-}
+mod common;
+use common::klaw;
 
 fn ok(dir: &Path, args: &[&str]) -> String {
     let out = klaw(dir, args);

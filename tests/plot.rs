@@ -2,12 +2,14 @@
 //! `klaw walk` next to the CSV (`--plot`, `--no-plot`).
 use std::fs;
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
 use klaw::engine::report::StateFrame;
 use klaw::model::InputError;
 use klaw::plot::walk::{FIGURE_SIZE, walk_figure};
 use klaw::{Error, Simulation};
+
+mod common;
 
 /// The frames of the default walk (H = 1.8 m, M = 80 kg, v = 1.4 m/s), 4 steps at 100 frames/s.
 fn default_frames() -> Vec<StateFrame> {
@@ -110,23 +112,18 @@ fn unwritable_figure_path_errors_without_leaving_a_file() {
     assert_eq!(files(d), ["taken.png"]);
 }
 
-fn klaw(dir: &Path, args: &[&str], font: Option<&str>) -> Output {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_klaw"));
-    cmd.args(args).current_dir(dir);
-    if let Some(f) = font {
-        cmd.env(klaw::plot::FONT_ENV, f);
+fn klaw_font(dir: &Path, args: &[&str], font: Option<&str>) -> Output {
+    match font {
+        Some(f) => common::klaw_with(dir, args, &[(klaw::plot::FONT_ENV, f)]),
+        None => common::klaw(dir, args),
     }
-    let out = cmd.output().expect("the klaw binary runs");
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(!stderr.contains("panicked"), "klaw {args:?}:\n{stderr}");
-    out
 }
 
 #[test]
 fn klaw_walk_writes_the_figure_by_default() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    let out = klaw(d, &["walk", "--steps", "2"], None);
+    let out = klaw_font(d, &["walk", "--steps", "2"], None);
     assert!(out.status.success(), "{out:?}");
     assert!(String::from_utf8_lossy(&out.stdout).contains("plot: walk.png"));
     assert_eq!(files(d), ["walk.csv", "walk.png"]);
@@ -135,7 +132,7 @@ fn klaw_walk_writes_the_figure_by_default() {
         (1600, 1000)
     );
 
-    let out = klaw(d, &["walk", "--steps", "2", "--plot", "two.svg"], None);
+    let out = klaw_font(d, &["walk", "--steps", "2", "--plot", "two.svg"], None);
     assert!(out.status.success(), "{out:?}");
     assert!(
         fs::read_to_string(d.join("two.svg"))
@@ -144,7 +141,7 @@ fn klaw_walk_writes_the_figure_by_default() {
     );
 
     let e = tempfile::tempdir().unwrap();
-    let out = klaw(e.path(), &["walk", "--steps", "2", "--no-plot"], None);
+    let out = klaw_font(e.path(), &["walk", "--steps", "2", "--no-plot"], None);
     assert!(out.status.success(), "{out:?}");
     assert!(!String::from_utf8_lossy(&out.stdout).contains("plot:"));
     assert_eq!(files(e.path()), ["walk.csv"]);
@@ -155,8 +152,7 @@ fn klaw_walk_draws_without_text_when_no_font_is_found() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     let missing = d.join("no-such-font.ttf");
-    let out = klaw(
-        d,
+    let out = klaw_font(d,
         &["walk", "--steps", "2"],
         Some(missing.to_str().unwrap()),
     );
@@ -203,7 +199,7 @@ fn klaw_walk_rejects_bad_plot_paths_before_simulating() {
         (&["walk", "--plot", "p.png", "--no-plot"], "--no-plot", 2),
     ];
     for (args, needle, code) in cases {
-        let out = klaw(d, args, None);
+        let out = klaw_font(d, args, None);
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(*code), "klaw {args:?}:\n{stderr}");
         assert!(

@@ -4,31 +4,20 @@ use std::fs;
 use std::path::Path;
 use std::process::{Command, Output};
 
-fn klaw(dir: &Path, args: &[&str], threads: Option<&str>) -> Output {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_klaw"));
-    cmd.args(args).current_dir(dir);
-    if let Some(t) = threads {
-        cmd.env("RAYON_NUM_THREADS", t);
-    }
-    let out = cmd.output().expect("the klaw binary runs");
+mod common;
+
+fn sweep_ok(dir: &Path, args: &[&str], threads: Option<&str>) -> Output {
+    let env: Vec<(&str, &str)> = threads.map(|t| ("RAYON_NUM_THREADS", t)).into_iter().collect();
+    let out = common::klaw_with(dir, args, &env);
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(
-        !stderr.contains("panicked"),
-        "klaw {args:?} panicked:\n{stderr}"
-    );
     assert!(out.status.success(), "klaw {args:?} failed:\n{stderr}");
     out
 }
 
 /// Run klaw expecting an input error (status 2); returns stderr.
 fn klaw_fails(dir: &Path, args: &[&str]) -> String {
-    let out = Command::new(env!("CARGO_BIN_EXE_klaw"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap();
+    let out = common::klaw(dir, args);
     let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
-    assert!(!stderr.contains("panicked"), "{args:?} panicked:\n{stderr}");
     assert_eq!(out.status.code(), Some(2), "{args:?}:\n{stderr}");
     stderr
 }
@@ -53,7 +42,7 @@ fn col(header: &[String], name: &str) -> usize {
 #[test]
 fn two_by_two_sweep_writes_four_rows() {
     let dir = tempfile::tempdir().unwrap();
-    klaw(
+    sweep_ok(
         dir.path(),
         &[
             "sweep",
@@ -95,7 +84,7 @@ fn two_by_two_sweep_writes_four_rows() {
 #[test]
 fn out_of_range_point_is_recorded_and_the_sweep_carries_on() {
     let dir = tempfile::tempdir().unwrap();
-    klaw(
+    sweep_ok(
         dir.path(),
         &[
             "sweep",
@@ -145,8 +134,8 @@ fn thread_count_does_not_change_the_output() {
             out,
         ]
     };
-    klaw(dir.path(), &args("one.jsonl"), Some("1"));
-    klaw(dir.path(), &args("two.jsonl"), Some("2"));
+    sweep_ok(dir.path(), &args("one.jsonl"), Some("1"));
+    sweep_ok(dir.path(), &args("two.jsonl"), Some("2"));
     let one = fs::read(dir.path().join("one.jsonl")).unwrap();
     let two = fs::read(dir.path().join("two.jsonl")).unwrap();
     assert_eq!(one, two);
@@ -180,7 +169,7 @@ fn sweep_args<'a>(extra: &[&'a str]) -> Vec<&'a str> {
 #[test]
 fn rows_are_numbered_in_product_order() {
     let dir = tempfile::tempdir().unwrap();
-    klaw(dir.path(), &sweep_args(&["--out", "s.csv"]), None);
+    sweep_ok(dir.path(), &sweep_args(&["--out", "s.csv"]), None);
     let (header, rows) = rows(&dir.path().join("s.csv"));
     assert_eq!(header[0], "point");
     assert_eq!(rows.len(), 12);
@@ -214,14 +203,14 @@ fn merged_shards_are_byte_identical_to_the_whole_sweep() {
     let dir = tempfile::tempdir().unwrap();
     for ext in ["csv", "jsonl"] {
         let whole = format!("whole.{ext}");
-        klaw(dir.path(), &sweep_args(&["--out", &whole]), None);
+        sweep_ok(dir.path(), &sweep_args(&["--out", &whole]), None);
         // 5 shards of 12 points: uneven (3, 3, 2, 2, 2)
         let mut parts = Vec::new();
         let mut union = Vec::new();
         for k in 1..=5 {
             let part = format!("part-{k}.{ext}");
             let shard = format!("{k}/5");
-            klaw(
+            sweep_ok(
                 dir.path(),
                 &sweep_args(&["--shard", &shard, "--out", &part]),
                 Some("1"),
@@ -246,7 +235,7 @@ fn merged_shards_are_byte_identical_to_the_whole_sweep() {
         for i in [3, 0, 4, 1, 2] {
             args.push(&parts[i]);
         }
-        klaw(dir.path(), &args, None);
+        sweep_ok(dir.path(), &args, None);
         let a = fs::read(dir.path().join(&whole)).unwrap();
         let b = fs::read(dir.path().join(&merged)).unwrap();
         assert!(a == b, "{ext}: merged output differs from the whole sweep");
@@ -260,14 +249,14 @@ fn merge_reports_missing_duplicate_and_conflicting_rows() {
     for k in 1..=3 {
         let shard = format!("{k}/3");
         let out = format!("p{k}.csv");
-        klaw(d, &sweep_args(&["--shard", &shard, "--out", &out]), None);
+        sweep_ok(d, &sweep_args(&["--shard", &shard, "--out", &out]), None);
     }
     // a missing shard: an error, no output
     let e = klaw_fails(d, &["merge", "m.csv", "p1.csv", "p3.csv"]);
     assert!(e.contains("missing") && e.contains("first: 1"), "{e}");
     assert!(!d.join("m.csv").exists());
     // --allow-missing writes the rows and warns
-    let out = klaw(
+    let out = sweep_ok(
         d,
         &["merge", "m.csv", "p1.csv", "p3.csv", "--allow-missing"],
         None,
@@ -275,7 +264,7 @@ fn merge_reports_missing_duplicate_and_conflicting_rows() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("4 points are missing"));
     assert_eq!(rows(&d.join("m.csv")).1.len(), 8);
     // the same shard twice: identical rows, written once, with a warning
-    let out = klaw(
+    let out = sweep_ok(
         d,
         &["merge", "m.csv", "p1.csv", "p2.csv", "p3.csv", "p2.csv"],
         None,
@@ -283,7 +272,7 @@ fn merge_reports_missing_duplicate_and_conflicting_rows() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("4 rows were found in more than one"));
     assert_eq!(rows(&d.join("m.csv")).1.len(), 12);
     // a shard of another sweep: different rows for the same points
-    klaw(
+    sweep_ok(
         d,
         &[
             "sweep",
@@ -305,7 +294,7 @@ fn merge_reports_missing_duplicate_and_conflicting_rows() {
     let e = klaw_fails(d, &["merge", "m2.csv", "p1.csv", "p2.csv", "other.csv"]);
     assert!(e.contains("not the same sweep"), "{e}");
     // other columns
-    klaw(
+    sweep_ok(
         d,
         &[
             "sweep",
@@ -332,7 +321,7 @@ fn resume_after_a_truncated_run_gives_the_uninterrupted_file() {
     let d = dir.path();
     for ext in ["csv", "jsonl"] {
         let whole = format!("whole.{ext}");
-        klaw(d, &sweep_args(&["--out", &whole]), None);
+        sweep_ok(d, &sweep_args(&["--out", &whole]), None);
         let full = fs::read(d.join(&whole)).unwrap();
         let out = format!("r.{ext}");
         let partial = format!(".r.{ext}.partial");
@@ -355,7 +344,7 @@ fn resume_after_a_truncated_run_gives_the_uninterrupted_file() {
             // an interrupted run's partial file
             fs::write(d.join(&partial), &full[..cut]).unwrap();
             let _ = fs::remove_file(d.join(&out));
-            klaw(d, &sweep_args(&["--out", &out, "--resume"]), None);
+            sweep_ok(d, &sweep_args(&["--out", &out, "--resume"]), None);
             assert!(
                 fs::read(d.join(&out)).unwrap() == full,
                 "{ext}: partial cut at {cut}"
@@ -366,7 +355,7 @@ fn resume_after_a_truncated_run_gives_the_uninterrupted_file() {
                 let mut holes: Vec<u8> = full[..ends[1]].to_vec();
                 holes.extend_from_slice(&full[ends[4]..ends[6]]);
                 fs::write(d.join(&out), &holes).unwrap();
-                let o = klaw(d, &sweep_args(&["--out", &out, "--resume"]), None);
+                let o = sweep_ok(d, &sweep_args(&["--out", &out, "--resume"]), None);
                 assert!(fs::read(d.join(&out)).unwrap() == full, "{ext}: holes");
                 let said = String::from_utf8_lossy(&o.stdout).into_owned();
                 let kept = if ext == "csv" { 3 } else { 4 };
@@ -374,7 +363,7 @@ fn resume_after_a_truncated_run_gives_the_uninterrupted_file() {
             }
         }
         // resuming a complete output runs nothing and changes nothing
-        let o = klaw(d, &sweep_args(&["--out", &out, "--resume"]), None);
+        let o = sweep_ok(d, &sweep_args(&["--out", &out, "--resume"]), None);
         assert!(String::from_utf8_lossy(&o.stdout).contains("swept 0 walks"));
         assert!(fs::read(d.join(&out)).unwrap() == full);
     }
@@ -384,7 +373,7 @@ fn resume_after_a_truncated_run_gives_the_uninterrupted_file() {
 fn resume_refuses_another_sweeps_rows() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    klaw(d, &sweep_args(&["--out", "s.csv"]), None);
+    sweep_ok(d, &sweep_args(&["--out", "s.csv"]), None);
     // other values, same columns: the inputs of a point differ
     let e = klaw_fails(
         d,
@@ -417,7 +406,7 @@ fn resume_refuses_another_sweeps_rows() {
     );
     assert!(e.contains("not in this sweep's shard 1/2"), "{e}");
     // the target is untouched by the refusals
-    klaw(d, &sweep_args(&["--out", "t.csv"]), None);
+    sweep_ok(d, &sweep_args(&["--out", "t.csv"]), None);
     assert_eq!(
         fs::read(d.join("s.csv")).unwrap(),
         fs::read(d.join("t.csv")).unwrap()
@@ -473,8 +462,8 @@ fn resume_after_a_killed_run() {
         !d.join("k.csv").exists(),
         "the sweep finished before it was killed"
     );
-    klaw(d, &[&args[..], &["--resume"]].concat(), None);
-    klaw(d, &[&args[..7], &["--out", "u.csv"]].concat(), None);
+    sweep_ok(d, &[&args[..], &["--resume"]].concat(), None);
+    sweep_ok(d, &[&args[..7], &["--out", "u.csv"]].concat(), None);
     let (k, u) = (
         fs::read(d.join("k.csv")).unwrap(),
         fs::read(d.join("u.csv")).unwrap(),
@@ -496,7 +485,7 @@ fn sweep_file_with_flags_overriding_it() {
     )
     .unwrap();
     // the flag replaces the file's velocity; the rest comes from the file
-    klaw(
+    sweep_ok(
         d,
         &[
             "sweep",
@@ -527,7 +516,7 @@ fn sweep_file_with_flags_overriding_it() {
         [("0.9", "1.6", "1", "0.7"), ("0.9", "1.8", "1", "0.7")]
     );
     // the same sweep from flags alone is the same file
-    klaw(
+    sweep_ok(
         d,
         &[
             "sweep",
@@ -597,7 +586,7 @@ fn styles_are_a_sweep_axis() {
         "--out",
         "s.csv",
     ];
-    let out = klaw(d, &args, None);
+    let out = sweep_ok(d, &args, None);
     assert!(
         out.status.success(),
         "{}",
@@ -627,7 +616,7 @@ fn styles_are_a_sweep_axis() {
         "style = [\"normal\", \"elderly\"]\nvelocity = [0.9, 1.4]\n",
     )
     .unwrap();
-    let out = klaw(
+    let out = sweep_ok(
         d,
         &[
             "sweep", "--file", "f.toml", "--steps", "3", "--out", "f.csv",
@@ -670,7 +659,7 @@ fn body_tables_are_a_sweep_axis() {
         "--out",
         "s.csv",
     ];
-    let out = klaw(d, &args, None);
+    let out = sweep_ok(d, &args, None);
     assert!(
         out.status.success(),
         "{}",
@@ -698,7 +687,7 @@ fn body_tables_are_a_sweep_axis() {
         "body_table = [\"winter\", \"deleva-male\", \"deleva-female\"]\nvelocity = 1.89\nheight = 1.5\n",
     )
     .unwrap();
-    let out = klaw(
+    let out = sweep_ok(
         d,
         &[
             "sweep", "--file", "f.toml", "--steps", "3", "--out", "f.csv",
@@ -727,7 +716,7 @@ fn body_tables_are_a_sweep_axis() {
 #[test]
 fn a_point_beyond_the_walk_run_transition_is_a_failed_row() {
     let dir = tempfile::tempdir().unwrap();
-    klaw(
+    sweep_ok(
         dir.path(),
         &[
             "sweep",

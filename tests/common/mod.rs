@@ -93,13 +93,32 @@ pub fn grid_of(table: &str, dv: f64, heights: &[f64]) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// Run the `klaw` binary in `dir`.
+/// Run the `klaw` binary in `dir`; it may not panic, whatever the arguments.
 pub fn klaw(dir: &std::path::Path, args: &[&str]) -> std::process::Output {
-    std::process::Command::new(env!("CARGO_BIN_EXE_klaw"))
+    klaw_with(dir, args, &[])
+}
+
+/// [`klaw`] with the environment variables `env` set.
+pub fn klaw_with(
+    dir: &std::path::Path,
+    args: &[&str],
+    env: &[(&str, &str)],
+) -> std::process::Output {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_klaw"))
         .args(args)
+        .envs(env.iter().copied())
         .current_dir(dir)
         .output()
-        .expect("the klaw binary runs")
+        .expect("the klaw binary runs");
+    let (stdout, stderr) = (
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr),
+    );
+    assert!(
+        !stdout.contains("panicked") && !stderr.contains("panicked"),
+        "klaw {args:?} panicked:\n{stderr}"
+    );
+    out
 }
 
 /// Run `klaw` in an empty directory and expect exit 2, nothing written, and one `error:` line

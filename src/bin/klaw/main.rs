@@ -45,8 +45,17 @@ const MAX_FPS: f64 = 10_000.0;
     long_about = "Goal-directed, dynamically simulated human walking after Bruderlin & Calvert, \"Goal-directed,\n\
         dynamic animation of human walking\" (SIGGRAPH 1989).\n\
         \n\
-        `klaw walk` simulates a walk and writes its frames as CSV and a figure of it (PNG or SVG);\n\
-        `klaw bench` times the default walk.\n\
+        The dynamic walk: `klaw walk` simulates a walk and writes its frames (CSV, OpenSim .mot / .sto,\n\
+        BVH), events, report and a figure; `klaw bench` times the default walk; `klaw sweep` runs\n\
+        many walks over a grid, `klaw merge` joins a sweep's shards, `klaw plot-sweep` draws a heat map.\n\
+        Figures: `klaw plot` (joint angles over the gait cycle, normal ranges shaded), `klaw animate`\n\
+        (a stick-figure GIF).\n\
+        Stepping (Ko & Badler 1993): `klaw step`, `klaw turn`, and `klaw scenario` (stand, walk, step,\n\
+        turn and pause in the world).\n\
+        Walking from data (Ko & Badler 1992): `klaw prototype` (walk data from a walk or a measured\n\
+        CSV), `klaw generalize` (to another step length and body), `klaw walk --mode kinematic`.\n\
+        Inverse kinematics (Pronost et al.): `klaw poulaine`, `klaw poulaine-db`, `klaw ik`.\n\
+        Evaluation: `klaw evaluate` (quality criteria and published ranges of a walk in a file).\n\
         \n\
         Exit status: 0 on success, 2 for bad input (a flag or file out of range or malformed), 1 when\n\
         the simulation or writing the output fails."
