@@ -99,3 +99,42 @@ fn styles_differ_from_normal_where_they_say() {
     assert!(march.trunk_lean < normal.trunk_lean - 1f64.to_radians());
     assert!(march.arm_range > 1.5 * normal.arm_range);
 }
+
+/// The paper's gait (`--style paper`: KLAW 1989 as published, the hip midway at heel strike, a
+/// plastic heel strike, fixed pelvis amplitudes) walks Winter's table's valid box: H 1.2–2.2 m
+/// by 0.2 × v from 0.4 m/s by 0.3 up to each body's walk–run transition, and the transition
+/// itself (M = 23 H², 6 steps), with the hip midway between the ankles at every heel strike.
+#[test]
+fn the_papers_gait_walks_winters_box() {
+    let a = attrs_of("paper");
+    assert_eq!(a.hip_lead_slope, 0.0);
+    let mut walks = 0;
+    for i in 0..6 {
+        let h = 1.2 + 0.2 * i as f64;
+        let body = klaw::Body::standard(h, 23.0 * h * h).unwrap();
+        let limit = klaw::plan::gait::velocity_limit(&body, &a);
+        let speeds = (0..)
+            .map(|k| 0.4 + 0.3 * k as f64)
+            .take_while(|&v| v < limit)
+            .chain([limit]);
+        for v in speeds {
+            let w = klaw::Simulation::new(body)
+                .style("paper")
+                .velocity(v)
+                .steps(6)
+                .run()
+                .unwrap_or_else(|e| panic!("H {h:.1} v {v:.2}: {e}"));
+            for s in &w.engine().steps {
+                let c = &s.constraints;
+                let phi = c.hip[0] / c.gait.step_length;
+                assert!(
+                    (phi - 0.5).abs() < 1e-12,
+                    "H {h:.1} v {v:.2} step {}: φ {phi}",
+                    s.index
+                );
+            }
+            walks += 1;
+        }
+    }
+    assert!(walks >= 30, "{walks} walks");
+}

@@ -20,6 +20,7 @@ pub const STYLES: &[(&str, &str)] = &[
         "long-stride",
         include_str!("../../models/styles/long-stride.toml"),
     ),
+    ("paper", include_str!("../../models/styles/paper.toml")),
 ];
 
 /// The overrides of the style preset `name` (an error lists the known styles).

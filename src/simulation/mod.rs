@@ -112,7 +112,7 @@ impl Simulation {
         self
     }
 
-    /// Walk in a bundled style preset (`normal`, `brisk`, `elderly`, `march`, `long-stride`:
+    /// Walk in a bundled style preset (`normal`, `brisk`, `elderly`, `march`, `long-stride`, `paper`:
     /// `models/styles/`), its values over the default attributes; replaces
     /// [`attributes`](Simulation::attributes) set before. An unknown name is an error of
     /// [`prepare`](Simulation::prepare).

@@ -116,12 +116,12 @@ pub(crate) struct BodyArgs {
     )]
     attributes: Option<PathBuf>,
 
-    /// Style preset: normal, brisk, elderly, march or long-stride
+    /// Style preset: normal, brisk, elderly, march, long-stride or paper (KLAW 1989 as published)
     #[arg(
         long,
         value_name = "NAME",
         long_help = "Style preset: an attribute file bundled from models/styles/ (normal, brisk, elderly,\n\
-            march, long-stride). --attributes overrides the style's values name by name."
+            march, long-stride, paper: KLAW 1989 as published). --attributes overrides the style's values name by name."
     )]
     style: Option<String>,
 

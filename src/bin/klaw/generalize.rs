@@ -36,7 +36,7 @@ pub(crate) struct GeneralizeArgs {
     #[arg(long, value_name = "NAME", default_value = DEFAULT_BODY_TABLE)]
     body_table: String,
 
-    /// Style preset: normal, brisk, elderly, march or long-stride (its pelvic rotation and step width place the hip)
+    /// Style preset: normal, brisk, elderly, march, long-stride or paper (its pelvic rotation and step width place the hip)
     #[arg(long, value_name = "NAME")]
     style: Option<String>,
 

@@ -54,7 +54,7 @@ pub(crate) struct SweepArgs {
     /// Steps per walk, whole numbers [default: 10]
     #[arg(long, value_name = "SPEC", allow_hyphen_values = true)]
     steps: Option<String>,
-    /// Style presets A,B,C (normal, brisk, elderly, march, long-stride); --attr overrides them
+    /// Style presets A,B,C (normal, brisk, elderly, march, long-stride, paper); --attr overrides them
     #[arg(long, value_name = "NAMES")]
     style: Option<String>,
     /// Body tables A,B (winter, deleva-male, deleva-female)
