@@ -198,12 +198,12 @@ fn a_sliding_heel_is_refused() {
     assert!(d > 1e-3 && point.ends_with("heel"), "{point} {d}");
 }
 
-/// At ρ = 1 on each body, the right knee's flexion over a stride follows the clip's own (the
-/// angle between the thigh and the shank of the clip's markers, computed here) to 5.5° RMS
-/// (measured 4.8°, 5.1° and 5.2°: the bodies' thigh : shank ratios and feet are not the
-/// clip's, and klaw's list, hung on the clip's pelvis, has people's timing since 2026-12-05,
-/// which holds the stance hip joint 3 mm lower at mid-stance than the paper's half-sine did:
-/// 4.0°, 4.2° and 4.2° with it), and closer than at 1.2 × the clip's step (8.5–10.6°).
+/// At ρ = 1 on each body the right knee's flexion over a stride follows the clip's own (the
+/// angle between the thigh and the shank of the clip's markers, computed here) closer than at
+/// 1.2 × the clip's step (generalization keeps the prototype best at its own step); the RMS
+/// differences in degrees are a snapshot, reviewed when they change (the bodies' thigh : shank
+/// ratios and feet are not the clip's, and klaw's list, hung on the clip's pelvis, has
+/// people's timing: no independent value holds them).
 #[test]
 fn at_its_own_step_the_knee_keeps_the_clips_curve() {
     let w = prototype();
@@ -234,6 +234,7 @@ fn at_its_own_step_the_knee_keeps_the_clips_curve() {
             .sum();
         (sq / clip.len() as f64).sqrt().to_degrees()
     };
+    let mut table = String::from("knee RMS against the clip (deg), at ρ 1 and 1.2\n");
     for body in bodies() {
         let kin = walk(&w, body, 1.0);
         let one = rms(&kin);
@@ -242,7 +243,8 @@ fn at_its_own_step_the_knee_keeps_the_clips_curve() {
             "H {} ({} leg): knee RMS {one:.2}° at ρ 1, {longer:.2}° at 1.2",
             body.height, body.l1
         );
-        assert!(one < 5.5, "{one}");
         assert!(longer > one, "{longer} vs {one}");
+        table += &format!("H {}: {one:.1}, {longer:.1}\n", body.height);
     }
+    insta::assert_snapshot!(table);
 }

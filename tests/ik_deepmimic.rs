@@ -43,10 +43,10 @@ fn clip_angles(n: usize) -> Vec<Angles> {
 
 /// The IK on the clip's poulaine at the clip's leg length: every frame's ankles within 1 mm of
 /// the poulaine (by the chain's forward kinematics at the solved angles), every angle within
-/// its joint limits, and the hip flexion and knee against the clip's own (eq. 7, mean of both
-/// legs) within the bounds klaw's own walks meet (`tests/ik_validation.rs`: hip flexion 0.07,
-/// knee 0.15 rad; docs/ik.md's 16 walks: 0.038–0.075 and 0.082–0.138). Measured here, sample by
-/// sample: 0.044 and 0.073 rad (Table 2: 0.05 and 0.02).
+/// its joint limits (the method's own guarantees), and the hip flexion and knee against the
+/// clip's own (eq. 7, mean of both legs, rad) as a snapshot, reviewed when it changes (Table 2
+/// reports 0.05 and 0.02 for the paper's subjects; no published value holds klaw's chain on
+/// this clip).
 #[test]
 fn the_ik_follows_deepmimics_poulaine_and_recovers_its_knee() {
     let poulaine = Trajectory::read_csv(Path::new(POULAINE)).unwrap();
@@ -66,8 +66,9 @@ fn the_ik_follows_deepmimics_poulaine_and_recovers_its_knee() {
         "DeepMimic: hip flexion {hip:.4}, knee {knee:.4} rad; {:?}",
         r.rms
     );
-    assert!(hip <= 0.07, "hip flexion {hip} rad");
-    assert!(knee <= 0.15, "knee {knee} rad");
+    insta::assert_snapshot!(format!(
+        "RMS against the clip (rad): hip flexion {hip:.3}, knee {knee:.3}"
+    ));
 }
 
 /// Nothing is lost to the task or to the bodies' difference: klaw's chain at H 1.724 m is not

@@ -290,8 +290,9 @@ fn a_forward_step_borrows_the_walking_steps_hip_height() {
         worst = worst.max((q[0] - 4.0 * q[1] + 6.0 * q[2] - 4.0 * q[3] + q[4]).abs());
         windows += 1;
     }
-    assert!(windows > n / 5, "eq. 4 holds on {windows} windows only");
     eprintln!("eq. 4 on {windows} of {} windows", n - 3);
+    // how much of the step eq. 4 holds on is the model's own output: a snapshot
+    insta::assert_snapshot!(format!("eq. 4 holds on {windows} of {} windows", n - 3));
     assert!(
         worst < 1e-11,
         "y − h is not a cubic: fourth difference {worst}"

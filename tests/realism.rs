@@ -126,6 +126,7 @@ fn within(name: &str, x: f64, lo: f64, hi: f64, at: &str) {
 
 #[test]
 fn default_walks_against_the_published_ranges() {
+    let mut stance_peak_at = String::from("the knee's loading-response peak, % of the cycle\n");
     for v in [1.2, 1.35, 1.5] {
         for h in [1.75, 1.85] {
             let at = format!("v {v} H {h}");
@@ -142,12 +143,14 @@ fn default_walks_against_the_published_ranges() {
             let (hmin, hmin_at) = peak(&hip, 0..101, false);
             within("hip range", hmax - hmin, 40.0, 50.0, &at);
             within("hip peak extension", hmin, -15.0, -5.0, &at);
-            within("hip peak extension at %", hmin_at as f64, 48.0, 62.0, &at);
+            within("hip peak extension at %", hmin_at as f64, 50.0, 55.0, &at);
             // knee: 0–8° at heel strike, stance peak 10–25° at 12–18 %, swing peak at 70–75 %
             within("knee at HS", knee[0], 0.0, 8.0, &at);
             let (kst, kst_at) = peak(&knee, 0..30, true);
             within("knee stance peak", kst, 10.0, 25.0, &at);
-            within("knee stance peak at %", kst_at as f64, 10.0, 20.0, &at);
+            // gait-norms.md: near 12–18 %; klaw's peaks at 11 % (a deviation, docs/realism.md):
+            // its timing is a snapshot below, not a widened window
+            stance_peak_at += &format!("{at}: {kst_at} %\n");
             // terminal stance: the knee stays near straight (spec §7: ≈ 5°; measured 5.4–9.9°)
             within(
                 "knee max in 30–42 %",
@@ -196,7 +199,7 @@ fn default_walks_against_the_published_ranges() {
                 c.pelvis_peaks
             );
             let (ksw, ksw_at) = peak(&knee, 50..101, true);
-            within("knee swing peak at %", ksw_at as f64, 68.0, 77.0, &at);
+            within("knee swing peak at %", ksw_at as f64, 70.0, 75.0, &at);
             within("knee swing peak", ksw, 55.0, 65.0, &at);
             // ankle: −5…+3° at heel strike; stance dorsiflexion peak 8–15° in late stance
             within("ankle at HS", ankle[0], -5.0, 3.0, &at);
@@ -225,6 +228,7 @@ fn default_walks_against_the_published_ranges() {
             );
         }
     }
+    insta::assert_snapshot!(stance_peak_at);
 }
 
 /// The trailing ankle at the other leg's heel strike, from the plan and the body alone, no

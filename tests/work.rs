@@ -196,10 +196,10 @@ fn positive_work_converges_with_sampling() {
 }
 
 /// Work per metre of a walk at v = 1.4 m/s: at least human walking's positive joint work
-/// (≈ 0.3–1 J/(kg·m) in gait-lab inverse dynamics) and of the same order: a gross sanity bound
-/// only, [0.3, 5]. Measured 3.2 J/(kg·m) with the figure's determinants (2.4 before): the KLAW
-/// actuators — a leg-axis servo holding the hip on its reference, a balance torque, swing servos
-/// — do 3–4 times the work of human muscles, which store and return energy in tendons.
+/// (≈ 0.3–1 J/(kg·m) in gait-lab inverse dynamics), which is the only published bound; the
+/// value itself is a snapshot, reviewed when it changes. The KLAW actuators — a leg-axis servo
+/// holding the hip on its reference, a balance torque, swing servos — do several times the work
+/// of human muscles, which store and return energy in tendons.
 #[test]
 fn work_per_metre_is_plausible() {
     let walk = default_walk(6);
@@ -207,5 +207,6 @@ fn work_per_metre_is_plausible() {
     let work: f64 = report.steps.iter().map(|s| s.positive_work).sum();
     let distance: f64 = report.steps.iter().map(|s| s.achieved.step_length).sum();
     let per_kg_m = work / distance / 80.0;
-    assert!((0.3..5.0).contains(&per_kg_m), "{per_kg_m} J/(kg m)");
+    assert!(per_kg_m >= 0.3, "{per_kg_m} J/(kg m)");
+    insta::assert_snapshot!(format!("{per_kg_m:.2} J/(kg m)"));
 }
