@@ -8,7 +8,7 @@
 //! `cargo run --release --example criteria [FPS]` (default 100 frames/s).
 use klaw::analysis::criteria::heel_strikes::from_kinematics;
 use klaw::analysis::criteria::segments::{DOFS, POSE, pose};
-use klaw::analysis::criteria::{CriteriaParameters, Motion, evaluate};
+use klaw::analysis::criteria::{CriteriaFrames, CriteriaParameters, evaluate};
 use klaw::numerics::sampled::{lagrange, third_derivative};
 use klaw::{Body, Simulation};
 
@@ -22,9 +22,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     for v in [1.0, 1.2, 1.4, 1.6, 1.8] {
         let walk = Simulation::new(body).velocity(v).steps(10).run()?;
-        let motion = Motion::from_walk(walk.engine(), fps)?;
+        let motion = CriteriaFrames::from_walk(walk.engine(), fps)?;
         let c = evaluate(&motion, &body, &params)?;
-        let at_ankle = Motion {
+        let at_ankle = CriteriaFrames {
             heel_strikes: from_kinematics(&motion.frames, &body, params.heel_strike_window),
             ..motion.clone()
         };
@@ -53,7 +53,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 /// The share of C1 (summed over the cycles) from the 60 frames/s frames within two frames of
 /// any heel strike, with the criteria's own resampling and differences.
 fn near_heel_strikes(
-    motion: &Motion,
+    motion: &CriteriaFrames,
     c: &klaw::analysis::criteria::Criteria,
     params: &CriteriaParameters,
 ) -> f64 {

@@ -10,7 +10,7 @@
 //!
 //! `cargo run --release --example ik_criteria`
 use klaw::analysis::criteria::heel_strikes::from_steps;
-use klaw::analysis::criteria::{CriteriaParameters, Means, Motion, evaluate};
+use klaw::analysis::criteria::{CriteriaFrames, CriteriaParameters, Means, evaluate};
 use klaw::figure::clinical::clinical;
 use klaw::ik::{Angles, Ik, Solution};
 use klaw::poulaine::Trajectory;
@@ -61,7 +61,7 @@ fn solved(
     let angles: Vec<Angles> = kept.frames.iter().map(|f| f.theta).collect();
     let frames = klaw::ik::figure::frames((body, &attrs), &angles, dt, v, 3);
     let clin: Vec<_> = frames.iter().map(|f| clinical(f, body).unwrap()).collect();
-    let motion = Motion {
+    let motion = CriteriaFrames {
         heel_strikes: from_steps(&clin),
         frames: clin,
     };
@@ -97,7 +97,7 @@ fn main() {
                 continue;
             };
             let own = evaluate(
-                &Motion::from_walk(walk.engine(), 60.0).unwrap(),
+                &CriteriaFrames::from_walk(walk.engine(), 60.0).unwrap(),
                 &body,
                 &params,
             )

@@ -12,7 +12,7 @@ use image::{AnimationDecoder, RgbaImage};
 use klaw::Error;
 use klaw::figure::{FigureError, Landmarks};
 use klaw::model::InputError;
-use klaw::plot::animation::{Options, animate_walk, check_path, parse_size, write_gif};
+use klaw::plot::animation::{AnimationOptions, animate_walk, check_path, parse_size, write_gif};
 
 /// The decoded frames (RGBA) and each frame's delay in ms.
 fn decode(path: &Path) -> Vec<(RgbaImage, u32)> {
@@ -44,7 +44,7 @@ fn grey(img: &RgbaImage, x: i32, y: i32) -> bool {
 fn gif_has_a_frame_per_interval_and_dots_under_flat_feet() {
     let walk = default_walk(3);
     let fps = 20.0;
-    let options = Options::new(fps, (480, 240)).unwrap();
+    let options = AnimationOptions::new(fps, (480, 240)).unwrap();
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("walk.gif");
     let summary = animate_walk(&walk, "test walk", &path, &options).unwrap();
@@ -136,7 +136,7 @@ fn bad_paths_options_and_frames_are_typed_errors() {
         (25.0, (900, 50)),
         (25.0, (5000, 450)),
     ] {
-        let e = Options::new(fps, size).unwrap_err();
+        let e = AnimationOptions::new(fps, size).unwrap_err();
         assert!(
             matches!(
                 e,
@@ -156,7 +156,7 @@ fn bad_paths_options_and_frames_are_typed_errors() {
     assert!(matches!(e, InputError::OutOfRange { .. }), "{e}");
 
     let walk = default_walk(1);
-    let options = Options::new(10.0, (300, 150)).unwrap();
+    let options = AnimationOptions::new(10.0, (300, 150)).unwrap();
     let png = dir.path().join("walk.png");
     let e = animate_walk(&walk, "t", &png, &options).unwrap_err();
     assert!(

@@ -7,7 +7,7 @@ use klaw::analysis::criteria::energy::{Energies, energies, power};
 use klaw::analysis::criteria::heel_strikes::{from_kinematics, from_steps};
 use klaw::analysis::criteria::segments::{POSE, Segments, pose};
 use klaw::analysis::criteria::{
-    CriteriaError, CriteriaParameters, HeelStrikes, Motion, compare, evaluate,
+    CriteriaError, CriteriaFrames, CriteriaParameters, HeelStrikes, compare, evaluate,
 };
 use klaw::{Body, Clinical};
 
@@ -31,7 +31,7 @@ fn set_dofs(c: &mut Clinical, v: [f64; 11]) {
 
 /// Frames at `fps` over [t0, t1] whose eleven angles are `angles(t)`, the pelvis position
 /// unknown (NaN), heel strikes every second from 0 (right) and 0.5 (left) to 3.5 s.
-fn synthetic(fps: f64, t0: f64, t1: f64, angles: impl Fn(f64) -> [f64; 11]) -> Motion {
+fn synthetic(fps: f64, t0: f64, t1: f64, angles: impl Fn(f64) -> [f64; 11]) -> CriteriaFrames {
     let n = ((t1 - t0) * fps).round() as usize;
     let frames = (0..=n)
         .map(|k| {
@@ -45,7 +45,7 @@ fn synthetic(fps: f64, t0: f64, t1: f64, angles: impl Fn(f64) -> [f64; 11]) -> M
             c
         })
         .collect();
-    Motion {
+    CriteriaFrames {
         frames,
         heel_strikes: HeelStrikes {
             right: vec![0.0, 1.0, 2.0, 3.0],
@@ -308,7 +308,7 @@ fn a_rigid_pendulum_keeps_its_energy() {
 fn klaw_walk_criteria_from_every_heel_strike_source() {
     let walk = default_walk(10);
     let body = default_body();
-    let exact = Motion::from_walk(&walk, 100.0).unwrap();
+    let exact = CriteriaFrames::from_walk(&walk, 100.0).unwrap();
     let params = CriteriaParameters::default();
     let c = evaluate(&exact, &body, &params).unwrap();
     // 10 steps: 6 right heel strikes (the last ends the walk at 5.5549 s, after the last frame
@@ -320,7 +320,7 @@ fn klaw_walk_criteria_from_every_heel_strike_source() {
     // the steady walk repeats itself: small C2
     assert!(c.mean.cyclicity < 0.02, "{}", c.mean.cyclicity);
     // the step index gives the heel strikes to the frame
-    let by_steps = Motion {
+    let by_steps = CriteriaFrames {
         heel_strikes: from_steps(&exact.frames),
         ..exact.clone()
     };
@@ -352,7 +352,7 @@ fn klaw_walk_criteria_from_every_heel_strike_source() {
         .iter()
         .fold(0.0f64, |m, l| m.max((l - leads[1]).abs()));
     assert!(spread < 2e-3 && (0.0..0.1).contains(&leads[1]), "{leads:?}");
-    let by_kinematics = Motion {
+    let by_kinematics = CriteriaFrames {
         heel_strikes: kin,
         ..exact.clone()
     };

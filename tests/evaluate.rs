@@ -5,7 +5,7 @@ use std::fs;
 use std::path::Path;
 
 use klaw::analysis::criteria::segments::{POSE, pose};
-use klaw::analysis::criteria::{CriteriaParameters, Motion, evaluate};
+use klaw::analysis::criteria::{CriteriaFrames, CriteriaParameters, evaluate};
 use klaw::export::read::read_motion;
 use klaw::{OpenSimModel, Options};
 
@@ -35,7 +35,7 @@ fn walk_files(dir: &Path) {
     assert_eq!(out.status.code(), Some(0));
 }
 
-fn largest_difference(a: &Motion, b: &Motion) -> f64 {
+fn largest_difference(a: &CriteriaFrames, b: &CriteriaFrames) -> f64 {
     assert_eq!(a.frames.len(), b.frames.len());
     a.frames
         .iter()
@@ -63,7 +63,7 @@ fn klaw_files_read_back_to_the_walk() {
     let body = default_body();
     let walk = klaw::Simulation::new(body).steps(6).run().unwrap();
     let fps = 100.0;
-    let exact = Motion::from_walk(walk.engine(), fps).unwrap();
+    let exact = CriteriaFrames::from_walk(walk.engine(), fps).unwrap();
     let params = CriteriaParameters::default();
     let csv = dir.path().join("w.csv");
     walk.write(&csv, fps, &Options::default()).unwrap();

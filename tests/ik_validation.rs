@@ -79,7 +79,8 @@ fn show(what: &str, r: &Recovery) {
 /// millimetre of hip height into ≈ 0.1 rad of knee (docs/ik.md).
 #[test]
 fn the_hip_and_knee_angles_of_klaws_walks_are_recovered() {
-    let mut table = String::from("H (m), v (m/s): RMS hip flexion, adduction, rotation, knee (rad)\n");
+    let mut table =
+        String::from("H (m), v (m/s): RMS hip flexion, adduction, rotation, knee (rad)\n");
     for (h, v) in SIX {
         let r = own(h, v);
         show(&format!("H {h} v {v}"), &r);

@@ -9,8 +9,8 @@ mod common;
 
 use common::default_walk;
 use klaw::Error;
-use klaw::analysis::cycle::{Curve, CycleError, GaitCycle, Panel, min_steps};
-use klaw::analysis::norms::{Measure, NormTable, Range, WalkSpeed, check};
+use klaw::analysis::cycle::{CycleError, GaitCycle, Panel, PanelCurve, min_steps};
+use klaw::analysis::norms::{Measure, NormRange, NormTable, WalkSpeed, check};
 use klaw::figure::clinical::Clinical;
 use klaw::figure::skeleton::Side;
 use klaw::model::InputError;
@@ -29,7 +29,7 @@ fn synthetic(f: impl Fn(Panel, Option<Side>, f64) -> f64) -> GaitCycle {
             vec![None]
         };
         for side in sides {
-            curves.push(Curve {
+            curves.push(PanelCurve {
                 panel,
                 side,
                 values: (0..=100).map(|p| f(panel, side, p as f64)).collect(),
@@ -63,7 +63,8 @@ const SPEED: WalkSpeed = WalkSpeed {
 /// The bundled table's fixed rows only (gait-norms.md's).
 fn fixed_norms() -> NormTable {
     let mut t = NormTable::builtin();
-    t.norms.retain(|n| matches!(n.range, Range::Fixed { .. }));
+    t.norms
+        .retain(|n| matches!(n.range, NormRange::Fixed { .. }));
     t
 }
 
@@ -103,7 +104,7 @@ fn bundled_norms_are_the_published_ranges() {
     assert_eq!(t.norms.len(), expect.len());
     for (name, low, high, timing) in expect {
         let n = norm(&t, name);
-        assert_eq!(n.range, Range::Fixed { low, high }, "{name}");
+        assert_eq!(n.range, NormRange::Fixed { low, high }, "{name}");
         if let Some(p) = timing {
             assert!(
                 n.windows.iter().any(|w| w[0] <= p && p <= w[1]),

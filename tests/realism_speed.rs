@@ -13,7 +13,7 @@ mod common;
 
 use common::body_of_height;
 use klaw::analysis::cycle::{GaitCycle, Panel};
-use klaw::analysis::norms::{NormCheck, NormTable, Range, WalkSpeed, check};
+use klaw::analysis::norms::{NormCheck, NormRange, NormTable, WalkSpeed, check};
 use klaw::figure::skeleton::Side;
 use klaw::model::attributes::Attributes;
 use klaw::model::pelvis_speed::PelvisSpeedLaw;
@@ -46,7 +46,7 @@ const EXPECTED_MISSES: &[(f64, f64, &str, f64)] = &[];
 /// The bundled table's rows by speed.
 fn speed_norms() -> NormTable {
     let mut t = NormTable::builtin();
-    t.norms.retain(|n| matches!(n.range, Range::BySpeed(_)));
+    t.norms.retain(|n| matches!(n.range, NormRange::BySpeed(_)));
     t
 }
 

@@ -6,8 +6,8 @@
 //! Orendurff et al. 2004's abstract.
 use std::path::Path;
 
-use klaw::analysis::cycle::{Curve, GaitCycle, Panel};
-use klaw::analysis::norms::{BySpeed, NormTable, Range, SpeedScale, WalkSpeed, check};
+use klaw::analysis::cycle::{GaitCycle, Panel, PanelCurve};
+use klaw::analysis::norms::{BySpeed, NormRange, NormTable, SpeedScale, WalkSpeed, check};
 use klaw::figure::skeleton::Side;
 use klaw::model::InputError;
 
@@ -35,7 +35,7 @@ fn parse(text: &str) -> Result<NormTable, InputError> {
 /// The one row's by-speed table.
 fn speed_table(text: &str) -> BySpeed {
     match &parse(text).unwrap().norms[0].range {
-        Range::BySpeed(b) => b.clone(),
+        NormRange::BySpeed(b) => b.clone(),
         r => panic!("not by speed: {r:?}"),
     }
 }
@@ -134,7 +134,7 @@ fn knee_cycle() -> GaitCycle {
         .map(|p| 60.0 * (-((p as f64 - 72.0) / 8.0).powi(2)).exp())
         .collect();
     GaitCycle {
-        curves: vec![Curve {
+        curves: vec![PanelCurve {
             panel: Panel::KneeFlexion,
             side: Some(Side::Right),
             values,
@@ -270,7 +270,7 @@ fn the_bundled_speed_rows_are_schwartz_2008() {
     let row = |name: &str| -> BySpeed {
         let n = t.norms.iter().find(|n| n.name == name).unwrap();
         match &n.range {
-            Range::BySpeed(b) => b.clone(),
+            NormRange::BySpeed(b) => b.clone(),
             r => panic!("{name}: {r:?}"),
         }
     };

@@ -289,7 +289,7 @@ impl Panel {
 
 /// One curve of the figure: 101 samples, 0…100 % of its cycle, in its panel's unit.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Curve {
+pub struct PanelCurve {
     /// The panel that shows the curve.
     pub panel: Panel,
     /// The leg (its own cycle), or `None` for the pelvis (the right cycle).
@@ -302,7 +302,7 @@ pub struct Curve {
 #[derive(Clone, Debug, PartialEq)]
 pub struct GaitCycle {
     /// The curves, panel by panel in [`Panel::ALL`]'s order, the right leg's before the left's.
-    pub curves: Vec<Curve>,
+    pub curves: Vec<PanelCurve>,
     /// How many cycles were averaged (right, left).
     pub cycles: (usize, usize),
     /// Toe-off of each leg in % of its own cycle (mean over the averaged cycles), if known.
@@ -331,7 +331,7 @@ impl GaitCycle {
         let (left, left_cycles) = averaged(Side::Left, left_heel_strikes)?;
         let mut curves = Vec::new();
         for (k, panel) in Panel::ALL.into_iter().enumerate() {
-            let curve = |rows: &[Vec<f64>], side| Curve {
+            let curve = |rows: &[Vec<f64>], side| PanelCurve {
                 panel,
                 side,
                 values: rows.iter().map(|r| panel.in_unit(r[k])).collect(),
@@ -393,7 +393,7 @@ impl GaitCycle {
     }
 
     /// The curves of one panel.
-    pub(crate) fn panel_curves(&self, panel: Panel) -> impl Iterator<Item = &Curve> {
+    pub(crate) fn panel_curves(&self, panel: Panel) -> impl Iterator<Item = &PanelCurve> {
         self.curves.iter().filter(move |c| c.panel == panel)
     }
 }

@@ -85,7 +85,7 @@ pub struct Norm {
     /// Cycle % for [`Measure::At`].
     pub at: Option<f64>,
     /// The normal range, in `unit`: fixed, or by the walk's speed.
-    pub range: Range,
+    pub range: NormRange,
     /// `deg` or `cm`: the panel's unit.
     pub unit: String,
     /// Cycle-% intervals [start, end] where the band is shaded (and, for max / min, searched).
@@ -206,7 +206,7 @@ impl BySpeed {
 
 /// A norm's range: the same at every speed, or by the walk's speed.
 #[derive(Clone, Debug, PartialEq)]
-pub enum Range {
+pub enum NormRange {
     /// [low, high] at every speed.
     Fixed {
         /// Lower end, in the norm's unit.
@@ -218,20 +218,20 @@ pub enum Range {
     BySpeed(BySpeed),
 }
 
-impl Range {
+impl NormRange {
     /// The speed table of a speed-dependent range.
     pub fn by_speed(&self) -> Option<&BySpeed> {
         match self {
-            Range::BySpeed(b) => Some(b),
-            Range::Fixed { .. } => None,
+            NormRange::BySpeed(b) => Some(b),
+            NormRange::Fixed { .. } => None,
         }
     }
 
     /// [low, high] for a walk at `speed`; `None` for a speed-dependent range outside its span.
     pub fn at(&self, speed: WalkSpeed) -> Option<(f64, f64)> {
         match self {
-            Range::Fixed { low, high } => Some((*low, *high)),
-            Range::BySpeed(b) => b.range(b.scale.of(speed)),
+            NormRange::Fixed { low, high } => Some((*low, *high)),
+            NormRange::BySpeed(b) => b.range(b.scale.of(speed)),
         }
     }
 }
@@ -269,14 +269,14 @@ impl NormRow {
     fn check(self) -> Result<Norm, String> {
         let range = match (self.low, self.high, self.by_speed) {
             (Some(low), Some(high), None) if low.is_finite() && high.is_finite() && low < high => {
-                Range::Fixed { low, high }
+                NormRange::Fixed { low, high }
             }
             (Some(_), Some(_), None) => {
                 return Err("low and high must be finite with low < high".into());
             }
             (None, None, Some(b)) => match b.fault() {
                 Some(fault) => return Err(fault),
-                None => Range::BySpeed(b),
+                None => NormRange::BySpeed(b),
             },
             (None, None, None) => return Err("a range needs low and high, or by_speed".into()),
             _ => return Err("give low and high, or by_speed, not parts of both".into()),
@@ -298,8 +298,8 @@ impl NormRow {
         }
         // the lowest low: a fixed low, or a by-speed low at a listed speed (linear between them)
         let lowest = match &range {
-            Range::Fixed { low, .. } => *low,
-            Range::BySpeed(b) => b
+            NormRange::Fixed { low, .. } => *low,
+            NormRange::BySpeed(b) => b
                 .speed
                 .iter()
                 .filter_map(|&v| b.range(v))

@@ -68,18 +68,18 @@ const MARGIN: u32 = 8;
 
 /// The animation's frame rate and image size.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Options {
+pub struct AnimationOptions {
     /// Frames per second of walk time, also the playback rate.
     pub fps: f64,
     /// Width and height in pixels.
     pub size: (u32, u32),
 }
 
-impl Options {
+impl AnimationOptions {
     /// Check the frame rate against 1–100 frames/s (`FPS_RANGE`) and the size against 200–4000
     /// px wide and 100–4000 px high (`WIDTH_RANGE`, `HEIGHT_RANGE`) ([`InputError::OutOfRange`]
     /// / [`InputError::NotFinite`]).
-    pub fn new(fps: f64, size: (u32, u32)) -> Result<Options, InputError> {
+    pub fn new(fps: f64, size: (u32, u32)) -> Result<AnimationOptions, InputError> {
         InputError::check_range("fps", fps, FPS_RANGE.0, FPS_RANGE.1, "frames/s")?;
         let (w, h) = size;
         InputError::check_range(
@@ -96,7 +96,7 @@ impl Options {
             f64::from(HEIGHT_RANGE.1),
             "px",
         )?;
-        Ok(Options { fps, size })
+        Ok(AnimationOptions { fps, size })
     }
 
     /// The display time of a frame in milliseconds, as plotters takes it (it rounds to
@@ -106,10 +106,10 @@ impl Options {
     }
 }
 
-impl Default for Options {
+impl Default for AnimationOptions {
     /// 25 frames/s, 900 × 450 px.
     fn default() -> Self {
-        Options {
+        AnimationOptions {
             fps: 25.0,
             size: (900, 450),
         }
@@ -191,7 +191,12 @@ pub fn check_frame_count(duration: f64, fps: f64) -> Result<(), InputError> {
 
 /// Animate `walk`: its figure at `options.fps` ([`crate::figure::frames`]), then [`write_gif`].
 /// `title` names the walk (e.g. [`crate::plot::parameters_title`]).
-pub fn animate_walk(walk: &Walk, title: &str, path: &Path, options: &Options) -> Result<Summary> {
+pub fn animate_walk(
+    walk: &Walk,
+    title: &str,
+    path: &Path,
+    options: &AnimationOptions,
+) -> Result<Summary> {
     check_path(path)?;
     check_frame_count(walk.duration(), options.fps)?;
     let frames = crate::figure::frames(walk, options.fps);
@@ -209,7 +214,7 @@ pub fn write_gif(
     body: &Body,
     title: &str,
     path: &Path,
-    options: &Options,
+    options: &AnimationOptions,
 ) -> Result<Summary> {
     write_frames(frames, None, body, title, path, options)
 }
@@ -222,7 +227,7 @@ pub fn write_scenario_gif(
     body: &Body,
     title: &str,
     path: &Path,
-    options: &Options,
+    options: &AnimationOptions,
 ) -> Result<Summary> {
     let floor = top::Floor::new(motion, body);
     write_frames(&motion.frames, Some(&floor), body, title, path, options)
@@ -235,10 +240,10 @@ fn write_frames(
     body: &Body,
     title: &str,
     path: &Path,
-    options: &Options,
+    options: &AnimationOptions,
 ) -> Result<Summary> {
     check_path(path)?;
-    let options = Options::new(options.fps, options.size)?;
+    let options = AnimationOptions::new(options.fps, options.size)?;
     if frames.is_empty() || frames.len() > MAX_FRAMES {
         return Err(ExportError::FrameCount {
             path: path.to_path_buf(),

@@ -14,10 +14,10 @@ use plotters::coord::Shift;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 
-use crate::analysis::cycle::{Curve, GaitCycle, Panel};
+use crate::analysis::cycle::{GaitCycle, Panel, PanelCurve};
 use crate::analysis::extent;
 use crate::analysis::norms::{
-    BySpeed, Measure, Norm, NormCheck, NormTable, Range, WalkSpeed, check,
+    BySpeed, Measure, Norm, NormCheck, NormRange, NormTable, WalkSpeed, check,
 };
 use crate::error::Result;
 use crate::figure::skeleton::Side;
@@ -290,7 +290,7 @@ struct Band {
 }
 
 /// The bands of a norm whose range is [low, high] on a panel.
-fn bands(norm: &Norm, (low, high): (f64, f64), curves: &[&Curve]) -> Vec<Band> {
+fn bands(norm: &Norm, (low, high): (f64, f64), curves: &[&PanelCurve]) -> Vec<Band> {
     let base = match norm.measure {
         Measure::PeakToPeak => {
             // anchored at the lowest curve of the panel
@@ -337,7 +337,7 @@ struct PanelRange {
 }
 
 impl PanelRange {
-    fn new(curves: &[&Curve], bands: &[Band], note_lines: usize) -> PanelRange {
+    fn new(curves: &[&PanelCurve], bands: &[Band], note_lines: usize) -> PanelRange {
         let ys = curves
             .iter()
             .flat_map(|c| c.values.iter().copied())
@@ -362,7 +362,7 @@ fn draw_panel<DB: DrawingBackend>(
 ) -> std::result::Result<PanelPixels, DrawError> {
     let text = figure.text;
     let area = titled(area, title(panel), 19, text)?;
-    let curves: Vec<&Curve> = figure.cycle.panel_curves(panel).collect();
+    let curves: Vec<&PanelCurve> = figure.cycle.panel_curves(panel).collect();
     let panel_norms: Vec<&Norm> = figure
         .norms
         .norms
@@ -494,7 +494,7 @@ fn draw_marks<DB: DrawingBackend>(
 }
 
 /// The curves: right solid, left dashed, the pelvis solid.
-fn draw_curves<DB: DrawingBackend>(chart: &mut Chart<'_, DB>, curves: &[&Curve]) -> Drawn {
+fn draw_curves<DB: DrawingBackend>(chart: &mut Chart<'_, DB>, curves: &[&PanelCurve]) -> Drawn {
     for c in curves {
         let points: Vec<(f64, f64)> = c
             .values
@@ -574,10 +574,10 @@ fn note<'a>(
     };
     let range = match (range, &norm.range) {
         (None, _) => return format!("{}: no norm at this speed", norm.label),
-        (Some((low, high)), Range::BySpeed(_)) => {
+        (Some((low, high)), NormRange::BySpeed(_)) => {
             format!("{}…{}{unit}", tenths(low), tenths(high))
         }
-        (Some((low, high)), Range::Fixed { .. }) => format!("{low}…{high}{unit}"),
+        (Some((low, high)), NormRange::Fixed { .. }) => format!("{low}…{high}{unit}"),
     };
     format!(
         "{} {range}: {shown} {}",

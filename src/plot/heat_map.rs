@@ -19,7 +19,7 @@ use crate::error::{Error, Result};
 use crate::model::attributes::AttributeTable;
 use crate::model::{InputError, error::Reason};
 use crate::plot::{self, Chart, Draw, DrawError, Drawn, FONT, Png, TITLE_SIZE, msg, titled};
-use crate::sweep::Format;
+use crate::sweep::RowFormat;
 use crate::sweep::output::LineError;
 
 /// Heat map size in pixels (width, height).
@@ -135,7 +135,7 @@ fn number(text: &str) -> std::result::Result<Option<f64>, ()> {
 
 /// The rows of a sweep output as (column name → cell text), CSV or JSON Lines by extension.
 fn read_rows(path: &Path) -> Result<(Vec<String>, Vec<Vec<String>>)> {
-    let format = Format::from_path(path)?;
+    let format = RowFormat::from_path(path)?;
     let malformed =
         |reason: Reason| Error::from(InputError::malformed("sweep output", path, reason));
     let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
@@ -144,7 +144,7 @@ fn read_rows(path: &Path) -> Result<(Vec<String>, Vec<Vec<String>>)> {
         source: e,
     })?;
     match format {
-        Format::Csv => {
+        RowFormat::Csv => {
             let mut r = csv::Reader::from_reader(text.as_bytes());
             let header: Vec<String> = r
                 .headers()
@@ -161,7 +161,7 @@ fn read_rows(path: &Path) -> Result<(Vec<String>, Vec<Vec<String>>)> {
                 .collect::<Result<Vec<Vec<String>>>>()?;
             Ok((header, rows))
         }
-        Format::Jsonl => {
+        RowFormat::Jsonl => {
             let mut header: Vec<String> = Vec::new();
             let mut rows = Vec::new();
             for (i, line) in text

@@ -162,13 +162,13 @@ impl Overlay<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::cycle::Curve;
+    use crate::analysis::cycle::PanelCurve;
 
     fn cycle(shift: f64) -> GaitCycle {
         GaitCycle {
             curves: PANELS
                 .iter()
-                .map(|&(panel, _)| Curve {
+                .map(|&(panel, _)| PanelCurve {
                     panel,
                     side: Some(Side::Right),
                     values: (0..=100).map(|i| shift + (i as f64 * 0.06).sin()).collect(),

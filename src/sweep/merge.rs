@@ -9,7 +9,7 @@ use super::output::{RowReader, malformed};
 use crate::error::Result;
 use crate::export::file::AtomicFile;
 use crate::model::InputError;
-use crate::sweep::Format;
+use crate::sweep::RowFormat;
 
 /// What a merge did.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -33,14 +33,14 @@ pub struct MergeStats {
 /// the largest point found are an error unless `allow_missing` (then counted). Points after the
 /// largest one cannot be detected: the files do not record the sweep's size.
 pub fn merge(out: &Path, inputs: &[PathBuf], allow_missing: bool) -> Result<MergeStats> {
-    let format = Format::from_path(out)?;
+    let format = RowFormat::from_path(out)?;
     if inputs.is_empty() {
         return Err(InputError::bad_value("merge", "no input files").into());
     }
     let mut heads = Heads::open(out, inputs, format)?;
     let mut file = AtomicFile::create(out)?;
     let mut stats = MergeStats::default();
-    if format == Format::Csv
+    if format == RowFormat::Csv
         && let Some(c) = heads.readers.iter().find_map(RowReader::columns)
     {
         let line = format.header_line(c);
@@ -83,10 +83,10 @@ struct Heads<'a> {
 
 impl<'a> Heads<'a> {
     /// Open every input (each must have the format of `out`), then read the first row of each.
-    fn open(out: &Path, paths: &'a [PathBuf], format: Format) -> Result<Heads<'a>> {
+    fn open(out: &Path, paths: &'a [PathBuf], format: RowFormat) -> Result<Heads<'a>> {
         let mut readers = Vec::with_capacity(paths.len());
         for path in paths {
-            if Format::from_path(path)? != format {
+            if RowFormat::from_path(path)? != format {
                 return Err(malformed(
                     path,
                     format!("its format differs from the output's ({})", out.display()),
@@ -104,7 +104,7 @@ impl<'a> Heads<'a> {
         for i in 0..heads.readers.len() {
             heads.pull(i)?;
             // (an empty JSON Lines file is a shard without rows; a CSV one has its header)
-            if format == Format::Csv && heads.readers[i].columns().is_none() {
+            if format == RowFormat::Csv && heads.readers[i].columns().is_none() {
                 let reason = "no header line: not a sweep output";
                 return Err(malformed(&heads.paths[i], reason.to_string()));
             }

@@ -18,6 +18,6 @@ pub mod spec;
 
 pub use file::read_sweep_file;
 pub use product::{Axis, Sweep};
-pub use rows::Format;
+pub use rows::RowFormat;
 pub use shard::Shard;
 pub use spec::{parse_attr, parse_body_tables, parse_spec, parse_styles};

@@ -19,7 +19,7 @@ use crate::error::{Error, Result};
 use crate::model::InputError;
 use crate::model::error::Reason;
 use crate::sweep::rows::check_sweep_columns;
-use crate::sweep::{Format, Shard, Sweep};
+use crate::sweep::{RowFormat, Shard, Sweep};
 
 /// The partial output of a sweep writing `target`: `.NAME.partial` in the same directory.
 pub(crate) fn partial_path(target: &Path) -> PathBuf {
@@ -64,9 +64,9 @@ enum CsvLineError {
 
 /// The column names of a file as they are compared: the CSV header in order, or the sorted keys
 /// of a JSON Lines row.
-fn comparable(format: Format, header: &[String]) -> Vec<String> {
+fn comparable(format: RowFormat, header: &[String]) -> Vec<String> {
     let mut h = header.to_vec();
-    if format == Format::Jsonl {
+    if format == RowFormat::Jsonl {
         h.sort();
     }
     h
@@ -77,7 +77,7 @@ fn comparable(format: Format, header: &[String]) -> Vec<String> {
 /// (cut off by an interruption) is not returned: `cut_off` says so.
 pub(crate) struct RowReader {
     pub(super) path: PathBuf,
-    format: Format,
+    format: RowFormat,
     reader: BufReader<File>,
     /// CSV: the header; JSON Lines: the sorted keys of the first row (`None` before it).
     columns: Option<Vec<String>>,
@@ -91,7 +91,7 @@ pub(crate) struct RowReader {
 impl RowReader {
     /// Open a sweep output; a CSV file's header is read here (a file without a complete first
     /// line has no columns).
-    pub fn open(path: &Path, format: Format) -> Result<RowReader> {
+    pub fn open(path: &Path, format: RowFormat) -> Result<RowReader> {
         let file = File::open(path).map_err(io_err("reading", path))?;
         let mut r = RowReader {
             path: path.to_path_buf(),
@@ -103,7 +103,7 @@ impl RowReader {
             valid_len: 0,
             cut_off: false,
         };
-        if format == Format::Csv
+        if format == RowFormat::Csv
             && let Some(text) = r.read_line()?
         {
             let columns = parse_csv(&text).map_err(|e| r.error(Box::new(e)))?;
@@ -148,7 +148,7 @@ impl RowReader {
             return Ok(None);
         };
         let point = match self.format {
-            Format::Csv => {
+            RowFormat::Csv => {
                 let fields = parse_csv(&text).map_err(|e| self.error(Box::new(e)))?;
                 let want = self.columns.as_ref().map_or(0, Vec::len);
                 if fields.len() != want {
@@ -157,7 +157,7 @@ impl RowReader {
                 }
                 fields[0].parse::<usize>().ok()
             }
-            Format::Jsonl => {
+            RowFormat::Jsonl => {
                 let map: serde_json::Map<String, serde_json::Value> =
                     serde_json::from_str(&text).map_err(|e| self.error(Box::new(NotJson(e))))?;
                 let mut keys: Vec<String> = map.keys().cloned().collect();
@@ -240,7 +240,7 @@ fn scan(
     sweep: &Sweep,
     shard: Shard,
     path: &Path,
-    format: Format,
+    format: RowFormat,
     mut each: impl FnMut(usize),
 ) -> Result<RowReader> {
     let header = sweep.header();
@@ -319,7 +319,7 @@ fn run_into(
     resume: bool,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<RunStats> {
-    let format = Format::from_path(target)?;
+    let format = RowFormat::from_path(target)?;
     let header = sweep.header();
     let total = sweep.len();
     let partial = partial_path(target);
@@ -398,7 +398,7 @@ fn open_partial(
     done: &mut PointSet,
     stats: &mut RunStats,
 ) -> Result<(File, usize)> {
-    let format = Format::from_path(target)?;
+    let format = RowFormat::from_path(target)?;
     let header = sweep.header();
     let partial = partial_path(target);
     let write_err = io_err("writing", &partial);
@@ -428,7 +428,7 @@ fn open_partial(
         next = p + 1;
         stats.kept += 1;
     })?;
-    let restart = reader.columns().is_none() && format == Format::Csv;
+    let restart = reader.columns().is_none() && format == RowFormat::Csv;
     let mut file = OpenOptions::new()
         .write(true)
         .open(&partial)
@@ -464,7 +464,7 @@ impl Existing {
         done: &mut PointSet,
         stats: &mut RunStats,
     ) -> Result<Existing> {
-        let format = Format::from_path(target)?;
+        let format = RowFormat::from_path(target)?;
         scan(sweep, shard, target, format, |p| {
             if p >= from {
                 done.insert(p);

@@ -205,22 +205,22 @@ fn json_value(cell: &Cell) -> serde_json::Value {
 
 /// Output format of a sweep, by the file's extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Format {
+pub enum RowFormat {
     /// `.csv`: a header line, then one line per walk.
     Csv,
     /// `.jsonl`: JSON Lines, one object per walk.
     Jsonl,
 }
 
-impl Format {
+impl RowFormat {
     /// `.csv` or `.jsonl` (case-insensitive); anything else is an error.
-    pub fn from_path(path: &Path) -> Result<Format, InputError> {
+    pub fn from_path(path: &Path) -> Result<RowFormat, InputError> {
         let ext = path
             .extension()
             .map(|e| e.to_string_lossy().to_ascii_lowercase());
         match ext.as_deref() {
-            Some("csv") => Ok(Format::Csv),
-            Some("jsonl") => Ok(Format::Jsonl),
+            Some("csv") => Ok(RowFormat::Csv),
+            Some("jsonl") => Ok(RowFormat::Jsonl),
             _ => Err(InputError::malformed(
                 "output path",
                 path,
@@ -233,8 +233,8 @@ impl Format {
     /// keys of `header` in order (empty cells as null). `cells` may be a prefix of the row.
     pub(crate) fn line(&self, header: &[String], cells: &[Cell]) -> String {
         match self {
-            Format::Csv => csv_line(cells.iter().map(csv_text)),
-            Format::Jsonl => {
+            RowFormat::Csv => csv_line(cells.iter().map(csv_text)),
+            RowFormat::Jsonl => {
                 let mut s = String::from("{");
                 for (i, (name, cell)) in header.iter().zip(cells).enumerate() {
                     if i > 0 {
@@ -253,8 +253,8 @@ impl Format {
     /// The header line (CSV), or nothing (JSON Lines name the columns in every row).
     pub(crate) fn header_line(&self, header: &[String]) -> String {
         match self {
-            Format::Csv => csv_line(header.iter().cloned()),
-            Format::Jsonl => String::new(),
+            RowFormat::Csv => csv_line(header.iter().cloned()),
+            RowFormat::Jsonl => String::new(),
         }
     }
 
@@ -262,8 +262,8 @@ impl Format {
     pub(crate) fn input_prefix(&self, header: &[String], inputs: &[Cell]) -> String {
         let mut line = self.line(header, inputs);
         let end = match self {
-            Format::Csv => "\n",
-            Format::Jsonl => "}\n",
+            RowFormat::Csv => "\n",
+            RowFormat::Jsonl => "}\n",
         };
         line.truncate(line.len() - end.len());
         line.push(',');

@@ -8,7 +8,7 @@
 //! angles on its own cycles, the pelvis's on the right foot's.
 use serde::Serialize;
 
-use super::Motion;
+use super::CriteriaFrames;
 use crate::analysis::cycle::average_cycles;
 use crate::figure::clinical::angle_columns;
 
@@ -53,9 +53,9 @@ pub struct AngleRms {
 
 /// Eq. 7 for each angle of [`COMPARED`] between the cycles of `a` and `b` averaged over
 /// 0…100 % (101 samples), the first `skip` cycles of each foot left out.
-pub fn compare(a: &Motion, b: &Motion, skip: usize) -> Vec<AngleRms> {
+pub fn compare(a: &CriteriaFrames, b: &CriteriaFrames, skip: usize) -> Vec<AngleRms> {
     let columns = angle_columns();
-    let curve = |m: &Motion, name: &str| -> Option<Vec<f64>> {
+    let curve = |m: &CriteriaFrames, name: &str| -> Option<Vec<f64>> {
         let col = columns.iter().find(|c| c.name == name)?;
         let strikes = if name.ends_with("_l") {
             &m.heel_strikes.left

@@ -1,6 +1,6 @@
 //! Biomechanical quality criteria of any walk (Pronost, Dumont, Nicolas & Multon 2006, §6.2,
 //! eqs. 7–11; issue 18, `docs/criteria.md`), from a sequence of frames of clinical angles and a
-//! [`Body`]: a klaw walk ([`Motion::from_walk`]), a file (`input::motion_file`) or the angles
+//! [`Body`]: a klaw walk ([`CriteriaFrames::from_walk`]), a file (`input::motion_file`) or the angles
 //! of an inverse-kinematics solve.
 //!
 //! Over each gait cycle, heel strike to the next heel strike of the same foot (both included),
@@ -66,7 +66,7 @@ impl Default for CriteriaParameters {
 
 /// A walk's motion as the criteria read it.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Motion {
+pub struct CriteriaFrames {
     /// The frames, time increasing: the pelvis centre (NaN where not known, then C3 is not
     /// computed) and the clinical angles (rad; the eleven of [`segments::DOFS`] finite).
     pub frames: Vec<Clinical>,
@@ -74,11 +74,11 @@ pub struct Motion {
     pub heel_strikes: HeelStrikes,
 }
 
-impl Motion {
+impl CriteriaFrames {
     /// A klaw walk's motion: its frames at `fps` and its heel strikes, exactly: the starts of its
     /// steps (even steps on the right foot, odd ones on the left) and the walk's end, the heel
     /// strike that ends its last step.
-    pub fn from_walk(walk: &Walk, fps: f64) -> Result<Motion, FigureError> {
+    pub fn from_walk(walk: &Walk, fps: f64) -> Result<CriteriaFrames, FigureError> {
         let frames = crate::figure::frames(walk, fps)
             .map(|lm| lm.and_then(|lm| clinical::clinical(&lm, &walk.body)))
             .collect::<Result<Vec<_>, _>>()?;
@@ -89,7 +89,7 @@ impl Motion {
             .chain(std::iter::once(walk.duration()))
             .collect();
         let starts = |parity: usize| strikes.iter().skip(parity).step_by(2).copied().collect();
-        Ok(Motion {
+        Ok(CriteriaFrames {
             frames,
             heel_strikes: HeelStrikes {
                 right: starts(0),
@@ -214,7 +214,7 @@ pub struct Means {
 }
 
 /// The walk's complete cycles after the first `skip` of each foot, in time order.
-pub fn cycles(motion: &Motion, skip: usize) -> Result<Vec<Cycle>, CriteriaError> {
+pub fn cycles(motion: &CriteriaFrames, skip: usize) -> Result<Vec<Cycle>, CriteriaError> {
     let times = motion.times();
     check_frames(motion, &times)?;
     let (t_first, t_last) = (times[0], times[times.len() - 1]);
@@ -253,7 +253,7 @@ pub fn cycles(motion: &Motion, skip: usize) -> Result<Vec<Cycle>, CriteriaError>
 }
 
 /// Finite, strictly increasing times (at least one) and finite angles of the eleven.
-fn check_frames(motion: &Motion, times: &[f64]) -> Result<(), CriteriaError> {
+fn check_frames(motion: &CriteriaFrames, times: &[f64]) -> Result<(), CriteriaError> {
     if times.is_empty() {
         return Err(CriteriaError::Times { frame: 0 });
     }
@@ -277,7 +277,7 @@ fn check_frames(motion: &Motion, times: &[f64]) -> Result<(), CriteriaError> {
 
 /// The criteria of `motion` for `body` (module doc).
 pub fn evaluate(
-    motion: &Motion,
+    motion: &CriteriaFrames,
     body: &Body,
     parameters: &CriteriaParameters,
 ) -> Result<Criteria, CriteriaError> {

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use clap::Args;
 use klaw::Result;
 use klaw::plan::gait::walk_duration;
-use klaw::plot::animation::{self, Options};
+use klaw::plot::animation::{self, AnimationOptions};
 
 use crate::args::GaitArgs;
 use crate::font_note;
@@ -42,7 +42,7 @@ pub(crate) struct AnimateArgs {
 }
 
 pub(crate) fn run(args: &AnimateArgs) -> Result<()> {
-    let options = Options::new(args.fps, animation::parse_size(&args.size)?)?;
+    let options = AnimationOptions::new(args.fps, animation::parse_size(&args.size)?)?;
     outputs::check(&[Output::new("out", &args.out, &["gif"])])?;
     let planned = args.walk.plan(1, MAX_STEPS)?;
     // the frame count is known from the gait before anything is simulated

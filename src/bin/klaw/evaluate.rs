@@ -7,7 +7,9 @@ use std::path::{Path, PathBuf};
 use clap::Args;
 use klaw::analysis::criteria::compare::{AngleRms, compare};
 use klaw::analysis::criteria::heel_strikes::from_kinematics;
-use klaw::analysis::criteria::{Criteria, CriteriaParameters, Motion, PAPER_TABLE_1, evaluate};
+use klaw::analysis::criteria::{
+    Criteria, CriteriaFrames, CriteriaParameters, PAPER_TABLE_1, evaluate,
+};
 use klaw::analysis::cycle::GaitCycle;
 use klaw::analysis::norms::{self, NormCheck, NormTable, WalkSpeed};
 use klaw::export::read::report::{WalkWork, read_walk_work};
@@ -92,7 +94,7 @@ pub(crate) fn run(args: &EvaluateArgs) -> Result<()> {
         // unless both files have a step column
         let alike = |m: &MotionFile| match (file.steps, a.steps) {
             (Some(_), Some(_)) => m.motion.clone(),
-            _ => Motion {
+            _ => CriteriaFrames {
                 heel_strikes: from_kinematics(&m.motion.frames, &body, params.heel_strike_window),
                 ..m.motion.clone()
             },

@@ -167,11 +167,11 @@ impl MotionOutputs {
     }
 
     /// The animation's frame rate and size.
-    fn animation(&self) -> Result<animation::Options> {
+    fn animation(&self) -> Result<animation::AnimationOptions> {
         let (lo, hi) = (1.0, 100.0);
         InputError::check_range("animate-fps", self.animate_fps, lo, hi, "frames/s")?;
         let size = animation::parse_size(&self.animate_size)?;
-        Ok(animation::Options::new(self.animate_fps, size)?)
+        Ok(animation::AnimationOptions::new(self.animate_fps, size)?)
     }
 
     fn summary(&self, scenario: &Scenario, motion: &Motion, out: &Path, what: &str, t: f64) {

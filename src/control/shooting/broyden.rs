@@ -368,7 +368,7 @@ where
 
 #[cfg(test)]
 mod tests {
-    use crate::control::shooting::{Memory2, Options, Start2, solve2};
+    use crate::control::shooting::{Memory2, SolveOptions, Start2, solve2};
     use crate::numerics::ode::IntegrationError;
     use nalgebra::{Matrix2, Vector2};
     use proptest::prelude::*;
@@ -403,7 +403,7 @@ mod tests {
             let (y, rep, _) = solve2(
                 |y: Vector2<f64>| Ok(r(y.component_mul(&scale))),
                 start,
-                &Options::default(),
+                &SolveOptions::default(),
             )
             .unwrap();
             (y.component_mul(&scale), rep)
@@ -448,7 +448,8 @@ mod tests {
     fn mild_system_cold() {
         let root = mild_root(1.1);
         assert!(mild(1.1)(root).unwrap().amax() < 1e-14);
-        let (x, rep, _) = solve2(mild(1.1), cold2([0.0, 0.0], 1e-6), &Options::default()).unwrap();
+        let (x, rep, _) =
+            solve2(mild(1.1), cold2([0.0, 0.0], 1e-6), &SolveOptions::default()).unwrap();
         println!("mild cold: {rep:?}, root {root:?}");
         assert!(rep.converged && (x - root).amax() < 1e-9, "{x:?} {rep:?}");
         assert!(rep.iterations <= 10, "{rep:?}");
@@ -457,8 +458,8 @@ mod tests {
     #[test]
     fn mild_system_warm_from_perturbed() {
         let (_, cold, mem) =
-            solve2(mild(1.1), cold2([0.0, 0.0], 1e-6), &Options::default()).unwrap();
-        let (x, warm, _) = solve2(mild(1.15), Start2::Warm(mem), &Options::default()).unwrap();
+            solve2(mild(1.1), cold2([0.0, 0.0], 1e-6), &SolveOptions::default()).unwrap();
+        let (x, warm, _) = solve2(mild(1.15), Start2::Warm(mem), &SolveOptions::default()).unwrap();
         println!("mild: cold {cold:?}, warm (perturbed) {warm:?}");
         assert!(
             warm.converged && (x - mild_root(1.15)).amax() < 1e-9,
@@ -473,14 +474,14 @@ mod tests {
         let r = |v: Vector2<f64>| Ok(Vector2::new(10.0 * (v[1] - v[0] * v[0]), 1.0 - v[0]));
         let one = Vector2::new(1.0, 1.0);
         for start in [[0.0, 1.0], [0.9, 0.8], [2.0, 2.0]] {
-            let (x, rep, _) = solve2(r, cold2(start, 1e-7), &Options::default()).unwrap();
+            let (x, rep, _) = solve2(r, cold2(start, 1e-7), &SolveOptions::default()).unwrap();
             println!("rosenbrock residuals from {start:?}: {rep:?}");
             assert!(rep.converged && (x - one).amax() < 1e-9, "{x:?} {rep:?}");
             assert!(rep.iterations <= 25);
         }
         // From the classic (-1.2, 1) the monotone ||r|| acceptance creeps along the curved
         // valley: it converges, but needs a larger budget.
-        let big = Options {
+        let big = SolveOptions {
             tol: 1e-9,
             max_iterations: 100,
         };
@@ -495,13 +496,13 @@ mod tests {
                 200.0 * (y - x * x),
             ))
         };
-        let (x, rep, _) = solve2(g, cold2([1.05, 1.1], 1e-7), &Options::default()).unwrap();
+        let (x, rep, _) = solve2(g, cold2([1.05, 1.1], 1e-7), &SolveOptions::default()).unwrap();
         println!("rosenbrock gradient from (1.05, 1.1): {rep:?}");
         assert!(rep.converged && (x - one).amax() < 1e-9, "{x:?} {rep:?}");
         assert!(rep.iterations <= 25);
         // From (1.2, 1.2) the gradient norm is a poor merit function: the budget runs out, the
         // report says so, and the best point is far better than the start.
-        let (x, rep, _) = solve2(g, cold2([1.2, 1.2], 1e-7), &Options::default()).unwrap();
+        let (x, rep, _) = solve2(g, cold2([1.2, 1.2], 1e-7), &SolveOptions::default()).unwrap();
         println!("rosenbrock gradient from (1.2, 1.2): {rep:?}");
         assert!(rep.iterations <= 25);
         assert_eq!(rep.converged, rep.residual <= 1e-9);
@@ -517,7 +518,7 @@ mod tests {
             trials.borrow_mut().push(v);
             Ok(Vector2::new(v[0].atan(), v[1]))
         };
-        let (x, rep, _) = solve2(r, cold2([3.0, 0.5], 1e-6), &Options::default()).unwrap();
+        let (x, rep, _) = solve2(r, cold2([3.0, 0.5], 1e-6), &SolveOptions::default()).unwrap();
         println!("atan: {rep:?}");
         assert!(rep.converged && x.amax() < 1e-9, "{x:?} {rep:?}");
         assert_eq!(trials.borrow().len(), rep.iterations);
@@ -540,7 +541,7 @@ mod tests {
             calls.set(calls.get() + 1);
             Ok(Vector2::new(v[0] * v[0] + 1.0, v[1]))
         };
-        let (_, rep, _) = solve2(r, cold2([2.0, 1.0], 1e-6), &Options::default()).unwrap();
+        let (_, rep, _) = solve2(r, cold2([2.0, 1.0], 1e-6), &SolveOptions::default()).unwrap();
         assert!(
             !rep.converged && rep.iterations <= 25 && calls.get() == rep.iterations,
             "{rep:?}"
@@ -553,7 +554,7 @@ mod tests {
                 Vector2::new(v[0].exp() - 5.0, v[1] - v[0])
             })
         };
-        let (x, rep, _) = solve2(r, cold2([-2.0, 0.0], 1e-6), &Options::default()).unwrap();
+        let (x, rep, _) = solve2(r, cold2([-2.0, 0.0], 1e-6), &SolveOptions::default()).unwrap();
         assert!(
             rep.converged && (x[0] - 5f64.ln()).abs() < 1e-9,
             "{x:?} {rep:?}"
@@ -562,7 +563,7 @@ mod tests {
             solve2(
                 |_| Err(IntegrationError::NonFinite { t: 0.0 }),
                 cold2([0.0, 0.0], 1e-6),
-                &Options::default()
+                &SolveOptions::default()
             )
             .is_err()
         );
@@ -582,7 +583,7 @@ mod tests {
             prop_assume!(sv.max() / sv.min() < 20.0);
             let bv = Vector2::new(b[0], b[1]);
             let r = |x: Vector2<f64>| Ok(m * x - bv);
-            let (x, rep, _) = solve2(r, cold2(x0, 1.0), &Options::default()).unwrap();
+            let (x, rep, _) = solve2(r, cold2(x0, 1.0), &SolveOptions::default()).unwrap();
             let root = m.try_inverse().unwrap() * bv;
             prop_assert!(rep.converged, "{:?}", rep);
             prop_assert_eq!(rep.iterations, 4);

@@ -68,18 +68,18 @@ pub enum SolveError {
     StartFailed(#[source] IntegrationError),
 }
 
-/// Options of [`solve1`] and [`solve2`].
+/// SolveOptions of [`solve1`] and [`solve2`].
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Options {
+pub(crate) struct SolveOptions {
     /// Absolute tolerance on the residual: converged when `max |r_i| <= tol`.
     pub(crate) tol: f64,
     /// Hard cap on residual evaluations (trial integrations, finite-difference trials included).
     pub(crate) max_iterations: usize,
 }
 
-impl Default for Options {
+impl Default for SolveOptions {
     fn default() -> Self {
-        Options {
+        SolveOptions {
             tol: 1e-9,
             max_iterations: 25,
         }
@@ -159,7 +159,7 @@ where
 pub(crate) fn solve1<R: Fn(f64) -> Result<f64, IntegrationError>>(
     residual: R,
     start: Start1,
-    opts: &Options,
+    opts: &SolveOptions,
 ) -> Result<(f64, SolveReport, Memory1), SolveError> {
     let mut solver = match start {
         Start1::Cold { x0, dx } => BisectionSecant::cold(x0, dx, opts.tol, opts.max_iterations),
@@ -232,7 +232,7 @@ pub(crate) fn solve1<R: Fn(f64) -> Result<f64, IntegrationError>>(
 pub(crate) fn solve2<R: Fn(Vector2<f64>) -> Result<Vector2<f64>, IntegrationError>>(
     residual: R,
     start: Start2,
-    opts: &Options,
+    opts: &SolveOptions,
 ) -> Result<(Vector2<f64>, SolveReport, Memory2), SolveError> {
     let (mut solver, x0) = match start {
         Start2::Cold { x0, h } => (Broyden2::cold(x0, h, opts.tol, opts.max_iterations), x0),

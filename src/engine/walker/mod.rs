@@ -5,7 +5,7 @@
 mod stance;
 mod swing;
 
-use crate::control::shooting::{Memory1, Memory2, Options, SolveError, SolveReport};
+use crate::control::shooting::{Memory1, Memory2, SolveError, SolveOptions, SolveReport};
 use crate::control::stance::{StanceRun, StanceState};
 use crate::control::swing::{Subphase, SwingSetup, SwingTrial};
 use crate::dynamics::{StanceModel, SwingModel};
@@ -430,8 +430,8 @@ impl Walker {
     }
 
     /// The shooting options of a solve to tolerance `tol`.
-    pub(super) fn options(&self, tol: f64) -> Options {
-        Options {
+    pub(super) fn options(&self, tol: f64) -> SolveOptions {
+        SolveOptions {
             tol,
             max_iterations: self.parameters.max_iterations,
         }

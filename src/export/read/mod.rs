@@ -18,7 +18,7 @@ pub mod storage;
 use std::path::Path;
 
 use crate::analysis::criteria::heel_strikes::{self, HeelStrikes};
-use crate::analysis::criteria::{CriteriaParameters, Motion};
+use crate::analysis::criteria::{CriteriaFrames, CriteriaParameters};
 use crate::error::{Error, Result};
 use crate::figure::clinical::Clinical;
 use crate::model::InputError;
@@ -109,7 +109,7 @@ pub enum MotionFileError {
 #[derive(Clone, Debug, PartialEq)]
 pub struct MotionFile {
     /// The frames and heel strikes.
-    pub motion: Motion,
+    pub motion: CriteriaFrames,
     /// What the file is, in words: `klaw frame CSV`, `OpenSim storage (gait2392)`.
     pub format: String,
     /// Where the heel strikes come from, in words.
@@ -168,7 +168,7 @@ pub fn read_motion(
         .has_steps
         .then(|| f.frames.iter().map(|c| c.step + 1).max().unwrap_or(0));
     Ok(MotionFile {
-        motion: Motion {
+        motion: CriteriaFrames {
             frames: f.frames,
             heel_strikes,
         },

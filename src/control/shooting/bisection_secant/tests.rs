@@ -1,6 +1,6 @@
 //! Tests of [`BisectionSecant`](super::BisectionSecant), alone and through [`solve1`].
 use super::*;
-use crate::control::shooting::{Memory1, Options, Start1, solve1};
+use crate::control::shooting::{Memory1, SolveOptions, Start1, solve1};
 use crate::numerics::ode::IntegrationError;
 use argmin::core::Executor;
 use argmin::solver::brent::BrentRoot;
@@ -27,7 +27,7 @@ fn cold1(x0: f64, dx: f64) -> Start1 {
 
 #[test]
 fn cubic_cold() {
-    let (x, rep, mem) = solve1(cubic(5.0), cold1(2.0, 1.0), &Options::default()).unwrap();
+    let (x, rep, mem) = solve1(cubic(5.0), cold1(2.0, 1.0), &SolveOptions::default()).unwrap();
     println!("cubic cold: {rep:?}");
     assert!(rep.converged, "{rep:?}");
     assert!((x - CUBIC_ROOT).abs() < 1e-9, "{x}");
@@ -43,7 +43,7 @@ fn cubic_cold() {
 #[test]
 fn tanh_cold() {
     let r = |x: f64| Ok(4.0 * (x - 1.3).tanh());
-    let (x, rep, _) = solve1(r, cold1(-2.0, 1.0), &Options::default()).unwrap();
+    let (x, rep, _) = solve1(r, cold1(-2.0, 1.0), &SolveOptions::default()).unwrap();
     println!("tanh cold: {rep:?}");
     assert!(rep.converged, "{rep:?}");
     assert!((x - 1.3).abs() < 1e-9, "{x}");
@@ -53,7 +53,7 @@ fn tanh_cold() {
 #[test]
 fn exp_cold_far() {
     let r = |x: f64| Ok(x.exp() - 10.0);
-    let (x, rep, _) = solve1(r, cold1(-5.0, 1.0), &Options::default()).unwrap();
+    let (x, rep, _) = solve1(r, cold1(-5.0, 1.0), &SolveOptions::default()).unwrap();
     println!("exp cold far: {rep:?}");
     assert!(rep.converged, "{rep:?}");
     assert!((x - 10f64.ln()).abs() < 1e-9, "{x}");
@@ -90,7 +90,7 @@ fn compare_with_brent() {
     ];
     for (name, f, a, b, root) in cases {
         let (xb, nb) = brent_evaluations(f, a, b);
-        let (x, rep, _) = solve1(|x| Ok(f(x)), cold1(a, b - a), &Options::default()).unwrap();
+        let (x, rep, _) = solve1(|x| Ok(f(x)), cold1(a, b - a), &SolveOptions::default()).unwrap();
         println!("{name}: ours {} evaluations, Brent {nb}", rep.iterations);
         assert!((xb - root).abs() < 1e-8, "Brent {name}");
         assert!(
@@ -107,9 +107,9 @@ fn compare_with_brent() {
 
 #[test]
 fn warm_start_is_cheaper() {
-    let (_, cold, mem) = solve1(cubic(5.0), cold1(2.0, 1.0), &Options::default()).unwrap();
-    let (x, warm, _) = solve1(cubic(5.1), Start1::Warm(mem), &Options::default()).unwrap();
-    let (_, cold2, _) = solve1(cubic(5.1), cold1(2.0, 1.0), &Options::default()).unwrap();
+    let (_, cold, mem) = solve1(cubic(5.0), cold1(2.0, 1.0), &SolveOptions::default()).unwrap();
+    let (x, warm, _) = solve1(cubic(5.1), Start1::Warm(mem), &SolveOptions::default()).unwrap();
+    let (_, cold2, _) = solve1(cubic(5.1), cold1(2.0, 1.0), &SolveOptions::default()).unwrap();
     println!("cold {cold:?}, warm {warm:?}, cold on the same problem {cold2:?}");
     assert!(warm.converged);
     assert!((x - cubic_root(5.1)).abs() < 1e-9);
@@ -126,7 +126,7 @@ fn warm_start_with_bad_slope_recovers() {
         earlier: [f64::NAN; 2],
         ratio: f64::NAN,
     };
-    let (x, rep, _) = solve1(cubic(5.0), Start1::Warm(mem), &Options::default()).unwrap();
+    let (x, rep, _) = solve1(cubic(5.0), Start1::Warm(mem), &SolveOptions::default()).unwrap();
     println!("warm, wrong slope: {rep:?}");
     assert!(rep.converged && (x - CUBIC_ROOT).abs() < 1e-9, "{rep:?}");
     // No slope at all: a small probe, then secant.
@@ -136,14 +136,14 @@ fn warm_start_with_bad_slope_recovers() {
         earlier: [f64::NAN; 2],
         ratio: f64::NAN,
     };
-    let (x, rep, _) = solve1(cubic(5.0), Start1::Warm(mem), &Options::default()).unwrap();
+    let (x, rep, _) = solve1(cubic(5.0), Start1::Warm(mem), &SolveOptions::default()).unwrap();
     assert!(rep.converged && (x - CUBIC_ROOT).abs() < 1e-9, "{rep:?}");
 }
 
 #[test]
 fn nan_region_is_stepped_back_from() {
     let r = |x: f64| Ok(if x > 3.0 { f64::NAN } else { x.exp() - 10.0 });
-    let (x, rep, _) = solve1(r, cold1(0.0, 5.0), &Options::default()).unwrap();
+    let (x, rep, _) = solve1(r, cold1(0.0, 5.0), &SolveOptions::default()).unwrap();
     println!("NaN above 3: {rep:?}");
     assert!(rep.converged, "{rep:?}");
     assert!((x - 10f64.ln()).abs() < 1e-9);
@@ -155,7 +155,7 @@ fn nan_region_is_stepped_back_from() {
             Ok(x.exp() - 10.0)
         }
     };
-    let (x, rep, _) = solve1(r, cold1(0.0, 5.0), &Options::default()).unwrap();
+    let (x, rep, _) = solve1(r, cold1(0.0, 5.0), &SolveOptions::default()).unwrap();
     assert!(rep.converged && (x - 10f64.ln()).abs() < 1e-9, "{rep:?}");
 }
 
@@ -168,7 +168,7 @@ fn no_root_respects_budget() {
     };
     for max in [1, 2, 5, 25] {
         calls.set(0);
-        let o = Options {
+        let o = SolveOptions {
             tol: 1e-9,
             max_iterations: max,
         };
@@ -184,20 +184,20 @@ fn no_root_respects_budget() {
 
 #[test]
 fn always_nan_is_not_converged_and_err_at_start_is_err() {
-    let (_, rep, _) = solve1(|_| Ok(f64::NAN), cold1(0.0, 1.0), &Options::default()).unwrap();
+    let (_, rep, _) = solve1(|_| Ok(f64::NAN), cold1(0.0, 1.0), &SolveOptions::default()).unwrap();
     assert!(!rep.converged && rep.iterations == 1 && rep.residual.is_infinite());
     assert!(
         solve1(
             |_| Err(IntegrationError::NonFinite { t: 0.0 }),
             cold1(0.0, 1.0),
-            &Options::default()
+            &SolveOptions::default()
         )
         .is_err()
     );
-    assert!(solve1(cubic(5.0), cold1(0.0, 0.0), &Options::default()).is_err());
+    assert!(solve1(cubic(5.0), cold1(0.0, 0.0), &SolveOptions::default()).is_err());
     // NaN everywhere but the start: the solver gives up after repeated halvings.
     let r = |x: f64| Ok(if x == 1.0 { 1.0 } else { f64::NAN });
-    let (x, rep, _) = solve1(r, cold1(1.0, 1.0), &Options::default()).unwrap();
+    let (x, rep, _) = solve1(r, cold1(1.0, 1.0), &SolveOptions::default()).unwrap();
     assert!(
         !rep.converged && x == 1.0 && rep.iterations <= 25,
         "{rep:?}"
