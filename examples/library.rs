@@ -41,3 +41,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     Ok(())
 }
+
+/// The example runs (`cargo test` builds it as a test: `test = true` in Cargo.toml).
+#[test]
+fn runs() {
+    main().unwrap();
+}
