@@ -210,14 +210,23 @@ impl StepPose {
         let off = w.stance_pitch(end) - w.stance_meta(end);
         let x = ((t - tom) / (TOES_STRAIGHT * (1.0 - tom))).clamp(0.0, 1.0);
         let rule = off * 0.5 * (1.0 + (std::f64::consts::PI * x).cos());
-        // the toes bend at least so far that their tip stays at half the ball's height: a
-        // prototype whose foot is shorter (no toes) lifts its ball close over the floor, and
-        // toes straightening there would drag their tip along it
+        // the toes bend at least so far that their tip stays above the floor by half what the
+        // ball has risen since toe-off: a prototype whose foot is shorter (no toes) lifts its
+        // ball close over the floor, and toes straightening there would drag their tip along
+        // it. From the rise, not the ball's height: at toe-off the tip is on the floor with the
+        // ball at bt sin μ4 over it (on klaw's walks 44 mm), and a bound of half the ball's
+        // height lifted the tip 22–24 mm in that instant (`tests/kinematic_figure.rs`)
+        let ball = |t: f64| {
+            let ay = w.ankle.at(t)[1];
+            self.foot.points([0.0, ay], w.f3.at(t), 0.0).meta[1].max(0.0)
+        };
         let f3 = w.f3.at(t);
-        let ball = self.foot.points([0.0, ay], f3, 0.0).meta[1].max(0.0);
         let l13 = self.foot.l13;
         let t6 = match l13 > 0.0 {
-            true => rule.max(f3 - (0.5 * ball / l13).min(1.0).asin()),
+            true => {
+                let lowest = 0.5 * (ball(t) + ball(tom));
+                rule.max(f3 - (lowest / l13).min(1.0).asin())
+            }
             false => rule,
         };
         // the toe above klaw's rising swing floor
