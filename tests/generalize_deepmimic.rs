@@ -200,10 +200,12 @@ fn a_sliding_heel_is_refused() {
 
 /// At ρ = 1 on each body, the right knee's flexion over a stride follows the clip's own (the
 /// angle between the thigh and the shank of the clip's markers, computed here) to 5.5° RMS
-/// (measured 4.8°, 5.1° and 5.2°: the bodies' thigh : shank ratios and feet are not the
-/// clip's, and klaw's list, hung on the clip's pelvis, has people's timing since 2026-12-05,
+/// (measured 5.2°, 5.4° and 5.4°: the bodies' thigh : shank ratios and feet are not the
+/// clip's; klaw's list, hung on the clip's pelvis, has people's timing since 2026-12-05,
 /// which holds the stance hip joint 3 mm lower at mid-stance than the paper's half-sine did:
-/// 4.0°, 4.2° and 4.2° with it), and closer than at 1.2 × the clip's step (8.5–10.6°).
+/// 4.0°, 4.2° and 4.2° with it; and since issue 38 the hip's drop for the swing leg in terminal
+/// swing is planned over the whole step, which lowers it in stance too: 4.8°, 5.1° and 5.2°
+/// before), and closer than at 1.2 × the clip's step (10.3–12.2°).
 #[test]
 fn at_its_own_step_the_knee_keeps_the_clips_curve() {
     let w = prototype();
