@@ -10,6 +10,7 @@ use crate::figure::{Landmarks, LegPoints};
 use crate::generalize::condition::BodyCondition;
 use crate::generalize::error::GeneralizeError;
 use crate::generalize::parameters::GeneralizeParameters;
+use crate::generalize::sequence::Curve;
 use crate::generalize::walk_data::WalkData;
 use crate::kinematics::foot::Foot;
 use crate::kinematics::pelvis::{Determinants, Side};
@@ -42,11 +43,89 @@ pub fn grounded(body: &BodyCondition, n: f64, p: f64, m: f64) -> ([f64; 2], f64)
     }
 }
 
+/// \[ours\] The least knee flexion a leg keeps where the hip comes down for it ([`HipDrop`]):
+/// the two-link leg is singular when straight (its knee flexion κ goes as the square root of
+/// l1 − |hip − ankle|), so a leg held at its full reach snaps its knee where it reaches it or
+/// leaves it; held at κ ≥ 2° its knee moves at a finite rate. Below klaw's own knee at heel
+/// strike (`knee_heel_strike`, 4°; its swing knee comes no straighter than 3.2°, so the bundled
+/// prototype on its own body never meets it) and DeepMimic's straightest swing knee (3.4°).
+const KNEE_MIN: f64 = 2.0 * std::f64::consts::PI / 180.0;
+
+/// The samples of the step (normalized time) at which [`HipDrop`] takes the legs' needs,
+/// besides every sample of the walk data.
+const DROP_SAMPLES: usize = 400;
+
 /// \[ours\] Where a leg cannot reach the hip on H (klaw's own telescopic stance leg is longer
 /// than the anatomical one just after heel strike; eq. 14 raises a shorter step's whole hip path
-/// by its ends' rise, past a straight stance leg at mid-stance), the hip comes down until every
-/// leg reaches, as non-rhythmic stepping's centre path does (docs/generalize.md): the feet, the
-/// constraints on the floor, stay where the data put them. The walk data stay as they are.
+/// by its ends' rise, past a straight stance leg at mid-stance; a clip whose swing knee comes
+/// within a few degrees of straight in terminal swing, DeepMimic's at 3.4°, reaches further
+/// than the leg at a longer step or on a body of other proportions: 15 mm at 1.4 m/s on de Leva's
+/// male H 1.85), the hip comes down until every leg reaches, as non-rhythmic stepping's centre
+/// path does (docs/generalize.md): the feet, the constraints on the floor, stay where the data
+/// put them. The walk data stay as they are (the composition laws are the data's).
+///
+/// How far the hip comes down is planned over the whole step, not found instant by instant: the
+/// least *concave* function of t on [0, 1] at or above every leg's need at every instant (the
+/// upper hull of the needs, each the drop that lets the leg reach its ankle with the knee bent
+/// [`KNEE_MIN`]). Found instant by instant (until issue 38) the drop was the need itself: the
+/// leg that set it was held straight, and where it began or stopped setting it its knee snapped
+/// (0.15–0.17° in 2 µs on DeepMimic's clip: the square root of a straight leg) and the pelvis
+/// turned from H's vertical speed to the leg's reach arc in an instant (it fell 7 mm in one 10 ms
+/// frame at 1.4 m/s on de Leva's male H 1.85, and rose again as fast where the need ended).
+/// Concave: a sum of pieces linear in t between the instants where the reach binds, as eq. 14
+/// moves H linearly in t between the two heel strikes where eqs. 7–11 bind it; so the hip comes
+/// down once and goes back up once in a step, never turning twice. At the heel strikes the drop
+/// is the need there, the same at the end of a step and the start of the next (the same figure),
+/// so the figure is continuous from step to step. The largest drop is the largest need, as
+/// before (`hip_drop_max` refuses the same steps).
+#[derive(Clone, Debug)]
+pub struct HipDrop {
+    /// The hull's corners: normalized times from 0 to 1 and the drop there (m).
+    pub corners: Curve,
+}
+
+impl HipDrop {
+    /// No drop.
+    fn none() -> Self {
+        HipDrop {
+            corners: Curve {
+                t: vec![0.0, 1.0],
+                v: vec![0.0, 0.0],
+            },
+        }
+    }
+
+    /// The least concave function on [0, 1] at or above the needs `(t, m)` (sorted by t, the
+    /// first at 0 and the last at 1): the upper hull of the points (Andrew's monotone chain).
+    fn above(needs: &[(f64, f64)]) -> Self {
+        let mut hull: Vec<(f64, f64)> = Vec::with_capacity(needs.len());
+        for &p in needs {
+            while hull.len() >= 2 {
+                let (a, b) = (hull[hull.len() - 2], hull[hull.len() - 1]);
+                // b is under the chord from a to p (or on it): not a corner of the upper hull
+                let cross = (b.0 - a.0) * (p.1 - a.1) - (b.1 - a.1) * (p.0 - a.0);
+                if cross >= 0.0 {
+                    hull.pop();
+                } else {
+                    break;
+                }
+            }
+            hull.push(p);
+        }
+        HipDrop {
+            corners: Curve {
+                t: hull.iter().map(|p| p.0).collect(),
+                v: hull.iter().map(|p| p.1).collect(),
+            },
+        }
+    }
+
+    /// The drop at normalized time t (m).
+    pub fn at(&self, t: f64) -> f64 {
+        self.corners.at(t)
+    }
+}
+
 /// One generalized step ready to pose: its walk data on the body, the body's foot and the
 /// determinants of gait.
 #[derive(Clone, Debug)]
@@ -63,6 +142,8 @@ pub struct StepPose {
     foot: Foot,
     /// The leading thigh's sagittal angle at heel strike, for the arms.
     strike_thigh: f64,
+    /// How far the hip comes down over the step.
+    pub hip_drop: HipDrop,
 }
 
 impl StepPose {
@@ -81,7 +162,9 @@ impl StepPose {
             attrs,
             duration,
             strike_thigh: 1.0,
+            hip_drop: HipDrop::none(),
         };
+        pose.hip_drop = pose.planned_drop()?;
         let end = pose.figure(0, Side::Right, 0.0, 1.0, 0.0)?;
         pose.strike_thigh = thigh_angle(&end.left);
         Ok(pose)
@@ -121,8 +204,12 @@ impl StepPose {
             distance,
             length: self.body.l1,
         };
-        // the hip comes down as far as the legs need
+        // the hip comes down as planned ([`HipDrop`]), and further if a leg still cannot
+        // reach (between the plan's samples, within the knee's margin: not met on the tests'
+        // walks)
         let half = self.body.l0 / 2.0;
+        let planned = self.hip_drop.at(t);
+        upper.centre[1] -= planned;
         let mut drop: f64 = 0.0;
         for (s, grounded_at) in [
             (side, Some((n, t))),
@@ -137,6 +224,7 @@ impl StepPose {
             drop = drop.max(need.map_err(|d| stretched(s, d))?);
         }
         upper.centre[1] -= drop;
+        let drop = planned + drop;
         let stance = self.on_floor(side, n, t, hip_joint(&upper, side, half)).0;
         let other = match swing {
             Some(f) => f,
@@ -210,14 +298,23 @@ impl StepPose {
         let off = w.stance_pitch(end) - w.stance_meta(end);
         let x = ((t - tom) / (TOES_STRAIGHT * (1.0 - tom))).clamp(0.0, 1.0);
         let rule = off * 0.5 * (1.0 + (std::f64::consts::PI * x).cos());
-        // the toes bend at least so far that their tip stays at half the ball's height: a
-        // prototype whose foot is shorter (no toes) lifts its ball close over the floor, and
-        // toes straightening there would drag their tip along it
+        // the toes bend at least so far that their tip stays above the floor by half what the
+        // ball has risen since toe-off: a prototype whose foot is shorter (no toes) lifts its
+        // ball close over the floor, and toes straightening there would drag their tip along
+        // it. From the rise, not the ball's height: at toe-off the tip is on the floor with the
+        // ball at bt sin μ4 over it (on klaw's walks 44 mm), and a bound of half the ball's
+        // height lifted the tip 22–24 mm in that instant (`tests/kinematic_figure.rs`)
+        let ball = |t: f64| {
+            let ay = w.ankle.at(t)[1];
+            self.foot.points([0.0, ay], w.f3.at(t), 0.0).meta[1].max(0.0)
+        };
         let f3 = w.f3.at(t);
-        let ball = self.foot.points([0.0, ay], f3, 0.0).meta[1].max(0.0);
         let l13 = self.foot.l13;
         let t6 = match l13 > 0.0 {
-            true => rule.max(f3 - (0.5 * ball / l13).min(1.0).asin()),
+            true => {
+                let lowest = 0.5 * (ball(t) + ball(tom));
+                rule.max(f3 - (lowest / l13).min(1.0).asin())
+            }
             false => rule,
         };
         // the toe above klaw's rising swing floor
@@ -225,6 +322,85 @@ impl StepPose {
         let floor = crate::kinematics::foot::swing_floor(self.attrs.toe_clearance, u);
         let (pitch, _) = self.foot.clear_pitch(f3, [0.0, ay], t6, floor);
         self.foot_at(s, [n + ax, ay], pitch, t6)
+    }
+
+    /// The step's [`HipDrop`]: the legs' needs (the hip on H, the knee bent at least
+    /// [`KNEE_MIN`]) at [`DROP_SAMPLES`] + 1 instants and at every sample of the walk data, the
+    /// stance on either side, and the least concave function above them. Err: a leg that cannot
+    /// reach its ankle even across the floor.
+    fn planned_drop(&self) -> Result<HipDrop, GeneralizeError> {
+        let w = &self.data;
+        let (l3, l4) = (self.body.l3, self.body.l4);
+        let reach = (l3 * l3 + l4 * l4 + 2.0 * l3 * l4 * KNEE_MIN.cos()).sqrt();
+        let mut times: Vec<f64> = (0..=DROP_SAMPLES)
+            .map(|i| i as f64 / DROP_SAMPLES as f64)
+            .collect();
+        let stance = [&w.f1.t, &w.f2.t, &w.meta.t];
+        for ts in [&w.hip.t, &w.ankle.t, &w.f3.t, &w.trunk.t]
+            .into_iter()
+            .chain(stance)
+        {
+            // the stance foot's timeline runs to 1 + TOM: past 1 it is the hind foot's
+            times.extend(ts.iter().map(|&t| if t > 1.0 { t - 1.0 } else { t }));
+        }
+        let p = w.phases;
+        times.extend([p.tom, p.fgm, p.heel_off, p.mom - 1.0]);
+        times.retain(|t| (0.0..=1.0).contains(t));
+        times.sort_by(f64::total_cmp);
+        times.dedup();
+        let half = self.body.l0 / 2.0;
+        let mut needs = Vec::with_capacity(times.len());
+        for &t in &times {
+            let mut most: f64 = 0.0;
+            for (index, side) in [(0, Side::Right), (1, Side::Left)] {
+                let upper = self.upper(side, 0.0, t);
+                let swing = (t > p.tom).then(|| self.swing_foot(side.other(), 0.0, t));
+                let feet = [
+                    (side, self.on_floor(side, 0.0, t, DVec3::ZERO).0),
+                    match swing {
+                        Some(f) => (side.other(), f),
+                        None => {
+                            let at = (-w.step_length_before, 1.0 + t);
+                            (
+                                side.other(),
+                                self.on_floor(side.other(), at.0, at.1, DVec3::ZERO).0,
+                            )
+                        }
+                    },
+                ];
+                for (s, foot) in feet {
+                    let hip = hip_joint(&upper, s, half);
+                    let need = self
+                        .need_within(hip, foot.ankle, reach)
+                        .map_err(|distance| GeneralizeError::Stretched {
+                            side: s.name(),
+                            step: index,
+                            t,
+                            distance,
+                            length: self.body.l1,
+                        })?;
+                    most = most.max(need);
+                }
+            }
+            needs.push((t, most));
+        }
+        Ok(HipDrop::above(&needs))
+    }
+
+    /// How far the hip joint `hip` must come down for `ankle` to lie within `reach` of it (m; 0
+    /// when it does; within the leg's own length l1 when `reach` is not reached even across the
+    /// floor; Err(the distance) when l1 is not).
+    fn need_within(&self, hip: DVec3, ankle: [f64; 3], reach: f64) -> Result<f64, f64> {
+        let d = hip - DVec3::from_array(ankle);
+        if d.length() <= reach {
+            return Ok(0.0);
+        }
+        let across = d.x * d.x + d.z * d.z;
+        if across < reach * reach {
+            Ok(d.y - (reach * reach - across).sqrt())
+        } else {
+            self.need(hip, ankle)
+        }
     }
 
     /// How far the hip joint `hip` must come down for its leg to reach `ankle` (m; 0 when it
