@@ -119,6 +119,7 @@ fn main() {
         0.0,
         &s.constraints,
         &attrs,
+        &klaw::engine::parameters::EngineParameters::default().servos,
     );
     let (sub, seg) = &s.swing[0];
     let Subphase::Swing1 { hip, knee } = *sub else {
@@ -237,6 +238,7 @@ fn swing_setup<'a>(
         hip_vy_end,
         &step.constraints,
         attrs,
+        &klaw::engine::parameters::EngineParameters::default().servos,
     )
 }
 

@@ -154,6 +154,7 @@ fn swing_pieces_end_with_their_own_hip_acceleration() {
             hip_vy_end,
             &step.constraints,
             &attrs,
+            &klaw::engine::parameters::EngineParameters::default().servos,
         );
         // swing1 integrated again by the engine, piece by piece: each piece's end state against
         // the reference integration of that piece with t held inside it

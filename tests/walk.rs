@@ -597,3 +597,39 @@ fn a_hind_foot_out_of_reach_toes_off_with_a_straighter_knee() {
         check_step(&s.report, "sl 0.8 m at 1.0 m/s");
     }
 }
+
+/// The engine's model constants come from models/engine.toml and govern the walk: a stiffer
+/// leg servo (f_w 5 → 8 Hz, parsed from an edited copy of the bundled file) tracks the hip's
+/// reference more closely, so the steps' hip excursions change; the bundled file parsed again
+/// walks exactly the default walker's steps.
+#[test]
+fn the_engines_constants_change_the_walk() {
+    use klaw::engine::parameters::{BUILTIN_TABLE, EngineParameters};
+    use klaw::engine::walker::Walker;
+    let path = std::path::Path::new("engine.toml");
+    let body = default_body();
+    let g = gait(&body, 1.2);
+    let excursions = |p: EngineParameters| -> Vec<f64> {
+        let mut w = Walker::new(body, default_attributes()).with_parameters(p);
+        (0..4)
+            .map(|_| w.step(g).unwrap().report.hip_excursion)
+            .collect()
+    };
+    let bundled = excursions(EngineParameters::parse(BUILTIN_TABLE, path).unwrap());
+    let default = {
+        let mut w = Walker::new(body, default_attributes());
+        (0..4)
+            .map(|_| w.step(g).unwrap().report.hip_excursion)
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(bundled, default);
+    let stiff = BUILTIN_TABLE.replace("leg_frequency = 5.0", "leg_frequency = 8.0");
+    assert_ne!(stiff, BUILTIN_TABLE);
+    let changed = excursions(EngineParameters::parse(&stiff, path).unwrap());
+    let largest = changed
+        .iter()
+        .zip(&default)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    assert!(largest > 1e-5, "excursions {changed:?} against {default:?}");
+}

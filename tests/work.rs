@@ -99,7 +99,14 @@ fn swing_setup<'a>(step: &'a Step, model: SwingModel, hip: &'a HipPath) -> Swing
         d_k: 2.0,
         k_h: 40.0,
         d_h: 3.0,
-        ..SwingSetup::new(model, hip, 0.0, &step.constraints, &default_attributes())
+        ..SwingSetup::new(
+            model,
+            hip,
+            0.0,
+            &step.constraints,
+            &default_attributes(),
+            &klaw::engine::parameters::EngineParameters::default().servos,
+        )
     }
 }
 

@@ -27,6 +27,7 @@ use nalgebra::{SVector, Vector2};
 use crate::control::stance::HipPath;
 use crate::dynamics::SwingModel;
 use crate::model::attributes::Attributes;
+use crate::model::servos::Servos;
 use crate::numerics::ode::{self, IntegrationError, Phase, Segment};
 use crate::plan::StepConstraints;
 
@@ -87,21 +88,22 @@ pub struct SwingSetup<'a> {
 
 impl<'a> SwingSetup<'a> {
     /// The swing of a step with constraints `c` (timing, θ3*, κ_hs, where the heel lands) hanging
-    /// from `hip_path`, the servos' gains from the attributes: k = a (2π f_h)², d = 2ζ a (2π f_h)
-    /// with a = a11, a22 of the leg at heel strike, and the swing1 knee damper
-    /// `knee_damper`.
+    /// from `hip_path`, the servos' gains from the model's `servos`: k = a (2π f_h)²,
+    /// d = 2ζ a (2π f_h) with a = a11, a22 of the leg at heel strike, and the swing1 knee damper
+    /// `knee_damper`; the heel's landing velocity from the attributes.
     pub fn new(
         model: SwingModel,
         hip_path: &'a HipPath,
         hip_vy_end: f64,
         c: &StepConstraints,
         attrs: &Attributes,
+        servos: &Servos,
     ) -> Self {
         let t = c.timing;
         let m_hs = model.mass_matrix(&Vector2::new(0.0, c.theta4));
         let (a11, a22) = (m_hs[(0, 0)], m_hs[(1, 1)]);
-        let wh = 2.0 * std::f64::consts::PI * attrs.swing_hip_frequency;
-        let z = attrs.servo_damping_ratio;
+        let wh = 2.0 * std::f64::consts::PI * servos.swing_hip_frequency;
+        let z = servos.damping_ratio;
         SwingSetup {
             model,
             hip_path,

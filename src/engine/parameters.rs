@@ -1,13 +1,24 @@
-//! The engine's tolerances and limits: what the walker's shooting solves converge to and may
-//! spend, how its measurements sample a step, and what a step's invariants allow (spec §4, §5;
-//! the decisions behind each value: docs/engine.md, "Decisions" and "Engine").
+//! The engine's model constants, read from `models/engine.toml` (each value's source is there):
+//! the servos, what the walker's shooting solves converge to and may spend, how its
+//! measurements sample a step, what a step's invariants allow, and the fallbacks' limits
+//! (spec §4, §5; the decisions behind each value: docs/engine.md, "Decisions" and "Engine").
+use std::path::Path;
 
+use serde::Deserialize;
+
+use crate::model::InputError;
+use crate::model::servos::Servos;
 use crate::numerics::ode::Tolerance;
 
-/// The tolerances and limits of a walker: [`crate::engine::walker::Walker`] runs with the
-/// `Default`, today's values.
+/// The bundled constants.
+pub const BUILTIN_TABLE: &str = include_str!("../../models/engine.toml");
+
+/// The model constants of a walker: [`crate::engine::walker::Walker`] runs with the `Default`,
+/// the bundled `models/engine.toml`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EngineParameters {
+    /// The servos' natural frequencies and damping ratios.
+    pub servos: Servos,
     /// Shooting tolerance of the stance's and swing3's end conditions (rad or m): 100× inside
     /// the 1e-6 the walk promises, and small enough for the heel-contact check, which
     /// differences the heel height over 1e-6 s.
@@ -69,24 +80,136 @@ pub struct EngineParameters {
 }
 
 impl Default for EngineParameters {
+    /// The bundled constants, `models/engine.toml`.
     fn default() -> Self {
-        EngineParameters {
-            solve_tolerance: 1e-8,
-            waypoint_tolerance: 1e-7,
-            max_iterations: 25,
+        Self::parse(BUILTIN_TABLE, Path::new("models/engine.toml"))
+            .expect("the bundled engine constants parse (tested)")
+    }
+}
+
+/// `models/engine.toml`'s layout.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Table {
+    servos: Servos,
+    solve: Solve,
+    measure: Measure,
+    fallbacks: Fallbacks,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Solve {
+    tolerance: f64,
+    waypoint_tolerance: f64,
+    max_iterations: usize,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Measure {
+    toe_clearance_min: f64,
+    invariant_slack: f64,
+    coarse_samples: usize,
+    foot_samples: usize,
+    work_panels: usize,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Fallbacks {
+    list_retries: usize,
+    reach_retries: usize,
+    reach_margin_step: f64,
+    toe_off_retries: usize,
+    toe_off_knee_step: f64,
+}
+
+impl EngineParameters {
+    /// The constants of a table in `models/engine.toml`'s layout (`path` names it in errors):
+    /// every key present, none unknown, each finite and in its range (frequencies and damping
+    /// ratios positive, tolerances in (0, 1e-3], counts at least 1 where a step needs one).
+    pub fn parse(text: &str, path: &Path) -> Result<Self, InputError> {
+        let what = "engine constants";
+        let t: Table =
+            toml::from_str(text).map_err(|e| InputError::malformed(what, path, Box::new(e)))?;
+        let bad =
+            |name: &str, e: InputError| InputError::malformed(what, path, format!("{name}: {e}"));
+        let (s, m, f) = (&t.solve, &t.measure, &t.fallbacks);
+        let mut checks: Vec<(&str, f64, f64, f64)> = t
+            .servos
+            .named()
+            .iter()
+            .map(|&(name, v)| (name, v, 1e-3, 1e3))
+            .collect();
+        checks.extend([
+            ("tolerance", s.tolerance, 1e-15, 1e-3),
+            ("waypoint_tolerance", s.waypoint_tolerance, 1e-15, 1e-3),
+            ("max_iterations", s.max_iterations as f64, 1.0, 1e4),
+            ("toe_clearance_min", m.toe_clearance_min, 0.0, 0.1),
+            ("invariant_slack", m.invariant_slack, 0.0, 0.01),
+            ("coarse_samples", m.coarse_samples as f64, 2.0, 1e6),
+            ("foot_samples", m.foot_samples as f64, 2.0, 1e6),
+            ("work_panels", m.work_panels as f64, 1.0, 1e6),
+            ("list_retries", f.list_retries as f64, 0.0, 1e3),
+            ("reach_retries", f.reach_retries as f64, 0.0, 1e3),
+            ("reach_margin_step", f.reach_margin_step, 0.0, 1.0),
+            ("toe_off_retries", f.toe_off_retries as f64, 0.0, 1e3),
+            ("toe_off_knee_step", f.toe_off_knee_step, 0.0, 90.0),
+        ]);
+        for (name, v, lo, hi) in checks {
+            InputError::check_range(name, v, lo, hi, "").map_err(|e| bad(name, e))?;
+        }
+        Ok(EngineParameters {
+            servos: t.servos,
+            solve_tolerance: s.tolerance,
+            waypoint_tolerance: s.waypoint_tolerance,
+            max_iterations: s.max_iterations,
             ode: Tolerance::default(),
             swing2_tolerance_scale: crate::control::swing::SWING2_TOLERANCE_SCALE,
             hip_path_step: crate::control::stance::HIP_PATH_STEP,
-            toe_clearance_min: 1e-6,
-            invariant_slack: 1e-6,
-            coarse_samples: 32,
-            foot_samples: 100,
-            work_panels: 1,
-            list_retries: 10,
-            reach_retries: 5,
-            reach_margin_step: 0.01,
-            toe_off_retries: 4,
-            toe_off_knee_step: 5f64.to_radians(),
-        }
+            toe_clearance_min: m.toe_clearance_min,
+            invariant_slack: m.invariant_slack,
+            coarse_samples: m.coarse_samples,
+            foot_samples: m.foot_samples,
+            work_panels: m.work_panels,
+            list_retries: f.list_retries,
+            reach_retries: f.reach_retries,
+            reach_margin_step: f.reach_margin_step,
+            toe_off_retries: f.toe_off_retries,
+            toe_off_knee_step: f.toe_off_knee_step.to_radians(),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The bundled table parses to the values its file states (an independent reading of the
+    /// text: the leg servo's 5 Hz, the toe-off knee's 5° in radians); a value out of its range,
+    /// a missing key and an unknown one are errors naming them.
+    #[test]
+    fn the_bundled_constants_parse_and_bad_ones_are_named() {
+        let p = EngineParameters::default();
+        assert_eq!(p.servos.leg_frequency, 5.0);
+        assert_eq!(p.max_iterations, 25);
+        assert!((p.toe_off_knee_step - 5f64.to_radians()).abs() < 1e-15);
+        let path = Path::new("e.toml");
+        let e = EngineParameters::parse(
+            &BUILTIN_TABLE.replace("damping_ratio = 0.7", "damping_ratio = -0.7"),
+            path,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("damping_ratio") && e.contains("e.toml"), "{e}");
+        let e = EngineParameters::parse(&BUILTIN_TABLE.replace("foot_samples = 100\n", ""), path)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("foot_samples"), "{e}");
+        let e = EngineParameters::parse(&format!("{BUILTIN_TABLE}\n[extra]\nx = 1\n"), path)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("extra"), "{e}");
     }
 }

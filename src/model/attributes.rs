@@ -256,16 +256,6 @@ attribute_struct! {
     bounciness,
     /// θ2_ref: forward lean of the upper body (rad).
     trunk_lean,
-    /// f_w (Hz): leg axis spring k_w = m2 (2π f_w)².
-    leg_frequency,
-    /// Damping ratio of the leg axis and the swing servos.
-    servo_damping_ratio,
-    /// f_2 (Hz): trunk balance spring k_2 = J2 (2π f_2)².
-    trunk_frequency,
-    /// ζ_2: trunk balance damper.
-    trunk_damping_ratio,
-    /// f_h (Hz): swing2 hip servo spring.
-    swing_hip_frequency,
     /// κ_TO: knee flexion at toe-off (rad).
     toe_off_knee,
     /// θ6_max: metatarsal dorsiflexion limit (rad).

@@ -5,6 +5,7 @@ pub mod body;
 pub mod error;
 pub mod pelvis_speed;
 pub mod rom;
+pub mod servos;
 
 pub use error::{InputError, Shown};
 

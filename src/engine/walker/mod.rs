@@ -364,6 +364,7 @@ impl Walker {
             hip_vy_end,
             &plan.c,
             &self.attrs,
+            &self.parameters.servos,
         );
         let [mesh1, mesh2, mesh3] = std::mem::take(&mut self.swing_meshes);
         let (s1, swing1) = self.swing1(&plan, &sw, toe_off.state, mesh1)?;

@@ -85,23 +85,24 @@ impl Walker {
     }
 
     /// The stance of a step from the previous step's constraints `prev` to the plan's
-    /// (spec §4): the leg axis and trunk servos from the attributes, the terminal stance of the
+    /// (spec §4): the leg axis and trunk servos from the engine's constants, the terminal stance of the
     /// virtual leg with the plan's pelvic list.
     pub(super) fn stance_setup(&self, prev: &StepConstraints, plan: &StepPlan) -> StanceSetup {
         let (a, c) = (&self.attrs, &plan.c);
         let m = self.stance_model;
         let b = &self.body;
         let y_mid = 0.5 * (prev.hip[1] + c.hip[1]) + c.bounce;
-        let ww = 2.0 * PI * a.leg_frequency;
-        let w2 = 2.0 * PI * a.trunk_frequency;
+        let servos = &self.parameters.servos;
+        let ww = 2.0 * PI * servos.leg_frequency;
+        let w2 = 2.0 * PI * servos.trunk_frequency;
         let j2 = m.trunk_inertia();
         StanceSetup {
             model: m,
             l1: self.body.l1,
             k_w: m.m2 * ww * ww,
-            d_w: 2.0 * a.servo_damping_ratio * m.m2 * ww,
+            d_w: 2.0 * servos.damping_ratio * m.m2 * ww,
             k_2: j2 * w2 * w2,
-            d_2: 2.0 * a.trunk_damping_ratio * j2 * w2,
+            d_2: 2.0 * servos.trunk_damping_ratio * j2 * w2,
             theta2_ref: a.trunk_lean,
             t_step: c.timing.t_step,
             theta1_start: -prev.lead.0,
