@@ -11,7 +11,7 @@ mod common;
 use nalgebra::SVector;
 use ode_solvers::{Dopri5, OutputType, System};
 
-use klaw::control::stance::{HipPath, StanceForces, StanceRun, TORQUE_OFF};
+use klaw::control::stance::{HipPath, StanceForces, StanceRun};
 use klaw::control::swing::{Subphase, SwingForces, SwingSetup};
 use klaw::dynamics::SwingModel;
 use klaw::engine::walker::{Step, Walk, swing_hip_vy_end};
@@ -104,7 +104,7 @@ fn stance_segments_end_with_their_own_forces() {
         (&plastic[5], true),
     ] {
         let setup = &step.stance_setup;
-        let t_off = TORQUE_OFF * setup.t_step;
+        let t_off = setup.torque_off * setup.t_step;
         let run = stance_again(step);
         let segments = &run.segments;
         // one segment ends at the torque's switch; with the plastic impulse one before it where

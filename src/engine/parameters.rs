@@ -6,6 +6,7 @@ use std::path::Path;
 
 use serde::Deserialize;
 
+use crate::control::stance::ReferenceShape;
 use crate::model::InputError;
 use crate::model::servos::Servos;
 use crate::numerics::ode::Tolerance;
@@ -19,6 +20,13 @@ pub const BUILTIN_TABLE: &str = include_str!("../../models/engine.toml");
 pub struct EngineParameters {
     /// The servos' natural frequencies and damping ratios.
     pub servos: Servos,
+    /// The stance hip reference's shape constants in terminal stance.
+    pub stance_reference: ReferenceShape,
+    /// The fraction of the step after which the stance leg torque τ1 is switched off.
+    pub torque_off: f64,
+    /// How far the bounce's mid-stance peak stays below the straight stance leg's reach, as a
+    /// fraction of the bounce.
+    pub reach_margin: f64,
     /// Shooting tolerance of the stance's and swing3's end conditions (rad or m): 100× inside
     /// the 1e-6 the walk promises, and small enough for the heel-contact check, which
     /// differences the heel height over 1e-6 s.
@@ -65,7 +73,7 @@ pub struct EngineParameters {
     pub list_retries: usize,
     /// How many times a step whose flat foot falls out of the straight leg's reach is tried
     /// again before its list is lowered, each time with the bounce's reach margin
-    /// (`REACH_MARGIN`, a fraction of the bounce) larger by `reach_margin_step` (count; 0:
+    /// (`reach_margin`, a fraction of the bounce) larger by `reach_margin_step` (count; 0:
     /// never): where the reach cuts the bounce, less list only lets the bounce rise again.
     pub reach_retries: usize,
     /// The reach margin's growth per retry (fraction of the bounce).
@@ -80,10 +88,14 @@ pub struct EngineParameters {
 }
 
 impl Default for EngineParameters {
-    /// The bundled constants, `models/engine.toml`.
+    /// The bundled constants, `models/engine.toml` (parsed once per process: compiled-in text,
+    /// the same every time; other constants come through [`Self::parse`]).
     fn default() -> Self {
-        Self::parse(BUILTIN_TABLE, Path::new("models/engine.toml"))
-            .expect("the bundled engine constants parse (tested)")
+        static BUNDLED: std::sync::OnceLock<EngineParameters> = std::sync::OnceLock::new();
+        *BUNDLED.get_or_init(|| {
+            Self::parse(BUILTIN_TABLE, Path::new("models/engine.toml"))
+                .expect("the bundled engine constants parse (tested)")
+        })
     }
 }
 
@@ -92,9 +104,18 @@ impl Default for EngineParameters {
 #[serde(deny_unknown_fields)]
 struct Table {
     servos: Servos,
+    stance: Stance,
     solve: Solve,
     measure: Measure,
     fallbacks: Fallbacks,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Stance {
+    torque_off: f64,
+    reach_margin: f64,
+    reference: ReferenceShape,
 }
 
 #[derive(Deserialize)]
@@ -142,6 +163,16 @@ impl EngineParameters {
             .iter()
             .map(|&(name, v)| (name, v, 1e-3, 1e3))
             .collect();
+        let r = &t.stance.reference;
+        checks.extend([
+            ("torque_off", t.stance.torque_off, 0.0, 1.0),
+            ("reach_margin", t.stance.reach_margin, 0.0, 1.0),
+            ("end_margin", r.end_margin, 0.0, 0.1),
+            ("end_rise", r.end_rise, 0.0, 0.1),
+            // the heel-off pitch stays monotone while D ≤ 10 (ReferenceShape::pitch_bulge)
+            ("pitch_bulge", r.pitch_bulge, 0.0, 10.0),
+            ("past_end", r.past_end, 1.0, 1.5),
+        ]);
         checks.extend([
             ("tolerance", s.tolerance, 1e-15, 1e-3),
             ("waypoint_tolerance", s.waypoint_tolerance, 1e-15, 1e-3),
@@ -162,6 +193,9 @@ impl EngineParameters {
         }
         Ok(EngineParameters {
             servos: t.servos,
+            stance_reference: t.stance.reference,
+            torque_off: t.stance.torque_off,
+            reach_margin: t.stance.reach_margin,
             solve_tolerance: s.tolerance,
             waypoint_tolerance: s.waypoint_tolerance,
             max_iterations: s.max_iterations,

@@ -167,7 +167,7 @@ pub fn stance_work(setup: &StanceSetup, run: &StanceRun, n: usize) -> Work {
         .iter()
         .map(|(seg, locked)| {
             // the segment's own torque at its ends (the switch at 0.4 t_step ends a segment)
-            let on = seg.t0 < crate::control::stance::TORQUE_OFF * setup.t_step;
+            let on = seg.t0 < setup.torque_off * setup.t_step;
             let forces = StanceForces::new(setup, run.tau1, run.p, *locked).with_torque(on);
             integrate(|t, y| stance_powers(&forces, t, y), seg, n)
         })

@@ -70,10 +70,16 @@ pub struct AttributeSpec {
 pub struct AttributeTable(pub BTreeMap<String, AttributeSpec>);
 
 impl AttributeTable {
-    /// The bundled table.
+    /// The bundled table (parsed once per process: it is compiled-in text, the same every
+    /// time; a user's values come through [`Self::resolve`] and attribute files).
     pub fn builtin() -> Self {
-        Self::parse(BUILTIN_TABLE, Path::new("models/attributes.toml"))
-            .expect("the bundled attribute table parses (tested)")
+        static TABLE: std::sync::OnceLock<AttributeTable> = std::sync::OnceLock::new();
+        TABLE
+            .get_or_init(|| {
+                Self::parse(BUILTIN_TABLE, Path::new("models/attributes.toml"))
+                    .expect("the bundled attribute table parses (tested)")
+            })
+            .clone()
     }
 
     /// Parse a table; every attribute the engine reads must be present, with
@@ -306,8 +312,12 @@ attribute_struct! {
 }
 
 impl Default for Attributes {
+    /// The bundled table's defaults (resolved once per process, like the table).
     fn default() -> Self {
-        AttributeTable::builtin().defaults()
+        static DEFAULTS: std::sync::OnceLock<Attributes> = std::sync::OnceLock::new();
+        DEFAULTS
+            .get_or_init(|| AttributeTable::builtin().defaults())
+            .clone()
     }
 }
 

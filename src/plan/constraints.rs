@@ -186,20 +186,13 @@ impl StepConstraints {
     }
 }
 
-/// How far the bounce's mid-stance peak stays below the straight stance leg's reach, as a
-/// fraction of the bounce \[ours\]: the stance hip overshoots its reference there by about
-/// 5.5 % of the bounce (2.2 mm of 40.8 mm at 1.4 m/s, H 1.8 m). The smallest hundredth with
-/// which no walk of the valid range needs a retry for its flat foot; every hundredth more bends
-/// the mid-stance knee by about 1.5° (docs/realism.md).
-pub(crate) const REACH_MARGIN: f64 = 0.07;
-
 impl StepConstraints {
     /// The bounce limited to the straight stance leg's reach \[ours\]: at mid-stance the stance
     /// hip joint is (l0/2) sin L above the pelvis centre (list L) and d = l0/2 − b/2 + D to the
     /// side of its ankle (step width b, lateral displacement D), so a straight leg on a flat foot
     /// holds the pelvis centre at most at y_r = l9 + √(l1² − d²) − (l0/2) sin L. The reference
     /// peaks at ȳ + e with ȳ the mean of the step's start height `y_start` and y_hs, so
-    /// e ≤ (y_r − ȳ) / (1 + m), m the margin ([`REACH_MARGIN`], more where a step needed it:
+    /// e ≤ (y_r − ȳ) / (1 + m), m the margin (the engine's constant `reach_margin`, more where a step needed it:
     /// `Walker::step`). Above that the hip passes over the ankle out of the flat foot's reach,
     /// and the foot's pitch jumps from its heel to its metatarsal joint (in 99 of the 181 walks
     /// of the valid range, with the hip midway at heel strike).
@@ -373,7 +366,7 @@ mod tests {
 
     /// Where the straight leg cannot reach the bounce's peak (a slow walk of a tall body: a
     /// small height budget, the list raising the stance hip joint), the bounce is cut so that
-    /// the stance hip joint, lifted REACH_MARGIN e more, is exactly l1 from the flat foot's
+    /// the stance hip joint, lifted reach_margin e more, is exactly l1 from the flat foot's
     /// ankle (by Pythagoras with its lateral offset); with no list the cut is less.
     #[test]
     fn the_bounce_stays_within_the_straight_legs_reach() {
@@ -387,15 +380,16 @@ mod tests {
         .unwrap();
         let plain = StepConstraints::new(&body, &attrs, gait).unwrap();
         let det = Determinants::new(&attrs, body.l0);
-        let c = plain.within_reach(&body, &det, plain.hip[1], REACH_MARGIN);
+        let reach_margin = crate::engine::parameters::EngineParameters::default().reach_margin;
+        let c = plain.within_reach(&body, &det, plain.hip[1], reach_margin);
         assert!(c.bounce < plain.bounce, "{} {}", c.bounce, plain.bounce);
-        let joint = c.hip[1] + (1.0 + REACH_MARGIN) * c.bounce + det.half_width * det.list.sin();
+        let joint = c.hip[1] + (1.0 + reach_margin) * c.bounce + det.half_width * det.list.sin();
         let d = det.half_width - det.half_step_width + det.lateral;
         assert!(((joint - body.l9).hypot(d) - body.l1).abs() < 1e-12);
         let flat = Determinants { list: 0.0, ..det };
         assert!(
             plain
-                .within_reach(&body, &flat, plain.hip[1], REACH_MARGIN)
+                .within_reach(&body, &flat, plain.hip[1], reach_margin)
                 .bounce
                 > c.bounce
         );

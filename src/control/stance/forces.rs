@@ -11,9 +11,6 @@ use crate::numerics::trig::sin_cos;
 use super::reference::hip_reference_sc;
 use super::{StanceSetup, StanceState};
 
-/// Fraction of the step after which the leg torque τ1 is switched off (paper: EMG shows the
-/// hip-extensor push only early in stance).
-pub const TORQUE_OFF: f64 = 0.4;
 /// A trial stops when |θ1| exceeds this (rad): the residual of a wild guess (spec §4).
 pub const THETA1_ABORT: f64 = PI / 3.0;
 
@@ -112,7 +109,7 @@ impl<'a> StanceForces<'a> {
         let s = self.setup;
         let (th2, th2d) = (y[2], y[5]);
         let f2 = -s.k_2 * (th2 - s.theta2_ref) - s.d_2 * th2d;
-        let f1 = if self.torque.unwrap_or(t < TORQUE_OFF * s.t_step) {
+        let f1 = if self.torque.unwrap_or(t < s.torque_off * s.t_step) {
             self.tau1
         } else {
             0.0

@@ -17,8 +17,9 @@ mod reference;
 mod run;
 mod setup;
 
-pub use forces::{StanceForces, THETA1_ABORT, TORQUE_OFF};
+pub use forces::{StanceForces, THETA1_ABORT};
 pub use hip_path::{HIP_PATH_STEP, HipPath, OFFSET_DIFFERENCE_STEP};
+pub use reference::ReferenceShape;
 pub(crate) use reference::TerminalStance;
 pub use run::StanceRun;
 pub use setup::StanceSetup;

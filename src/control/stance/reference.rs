@@ -2,6 +2,8 @@
 //! §7): the bounce of the loading response up to mid-stance, the virtual leg's from there on.
 use std::f64::consts::PI;
 
+use serde::Deserialize;
+
 use crate::kinematics::pelvis::Determinants;
 use crate::numerics::chebyshev::Chebyshev;
 use crate::numerics::roots;
@@ -66,7 +68,7 @@ pub(super) fn hip_reference_sc(
 ///   its error bound) and the heel rises ever faster into push-off; p_hs puts C at (θ1*, w*) at
 ///   heel strike, c ∈ [−4, 1] makes C arrive there level (as the spec §4 reference did, so
 ///   that the hip does not dip below y_hs before it), or as nearly as a monotone pitch allows,
-///   and D = [`PITCH_BULGE`] raises the heel in mid terminal stance without changing either end.
+///   and D (`ReferenceShape::pitch_bulge`) raises the heel in mid terminal stance without changing either end.
 ///
 /// The pelvis moves J from C by o(u) = (−(l0/2) sin(A sin(πu/2)), (l0/2) sin(L cos(πu/2))) and
 /// dz(u) = D cos(πu/2) + l0/2 − b/2 (rotation A, list L, lateral displacement D, step width b;
@@ -91,37 +93,50 @@ pub(crate) struct TerminalStance {
     /// The determinants of gait (with the step's list), which move the hip joint.
     pub(crate) pelvis: Determinants,
     /// W as a function of sin θ1 in Chebyshev series, on [0, sin θ_ho] (foot flat) and from
-    /// there to where the pitch is held ([`PAST_END`]) in two halves: what [`Self::length`]
+    /// there to where the pitch is held (`ReferenceShape::past_end`) in two halves: what [`Self::length`]
     /// evaluates.
+    /// Its shape constants.
+    shape: ReferenceShape,
     table: [Chebyshev; 3],
 }
 
-/// m of the margin m (1 − x)² above y_hs that the reference keeps between heel-off (x = 0) and
-/// heel strike (x = 1) (m) \[ours\]: with less the tracking hip dipped under y_hs just before heel
-/// strike in slow walks of tall bodies.
-pub(crate) const END_MARGIN: f64 = 1e-2;
+/// The shape constants of the stance hip's reference in terminal stance \[ours\] (model
+/// constants of `models/engine.toml`'s `[stance]`, where each one's derivation is).
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReferenceShape {
+    /// m of the margin m (1 − x)² above y_hs that the reference keeps between heel-off (x = 0)
+    /// and heel strike (x = 1) (m): with less the tracking hip dipped under y_hs just before
+    /// heel strike in slow walks of tall bodies.
+    pub end_margin: f64,
+    /// The reference's arrival slope at heel strike, dy/dθ1 = end_rise cos θ1* (m/rad): the
+    /// hip lags its reference, and with a level arrival it undershot y_hs by up to 40 µm just
+    /// before heel strike and climbed back to it; a slightly rising reference brings it in
+    /// falling.
+    pub end_rise: f64,
+    /// D of the heel-off pitch's shape s⁴ (1 + c (s − 1) + D (1 − s)²): the bulge D s⁴ (1 − s)²
+    /// lifts the heel in mid terminal stance and leaves the pitch's C³ start at heel-off, its
+    /// heel-strike value and its end rate alone. The pitch stays monotone for every c ∈ [−4, 1]
+    /// while D ≤ 10 (at c = −4 its rate is s³ u (20 − 2D + 6D u), u = 1 − s).
+    pub pitch_bulge: f64,
+    /// How far past heel strike (in s and u, where heel strike is 1) the pitch and the pelvis's
+    /// offsets continue their formulas before they are held: held at heel strike itself, the
+    /// reference's slope jumps where every converged trial ends, and the integrator's last steps
+    /// straddling that kink shrink geometrically.
+    pub past_end: f64,
+}
 
-/// The reference's arrival slope at heel strike, dy/dθ1 = END_RISE cos θ1* (m/rad) \[ours\]: the
-/// hip lags its reference, and with a level arrival it undershot y_hs by up to 40 µm just
-/// before heel strike and climbed back to it (with the hip's lead at heel strike); a slightly
-/// rising reference brings it in falling. 0.004 walks the whole box v 0.4–2.5 m/s, H 1.2–2.2 m
-/// up to Froude 0.5 (0.0065 and 0.005 fail one or two of its points; docs/realism.md).
-pub(crate) const END_RISE: f64 = 0.004;
-
-/// D of the heel-off pitch's shape s⁴ (1 + c (s − 1) + D (1 − s)²) \[ours\]: the bulge
-/// D s⁴ (1 − s)² lifts the heel in mid terminal stance and leaves the pitch's C³ start at
-/// heel-off, its heel-strike value and its end rate alone. The pitch stays monotone for every
-/// c ∈ [−4, 1] while D ≤ 10 (at c = −4 its rate is s³ u (20 − 2D + 6D u), u = 1 − s). Without
-/// it the heel rose late, the flat foot's arc let the hip fall early and the trailing ankle
-/// dorsiflexed past its norm (docs/realism.md, "The heel in terminal stance").
-pub(crate) const PITCH_BULGE: f64 = 8.0;
-
-/// How far past heel strike (in s and u, where heel strike is 1) the pitch and the pelvis's
-/// offsets continue their formulas before they are held \[ours\]: held at heel strike itself, the
-/// reference's slope jumps where every converged trial ends, and the integrator's last steps
-/// straddling that kink shrink geometrically. Not far: at 2 m/s the leg no longer reaches the
-/// hip at 1.5.
-const PAST_END: f64 = 1.1;
+impl ReferenceShape {
+    /// The constants with their names, for checks and messages.
+    pub fn named(&self) -> [(&'static str, f64); 4] {
+        [
+            ("end_margin", self.end_margin),
+            ("end_rise", self.end_rise),
+            ("pitch_bulge", self.pitch_bulge),
+            ("past_end", self.past_end),
+        ]
+    }
+}
 
 /// Points between heel-off and heel strike at which [`TerminalStance::new`] checks that the
 /// reference stays above its heel-strike height.
@@ -130,13 +145,15 @@ const HEEL_RISE_CHECKS: usize = 32;
 impl TerminalStance {
     /// `y_mid`: the pelvis centre's reference height at mid-stance; `det`: the determinants
     /// (with the step's list); `end`: θ1* and w*; `(l3, l4, l9, h12)`: thigh, shank, ankle
-    /// height and ankle to M (foot flat); `theta5_max`: the heel-off dorsiflexion.
+    /// height and ankle to M (foot flat); `theta5_max`: the heel-off dorsiflexion; `shape`: the
+    /// reference's shape constants.
     pub(crate) fn new(
         y_mid: f64,
         det: &Determinants,
         (theta1_end, w_end): (f64, f64),
         (l3, l4, l9, h12): (f64, f64, f64, f64),
         theta5_max: f64,
+        shape: ReferenceShape,
     ) -> Self {
         let (rise, lateral) = det.mid_stance_hip();
         let w0 = y_mid + rise - l9;
@@ -153,6 +170,7 @@ impl TerminalStance {
             sin_end,
             pelvis: *det,
             table: [Chebyshev::ZERO; 3],
+            shape,
         };
         // heel-off: the flat foot's ankle–J line reaches θ5_max − δ (rising with θ1)
         let line = |s1: f64| {
@@ -181,9 +199,9 @@ impl TerminalStance {
             let dips = (1..HEEL_RISE_CHECKS).any(|k| {
                 let x = k as f64 / HEEL_RISE_CHECKS as f64;
                 let s1 = t.sin_heel_off + (sin_end - t.sin_heel_off) * x;
-                let arrival = END_RISE * (theta1_end - s1.asin());
+                let arrival = shape.end_rise * (theta1_end - s1.asin());
                 t.exact_length_at(s1).0 * (1.0 - s1 * s1).sqrt()
-                    < y_end + END_MARGIN * (1.0 - x).powi(2) - arrival
+                    < y_end + shape.end_margin * (1.0 - x).powi(2) - arrival
             });
             if !dips {
                 break;
@@ -196,7 +214,7 @@ impl TerminalStance {
             pitch_end: 0.0,
             ..t
         };
-        let held = t.sin_heel_off + PAST_END * (sin_end - t.sin_heel_off);
+        let held = t.sin_heel_off + shape.past_end * (sin_end - t.sin_heel_off);
         let half = 0.5 * (t.sin_heel_off + held);
         t.table = [
             Chebyshev::fit(
@@ -211,7 +229,7 @@ impl TerminalStance {
     }
 
     /// p_hs so that W(θ1*) = w* (W rises with p: the ankle rises towards the hip), then c so
-    /// that the hip arrives nearly level, dy/dθ1 = W' cos θ1* − W sin θ1* = [`END_RISE`] cos θ1*,
+    /// that the hip arrives nearly level, dy/dθ1 = W' cos θ1* − W sin θ1* = `end_rise` cos θ1*,
     /// where a monotone pitch
     /// allows (dW/dθ1 at the end is linear in the pitch's end rate 4 + c): with a falling
     /// arrival the tracking hip dips under y_hs in slow walks.
@@ -240,7 +258,7 @@ impl TerminalStance {
                 ..*self
             };
             let (w, dw) = t.exact_length_at(sin_end);
-            dw - w * sin_end / (1.0 - sin_end * sin_end).sqrt() - END_RISE
+            dw - w * sin_end / (1.0 - sin_end * sin_end).sqrt() - self.shape.end_rise
         };
         let (lo, hi) = (slope(-4.0), slope(1.0));
         self.end_rate = if hi != lo {
@@ -284,7 +302,7 @@ impl TerminalStance {
     /// W(θ1) and dW/dθ1 from sin θ1, cos θ1, from the table: W(sin θ1) is smooth on each piece
     /// (the pelvis's sines, the foot's rotation and a square root), so that its coefficients
     /// fall fast (to 1e-12 of W by the 20th) and the 20 Chebyshev terms of each piece (the rising
-    /// heel's in two halves, since [`PITCH_BULGE`] bends it) meet [`Self::exact_length`] to
+    /// heel's in two halves, since the pitch's bulge bends it) meet [`Self::exact_length`] to
     /// ≤ 3e-13 m and dW/dθ1 to ≤ 4.5e-10 m/rad (0.6–2.0 m/s, tested), for two Estrin sums, a
     /// fraction of the formula's cost (the stance right-hand side evaluates it at every stage).
     /// Outside the table (θ1 < 0, or the pitch held), the formula itself.
@@ -306,13 +324,14 @@ impl TerminalStance {
     /// W(θ1) and dW/dθ1 from sin θ1, cos θ1 (θ1 ≥ 0), by the formula above.
     pub(crate) fn exact_length(&self, s1: f64, c1: f64) -> (f64, f64) {
         let span = self.sin_end - self.sin_heel_off;
-        let s = ((s1 - self.sin_heel_off) / span).min(PAST_END);
+        let past_end = self.shape.past_end;
+        let s = ((s1 - self.sin_heel_off) / span).min(past_end);
         let c = self.end_rate;
         let (p, dp) = if s <= 0.0 {
             (0.0, 0.0)
         } else {
-            let (g, dg) = pitch_shape(s, c, PITCH_BULGE);
-            let rate = if s < PAST_END {
+            let (g, dg) = pitch_shape(s, c, self.shape.pitch_bulge);
+            let rate = if s < past_end {
                 self.pitch_end * dg * c1 / span
             } else {
                 0.0
@@ -325,8 +344,8 @@ impl TerminalStance {
         } else {
             self.ankle(p)
         };
-        let u = (s1 / self.sin_end).min(PAST_END);
-        let du = if u < PAST_END { c1 / self.sin_end } else { 0.0 };
+        let u = (s1 / self.sin_end).min(past_end);
+        let du = if u < past_end { c1 / self.sin_end } else { 0.0 };
         let ([o, o_u], [dz, dz_u]) = self.offset(u);
         // the circle's centre A − o and radius² a0² − dz², with their θ1-derivatives
         let a = [ankle[0] - o[0], ankle[1] - o[1]];
@@ -379,12 +398,17 @@ mod tests {
             .stance_setup
     }
 
+    /// The bundled shape constants (models/engine.toml).
+    fn shape() -> ReferenceShape {
+        crate::engine::parameters::EngineParameters::default().stance_reference
+    }
+
     fn steady_setup() -> StanceSetup {
         setup_at(1.4)
     }
 
     /// W(θ1*) = w*, and the hip arrives nearly level (dy/dθ1 = W' cos θ1* − W sin θ1* =
-    /// END_RISE cos θ1*, c inside [−4, 1], or arriving from above less steeply with c = 1) from
+    /// end_rise cos θ1*, c inside [−4, 1], or arriving from above less steeply with c = 1) from
     /// 0.6 to 2.0 m/s;
     /// heel-off between mid-stance and heel strike.
     #[test]
@@ -401,7 +425,7 @@ mod tests {
             // hip's lead falling at 0.6 m/s (−3.6e-3 m/rad): the hip then comes down onto y_hs
             // from above, which the walk's invariant allows (the rise only keeps a lagging hip
             // from undershooting y_hs)
-            let target = END_RISE * th.cos();
+            let target = shape().end_rise * th.cos();
             assert!(
                 t.end_rate > -4.0 && t.end_rate <= 1.0,
                 "v {v}: c = {}",
@@ -442,7 +466,7 @@ mod tests {
 
     /// The reference continues through heel strike with its slope (the pitch and the pelvis
     /// are not held there: every converged trial ends at θ1*, and a kink there shrinks the
-    /// integrator's last steps, [`PAST_END`]), and its slope's rate of change stays bounded
+    /// integrator's last steps, `ReferenceShape::past_end`), and its slope's rate of change stays bounded
     /// across it (second differences of W from both sides agree).
     #[test]
     fn terminal_reference_is_smooth_through_heel_strike() {
@@ -467,7 +491,7 @@ mod tests {
     fn terminal_table_meets_the_formula() {
         for v in [0.6, 1.0, 1.4, 2.0] {
             let t = setup_at(v).terminal;
-            let held = t.sin_heel_off + PAST_END * (t.sin_end - t.sin_heel_off);
+            let held = t.sin_heel_off + shape().past_end * (t.sin_end - t.sin_heel_off);
             let (mut dw_worst, mut ddw_worst) = (0.0_f64, 0.0_f64);
             for k in 0..2000 {
                 let s1 = held * k as f64 / 2000.0;
@@ -500,7 +524,7 @@ mod tests {
             let w = t.length(s1, c1).0;
             let p = t.pitch_end
                 * f.powi(4)
-                * (1.0 + t.end_rate * (f - 1.0) + PITCH_BULGE * (1.0 - f).powi(2));
+                * (1.0 + t.end_rate * (f - 1.0) + shape().pitch_bulge * (1.0 - f).powi(2));
             // P − M turned clockwise (heel up) by p
             let (sp, cp) = p.sin_cos();
             let (vx, vy) = (-mx, -my);
@@ -525,7 +549,7 @@ mod tests {
 
     /// The whole reference: C¹ at mid-stance where the bounce hands over to the virtual leg
     /// (value and slope from either side), at y_mid there, and never under the heel-strike
-    /// height over the stance but by the rising arrival's END_RISE (θ1* − θ1).
+    /// height over the stance but by the rising arrival's end_rise (θ1* − θ1).
     #[test]
     fn hip_reference_is_c1_at_mid_stance_and_stays_above_heel_strike() {
         let s = steady_setup();
@@ -541,7 +565,7 @@ mod tests {
         for k in 0..=n {
             let th = -s.theta1_start + (s.theta1_start + s.theta1_end) * k as f64 / n as f64;
             let y = hip_reference(&s, th).0;
-            let arrival = END_RISE * (s.theta1_end - th).max(0.0);
+            let arrival = shape().end_rise * (s.theta1_end - th).max(0.0);
             assert!(
                 y >= s.y_start.min(s.y_end) - arrival - 1e-12,
                 "θ1 {th}: {y}"
@@ -551,11 +575,11 @@ mod tests {
 
     /// The pitch's shape: 0 with its first three derivatives at heel-off (g(h) / h⁴ → 1 − c + D),
     /// 1 with rate 4 + c at heel strike whatever D, its rate against central differences, and
-    /// monotone over [0, 1] for every c ∈ [−4, 1] at D = PITCH_BULGE; past D = 10 it turns back
-    /// at c = −4 (the bound [`PITCH_BULGE`] states).
+    /// monotone over [0, 1] for every c ∈ [−4, 1] at D = pitch_bulge; past D = 10 it turns back
+    /// at c = −4 (the bound `ReferenceShape::pitch_bulge` states).
     #[test]
     fn the_heel_off_pitch_is_c3_at_heel_off_monotone_and_meets_its_ends() {
-        let d = PITCH_BULGE;
+        let d = shape().pitch_bulge;
         for k in 0..=20 {
             let c = -4.0 + 5.0 * k as f64 / 20.0;
             let h = 1e-3;

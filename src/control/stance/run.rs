@@ -7,7 +7,7 @@ use crate::numerics::ode::{self, IntegrationError, Segment};
 use crate::numerics::roots;
 use crate::numerics::trig::sin_cos;
 
-use super::{StanceForces, StanceSetup, StanceState, TORQUE_OFF};
+use super::{StanceForces, StanceSetup, StanceState};
 
 /// Clamp events (the leg force reaching or leaving 0) located per stance trial; after them the
 /// clamp's kink is left to the step-size control.
@@ -70,7 +70,11 @@ impl StanceRun {
         tol: ode::Tolerance,
         mesh: Option<&StanceRun>,
     ) -> Result<Self, IntegrationError> {
-        let breaks = [TORQUE_OFF * setup.t_step, 0.5 * setup.t_step, setup.t_step];
+        let breaks = [
+            setup.torque_off * setup.t_step,
+            0.5 * setup.t_step,
+            setup.t_step,
+        ];
         let mut run = StanceRun {
             tau1,
             p,
@@ -89,7 +93,7 @@ impl StanceRun {
         'outer: for t_break in breaks {
             while t < t_break {
                 let mut forces = StanceForces::new(setup, tau1, p, locked)
-                    .with_torque(t < TORQUE_OFF * setup.t_step);
+                    .with_torque(t < setup.torque_off * setup.t_step);
                 forces.past_mid = Some(past_mid);
                 let loaded = flipped
                     .take()
@@ -140,7 +144,7 @@ impl StanceRun {
     /// Complete the dense output of a [`Self::simulate_on`] trial ([`ode::Segment::densify`]);
     /// returns the right-hand-side evaluations.
     pub(crate) fn densify(&mut self, setup: &StanceSetup) -> u32 {
-        let (tau1, p, t_off) = (self.tau1, self.p, TORQUE_OFF * setup.t_step);
+        let (tau1, p, t_off) = (self.tau1, self.p, setup.torque_off * setup.t_step);
         self.segments
             .iter_mut()
             .map(|(seg, locked)| {

@@ -19,6 +19,9 @@ pub struct StanceSetup {
     pub(crate) theta2_ref: f64,
     /// The step's duration t_step (s).
     pub t_step: f64,
+    /// The fraction of the step after which the leg torque τ1 is switched off (the engine's
+    /// constant `torque_off`).
+    pub torque_off: f64,
     /// |θ1| at the start of the step (the previous step's θ1*) and θ1* at its end.
     pub(crate) theta1_start: f64,
     pub(crate) theta1_end: f64,

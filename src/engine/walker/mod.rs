@@ -23,7 +23,6 @@ use crate::model::body::Body;
 use crate::model::pelvis_speed::PelvisSpeedLaw;
 use crate::numerics::ode::Segment;
 use crate::plan::StepConstraints;
-use crate::plan::constraints::REACH_MARGIN;
 use crate::plan::gait::Gait;
 
 use std::sync::OnceLock;
@@ -115,7 +114,7 @@ struct Attempt {
 struct Kept {
     /// Tenths (1 / `list_retries`) of the attributes' pelvic list left out.
     list_lowered: usize,
-    /// Hundredths (`reach_margin_step`) of the bounce added to `REACH_MARGIN`.
+    /// Hundredths (`reach_margin_step`) of the bounce added to `reach_margin`.
     reach_raised: usize,
     /// `toe_off_knee_step`s taken off the toe-off knee.
     knee_lowered: usize,
@@ -298,7 +297,7 @@ impl Walker {
                 list: self.attrs.pelvic_list
                     * (1.0 - kept.list_lowered as f64 / p.list_retries.max(1) as f64),
                 impulse,
-                reach_margin: REACH_MARGIN + kept.reach_raised as f64 * p.reach_margin_step,
+                reach_margin: p.reach_margin + kept.reach_raised as f64 * p.reach_margin_step,
                 toe_off_knee: knee.max(knee_floor),
             };
             match self.step_with(gait, attempt) {

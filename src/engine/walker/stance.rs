@@ -105,6 +105,7 @@ impl Walker {
             d_2: 2.0 * servos.trunk_damping_ratio * j2 * w2,
             theta2_ref: a.trunk_lean,
             t_step: c.timing.t_step,
+            torque_off: self.parameters.torque_off,
             theta1_start: -prev.lead.0,
             theta1_end: c.theta1,
             w_end: c.w,
@@ -117,6 +118,7 @@ impl Walker {
                 (c.theta1, c.w),
                 (b.l3, b.l4, b.l9, b.ankle_to_metatarsal_horizontal()),
                 a.heel_off_dorsiflexion,
+                self.parameters.stance_reference,
             ),
         }
     }
