@@ -633,3 +633,60 @@ fn the_engines_constants_change_the_walk() {
         .fold(0.0, f64::max);
     assert!(largest > 1e-5, "excursions {changed:?} against {default:?}");
 }
+
+/// The step report counts the fallbacks each step walked with: at 1.8 m/s (where the default
+/// body's flat foot falls out of the straight leg's reach at the bundled margin) exactly the
+/// steps whose bounce the raised margin cut report a reach repair, and nothing else; with the
+/// reach fallback off, exactly the steps that walk with less than the whole list report list
+/// repairs, in tenths equal to the list they left out; the default walk's plan walks as made.
+#[test]
+fn the_step_report_counts_the_fallbacks_it_walked_with() {
+    use klaw::engine::parameters::EngineParameters;
+    use klaw::engine::walker::{Walker, walk_attributes};
+    let run = |p: EngineParameters| {
+        let body = default_body();
+        let prepared = Simulation::new(body)
+            .velocity(1.8)
+            .steps(10)
+            .prepare()
+            .unwrap();
+        let attrs = walk_attributes(&body, &default_attributes(), prepared.gaits());
+        let full = attrs.pelvic_list;
+        let mut walker = Walker::new(body, attrs).with_parameters(p);
+        let reports: Vec<_> = prepared
+            .gaits()
+            .iter()
+            .map(|g| walker.step(*g).unwrap().report)
+            .collect();
+        (full, reports)
+    };
+    let (_, raised) = run(EngineParameters::default());
+    let top = raised[1].bounce_reference;
+    for r in &raised[1..] {
+        let cut = r.bounce_reference < top - 1e-6;
+        assert_eq!(
+            r.repairs.reach > 0,
+            cut,
+            "step {}: {:?}",
+            r.index,
+            r.repairs
+        );
+        assert_eq!((r.repairs.list, r.repairs.toe_off_knee), (0, 0));
+    }
+    assert!(raised.iter().any(|r| r.repairs.any()));
+    let (full, lowered) = run(EngineParameters {
+        reach_retries: 0,
+        ..EngineParameters::default()
+    });
+    for r in &lowered {
+        let left_out = (1.0 - r.pelvic_list / full) * 10.0;
+        assert!(
+            (left_out - r.repairs.list as f64).abs() < 1e-9,
+            "{left_out} {:?}",
+            r.repairs
+        );
+    }
+    assert!(lowered.iter().any(|r| r.repairs.list > 0));
+    let default = Simulation::default().steps(10).run().unwrap();
+    assert!(default.report().steps.iter().all(|s| !s.repairs.any()));
+}

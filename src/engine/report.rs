@@ -150,6 +150,30 @@ pub struct StepReport {
     pub positive_work: f64,
     /// Net mechanical work of the actuators over the step: ∫ Σ power dt (J).
     pub net_work: f64,
+    /// The walker's fallbacks this step walked with (`Walker::step`): how far each had to
+    /// change the plan, its own tries and those the earlier steps kept. All 0: the plan walked
+    /// as made.
+    pub repairs: Repairs,
+}
+
+/// The fallbacks a step walked with, each in its own unit of change (counts).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct Repairs {
+    /// Raises of the heel-strike impulse (the loading response let the hip sink under y_hs).
+    pub impulse: u32,
+    /// `reach_margin_step`s added to the bounce's reach margin (the flat foot out of reach).
+    pub reach: u32,
+    /// `toe_off_knee_step`s taken off the toe-off knee (the hind foot out of the hip's reach).
+    pub toe_off_knee: u32,
+    /// Tenths (1 / `list_retries`) of the pelvic list left out.
+    pub list: u32,
+}
+
+impl Repairs {
+    /// Whether any fallback changed the step's plan.
+    pub fn any(&self) -> bool {
+        *self != Repairs::default()
+    }
 }
 
 impl StepReport {
@@ -191,6 +215,7 @@ impl StepReport {
             peak_swing_knee_flexion: f64::NAN,
             positive_work: work.positive,
             net_work: work.net,
+            repairs: Repairs::default(),
         }
     }
 }

@@ -34,10 +34,12 @@ pub(crate) struct Summary {
     /// Positive mechanical work of the actuators per metre walked (J/m), and per kg of body mass.
     pub work_per_m: f64,
     pub work_per_kg_m: f64,
+    /// Steps that walked with a fallback's change of their plan (the step report's `repairs`).
+    pub repaired_steps: usize,
 }
 
 /// The output columns after the inputs.
-pub(crate) const OUTPUT_COLUMNS: [&str; 14] = [
+pub(crate) const OUTPUT_COLUMNS: [&str; 15] = [
     "converged",
     "error",
     "mean_iterations",
@@ -52,6 +54,7 @@ pub(crate) const OUTPUT_COLUMNS: [&str; 14] = [
     "min_toe_clearance",
     "work_per_m",
     "work_per_kg_m",
+    "repaired_steps",
 ];
 
 /// Whether `columns` (a CSV header, a JSON Lines row's keys) are those of a sweep output: a
@@ -170,6 +173,7 @@ impl Row {
                 ] {
                     c.push(Cell::Num(v));
                 }
+                c.push(Cell::Int(s.repaired_steps));
             }
             Err(e) => {
                 c.push(Cell::Bool(false));

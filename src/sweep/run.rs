@@ -127,6 +127,7 @@ pub(crate) fn run_walk(inputs: &mut Inputs, table: &AttributeTable) -> Result<Su
             .fold(f64::INFINITY, f64::min),
         work_per_m: work / distance,
         work_per_kg_m: work / distance / inputs.mass,
+        repaired_steps: report.steps.iter().filter(|s| s.repairs.any()).count(),
     })
 }
 

@@ -119,7 +119,8 @@ enum Command {
             achieved_step_length (m), achieved_step_frequency (steps/min), mean_hip_excursion (m),\n\
             max_peak_swing_knee_flexion_deg, stance_pct and double_support_pct (% of the cycle),\n\
             min_toe_clearance (m), work_per_m (J/m: the actuators' positive mechanical work per\n\
-            metre walked) and work_per_kg_m (J/(kg m)).\n\
+            metre walked), work_per_kg_m (J/(kg m)) and repaired_steps (steps that walked with a\n\
+            fallback's change of their plan: the report's repairs).\n\
             \n\
             A progress bar is drawn when stderr is a terminal; otherwise a plain line at most every 10 s.\n\
             \n\

@@ -11,7 +11,7 @@ use crate::control::swing::{Subphase, SwingSetup, SwingTrial};
 use crate::dynamics::{StanceModel, SwingModel};
 use crate::engine::error::{Invariant, SimulationError};
 use crate::engine::parameters::EngineParameters;
-use crate::engine::report::{SolveRecord, StepReport};
+use crate::engine::report::{Repairs, SolveRecord, StepReport};
 use crate::engine::startup::Startup;
 use crate::engine::work::{self, Work};
 use crate::kinematics::GeometryError;
@@ -289,6 +289,7 @@ impl Walker {
         let p = self.parameters;
         let mut kept = self.kept;
         let mut impulse = self.attrs.heel_strike_impulse;
+        let mut impulse_raised = 0;
         let knee_floor = toe_off_knee_floor();
         self.evaluations = 0;
         loop {
@@ -302,6 +303,7 @@ impl Walker {
             };
             match self.step_with(gait, attempt) {
                 Err(e) if e.is_loading_failure() && impulse < 1.0 => {
+                    impulse_raised += 1;
                     impulse = if impulse < 0.5 {
                         0.5 * (1.0 + impulse)
                     } else {
@@ -325,7 +327,16 @@ impl Walker {
                     if !first {
                         self.kept = kept;
                     }
-                    return result;
+                    let repairs = Repairs {
+                        impulse: impulse_raised,
+                        reach: kept.reach_raised as u32,
+                        toe_off_knee: kept.knee_lowered as u32,
+                        list: kept.list_lowered as u32,
+                    };
+                    return result.map(|mut step| {
+                        step.report.repairs = repairs;
+                        step
+                    });
                 }
             }
             self.restore(saved);
