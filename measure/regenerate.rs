@@ -29,7 +29,9 @@ fn generalize_toml(alphas: [f64; 4], walks: usize, lines: &[generalize_fit::Line
             .iter()
             .position(|k| *k == key)
         {
-            Some(i) => out += &format!("{key} = {:.2}\n", (alphas[i] * 100.0).round() / 100.0 + 0.0),
+            Some(i) => {
+                out += &format!("{key} = {:.2}\n", (alphas[i] * 100.0).round() / 100.0 + 0.0)
+            }
             None if line.starts_with("# over klaw's own walks") => {
                 out += &format!(
                     "# over klaw's own walks (`cargo run --release --example generalize_fit`: {walks} walks, H 1.5–1.95 m,\n"

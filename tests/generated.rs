@@ -17,9 +17,18 @@ fn the_startup_guesses_are_todays() {
     let fresh = startup_fit::generate();
     let committed = include_str!("../models/startup-guesses.toml");
     for (i, (a, b)) in fresh.lines().zip(committed.lines()).enumerate() {
-        assert_eq!(a, b, "models/startup-guesses.toml line {}: {REGENERATE}", i + 1);
+        assert_eq!(
+            a,
+            b,
+            "models/startup-guesses.toml line {}: {REGENERATE}",
+            i + 1
+        );
     }
-    assert_eq!(fresh.lines().count(), committed.lines().count(), "{REGENERATE}");
+    assert_eq!(
+        fresh.lines().count(),
+        committed.lines().count(),
+        "{REGENERATE}"
+    );
 }
 
 /// The α slopes of models/generalize.toml (Ko & Badler 1992, eqs. 5, 6, 21, 24) are the

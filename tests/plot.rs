@@ -152,7 +152,8 @@ fn klaw_walk_draws_without_text_when_no_font_is_found() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     let missing = d.join("no-such-font.ttf");
-    let out = klaw_font(d,
+    let out = klaw_font(
+        d,
         &["walk", "--steps", "2"],
         Some(missing.to_str().unwrap()),
     );

@@ -39,7 +39,11 @@ fn readme_commands() -> Vec<(String, i32)> {
 #[test]
 fn the_readmes_commands_run_as_written() {
     let commands = readme_commands();
-    assert!(commands.len() >= 10, "{} klaw lines in README.md", commands.len());
+    assert!(
+        commands.len() >= 10,
+        "{} klaw lines in README.md",
+        commands.len()
+    );
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let dir = tempfile::tempdir().unwrap();
     for shipped in ["examples", "models"] {

@@ -7,7 +7,10 @@ use std::process::{Command, Output};
 mod common;
 
 fn sweep_ok(dir: &Path, args: &[&str], threads: Option<&str>) -> Output {
-    let env: Vec<(&str, &str)> = threads.map(|t| ("RAYON_NUM_THREADS", t)).into_iter().collect();
+    let env: Vec<(&str, &str)> = threads
+        .map(|t| ("RAYON_NUM_THREADS", t))
+        .into_iter()
+        .collect();
     let out = common::klaw_with(dir, args, &env);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "klaw {args:?} failed:\n{stderr}");
