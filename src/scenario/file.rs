@@ -1,5 +1,6 @@
-//! Scenario files (`klaw scenario FILE.toml`, docs/scenarios.md): an optional `[body]`
-//! (height m, mass kg, style), optional `[attributes]` (the names, units and ranges of
+//! Scenario files (`klaw scenario FILE.toml`, docs/nrs.md): an optional `[body]` (height m,
+//! mass kg, style, table: a bundled name or a table file relative to the scenario file's folder,
+//! docs/bodies.md), optional `[attributes]` (the names, units and ranges of
 //! `klaw walk --attributes`), and `[[action]]` tables of type stand, walk, step, turn, pause.
 //! Angles are degrees in the file and radians in the [`Scenario`]. The body, attributes and
 //! gaits are built by the same code as `klaw walk`'s ([`Body::standard`],
@@ -15,7 +16,7 @@ use super::{Action, Goal, Scenario};
 use crate::error::Result;
 use crate::model::InputError;
 use crate::model::attributes::{Attributes, overrides_of_table};
-use crate::model::body::{Body, DEFAULT_BODY_TABLE};
+use crate::model::body::{Body, BodyTable, DEFAULT_BODY_TABLE};
 use crate::nrs::parameters::NrsParameters;
 use crate::nrs::specs::{FootAngles, Side, TurnKind};
 use crate::plan::GaitRequest;
@@ -84,12 +85,15 @@ pub fn parse_scenario(text: &str, path: &Path) -> Result<Scenario, ScenarioFileE
         .finish("height, mass, style, table")
         .map_err(at)?;
     let table = table.as_deref().unwrap_or(DEFAULT_BODY_TABLE);
-    let body = Body::from_table(table, height, mass).map_err(|e| {
+    let body = BodyTable::load(table, path.parent()).and_then(|t| Body::new(&t, height, mass));
+    let body = body.map_err(|e| {
         let field = match &e {
             InputError::OutOfRange { name, .. } | InputError::NotFinite { name, .. } => {
                 name.clone()
             }
-            InputError::BadValue { .. } => "table".into(),
+            InputError::BadValue { .. }
+            | InputError::Malformed { .. }
+            | InputError::Unreadable { .. } => "table".into(),
             _ => "height".into(),
         };
         err(Place::Table("body"), &field, e.into())

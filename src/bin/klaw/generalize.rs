@@ -32,8 +32,9 @@ pub(crate) struct GeneralizeArgs {
     #[arg(long, value_name = "KG", default_value_t = DEFAULT_MASS, allow_negative_numbers = true)]
     mass: f64,
 
-    /// The body's anthropometric table: winter, deleva-male or deleva-female (docs/bodies.md)
-    #[arg(long, value_name = "NAME", default_value = DEFAULT_BODY_TABLE)]
+    /// The body's anthropometric table: winter, deleva-male, deleva-female or a table file of
+    /// your own (FILE.toml; docs/bodies.md)
+    #[arg(long, value_name = "NAME|FILE.toml", default_value = DEFAULT_BODY_TABLE)]
     body_table: String,
 
     /// Style preset: normal, brisk, elderly, march or long-stride (its pelvic rotation and step width place the hip)

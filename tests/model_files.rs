@@ -1,0 +1,287 @@
+//! Model files of your own (docs/cli.md, "Model files"): a body table (`--body-table FILE.toml`,
+//! a sweep's axis, a scenario's `[body] table`), the inverse kinematics' model (`--ik-model`),
+//! the NRS constants (`--nrs-model`) and the generalization's constants
+//! (`--generalize-model`). A bad file exits 2 naming the file, the key and the rule, and writes
+//! nothing; a copy of the bundled file walks byte-identically to the bundled one; a changed value
+//! changes the motion.
+use std::path::Path;
+
+mod common;
+
+use common::{klaw, refused_in};
+
+const WINTER: &str = include_str!("../models/body-winter.toml");
+
+/// The bundled `text` with its first `from` replaced by `to` (which must be there).
+fn edited(text: &str, from: &str, to: &str) -> String {
+    assert!(text.contains(from), "`{from}` not in the bundled file");
+    text.replacen(from, to, 1)
+}
+
+/// `klaw args` in `dir`, which must succeed.
+fn run(dir: &Path, args: &[&str]) {
+    let out = klaw(dir, args);
+    assert!(
+        out.status.success(),
+        "klaw {args:?}:\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// The bytes of `dir/name`.
+fn bytes(dir: &Path, name: &str) -> Vec<u8> {
+    std::fs::read(dir.join(name)).unwrap()
+}
+
+/// The column `name` of the CSV file `dir/file`, as numbers.
+fn column(dir: &Path, file: &str, name: &str) -> Vec<f64> {
+    let text = std::fs::read_to_string(dir.join(file)).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let i = header.iter().position(|h| *h == name).unwrap();
+    lines
+        .map(|l| l.split(',').nth(i).unwrap().parse().unwrap())
+        .collect()
+}
+
+fn max(v: &[f64]) -> f64 {
+    v.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// Each rule of a body table refused, before any work: exit 2, nothing written, the message
+/// naming the file, the key and the rule.
+#[test]
+fn a_body_table_breaking_a_rule_is_refused_naming_file_key_and_rule() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    for (from, to, parts) in [
+        (
+            "length = 0.23669",
+            "length = -0.2",
+            &["thigh.length = -0.2", "must be a fraction in (0, 1]"][..],
+        ),
+        (
+            "gamma = 0.416",
+            "gamma = nan",
+            &["shank.gamma = NaN", "must be a fraction in (0, 1]"],
+        ),
+        (
+            "r = 0.5\n",
+            "r = 0.0\n",
+            &["upper_body.r = 0", "must be a fraction in (0, 1]"],
+        ),
+        (
+            "mass = 0.1\n",
+            "mass = 0.12\n",
+            &[
+                "upper_body.mass + 2 × (thigh.mass + shank.mass) = 0.678 + 2 × (0.12 + 0.061) = 1.04, not 1",
+                "within 0.0001",
+            ],
+        ),
+        (
+            "heel_to_ankle = 0.04853",
+            "heel_to_ankle = 0.06",
+            &[
+                "the hind foot must close: foot.heel_to_ankle = 0.06 must be √(foot.hind_foot² + foot.ankle_height²)",
+            ],
+        ),
+        (
+            "ankle_to_metatarsal = 0.08901",
+            "ankle_to_metatarsal = 0.03",
+            &["foot.ankle_to_metatarsal = 0.03 must exceed foot.ankle_height = 0.03846"],
+        ),
+        (
+            "length = 0.24556",
+            "length = 0.3",
+            &[
+                "foot.ankle_height + thigh.length + shank.length + upper_body.length = 1.04515 exceeds 1",
+            ],
+        ),
+        (
+            "height = [1.2, 2.2]",
+            "height = [2.2, 1.2]",
+            &["limits.height = [2.2, 1.2] must be ordered"],
+        ),
+        (
+            "mass = [25.0, 200.0]",
+            "mass = [-25.0, 200.0]",
+            &["limits.mass = [-25, 200] must be ordered"],
+        ),
+        (
+            "r = 0.553\n",
+            "",
+            &["line 11, column 1: missing field `r` in [leg]"],
+        ),
+        (
+            "gamma = 0.326\n",
+            "gamma = 0.326\nmass = 0.16\n",
+            &["line 14, column 1: unknown field `mass`"],
+        ),
+        (
+            "[foot]",
+            "[feet]",
+            &["line 33, column 2: unknown field `feet`"],
+        ),
+    ] {
+        std::fs::write(d.join("bad.toml"), edited(WINTER, from, to)).unwrap();
+        let mut expect = vec!["malformed body table bad.toml: "];
+        expect.extend(parts);
+        refused_in(
+            d,
+            &["walk", "--body-table", "bad.toml", "--out", "w.csv"],
+            &expect,
+        );
+    }
+    refused_in(
+        d,
+        &["walk", "--body-table", "none.toml"],
+        &["reading body table none.toml: "],
+    );
+    refused_in(
+        d,
+        &["walk", "--body-table", "dempster"],
+        &[
+            "--body-table: unknown body table `dempster`",
+            "a file of your own",
+        ],
+    );
+}
+
+/// Every command that takes a body table takes a file, and refuses a bad one before any work.
+#[test]
+fn every_command_with_a_body_table_reads_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::write(
+        d.join("bad.toml"),
+        edited(WINTER, "hind_foot = 0.02959", "hind_foot = 0.04"),
+    )
+    .unwrap();
+    let want = ["malformed body table bad.toml: ", "foot.heel_to_ankle"];
+    for args in [
+        &["walk", "--mode", "kinematic"][..],
+        &["plot"],
+        &["animate"],
+        &["step", "--forward", "0.4"],
+        &["turn"],
+        &["prototype", "--from-walk", "--out", "p.json"],
+        &["generalize", "--step-length", "0.7", "--out", "g.json"],
+        &["poulaine", "extract"],
+    ] {
+        let mut args = args.to_vec();
+        args.extend(["--body-table", "bad.toml"]);
+        refused_in(d, &args, &want);
+    }
+    refused_in(
+        d,
+        &["sweep", "--body-table", "winter,bad.toml", "--out", "s.csv"],
+        &want,
+    );
+    std::fs::write(
+        d.join("s.toml"),
+        "[body]\ntable = \"bad.toml\"\n[[action]]\ntype = \"stand\"\nseconds = 0.1\n",
+    )
+    .unwrap();
+    refused_in(
+        d,
+        &["scenario", "s.toml", "--out", "s.csv"],
+        &["[body]", "`table`", "malformed body table bad.toml: "],
+    );
+}
+
+/// A copy of `models/body-winter.toml` given as a file walks byte-identically to `--body-table
+/// winter`, in a walk, a sweep (its row names the file) and a scenario (the path relative to
+/// the scenario's folder).
+#[test]
+fn a_copy_of_the_bundled_table_walks_like_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::create_dir(d.join("sub")).unwrap();
+    std::fs::write(d.join("sub/mine.toml"), WINTER).unwrap();
+    let walk = |table: &str, out: &str| {
+        run(
+            d,
+            &[
+                "walk",
+                "--steps",
+                "3",
+                "--body-table",
+                table,
+                "--no-plot",
+                "--out",
+                out,
+            ],
+        );
+        bytes(d, out)
+    };
+    assert_eq!(walk("sub/mine.toml", "a.csv"), walk("winter", "b.csv"));
+
+    run(
+        d,
+        &[
+            "sweep",
+            "--body-table",
+            "winter,sub/mine.toml",
+            "--velocity",
+            "1.3",
+            "--steps",
+            "2",
+            "--out",
+            "s.csv",
+        ],
+    );
+    let text = std::fs::read_to_string(d.join("s.csv")).unwrap();
+    let rows: Vec<&str> = text.lines().collect();
+    assert_eq!(rows.len(), 3, "{text}");
+    let body_table = |row: &str| row.split(',').nth(7).unwrap().to_string();
+    assert_eq!(body_table(rows[1]), "winter");
+    assert_eq!(body_table(rows[2]), "sub/mine.toml");
+    // the same walk but for the point's number and the table's name
+    let rest = |row: &str| row.split(',').skip(8).collect::<Vec<_>>().join(",");
+    assert_eq!(rest(rows[1]), rest(rows[2]));
+
+    let scenario = |table: &str| {
+        format!(
+            "[body]\ntable = \"{table}\"\n[[action]]\ntype = \"step\"\nside = \"right\"\nforward = 0.4\n"
+        )
+    };
+    std::fs::write(d.join("sub/file.toml"), scenario("mine.toml")).unwrap();
+    std::fs::write(d.join("sub/name.toml"), scenario("winter")).unwrap();
+    run(d, &["scenario", "sub/file.toml", "--out", "f.csv"]);
+    run(d, &["scenario", "sub/name.toml", "--out", "n.csv"]);
+    assert_eq!(bytes(d, "f.csv"), bytes(d, "n.csv"));
+}
+
+/// A table of your own with a longer thigh (0.245 H against Winter's 0.23669 H) walks
+/// otherwise: the hip flexes further at the same speed.
+#[test]
+fn a_longer_thigh_changes_the_walk() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::write(
+        d.join("long.toml"),
+        edited(WINTER, "length = 0.23669", "length = 0.245"),
+    )
+    .unwrap();
+    let peak = |table: &str, out: &str| {
+        run(
+            d,
+            &[
+                "walk",
+                "--steps",
+                "3",
+                "--body-table",
+                table,
+                "--no-plot",
+                "--out",
+                out,
+            ],
+        );
+        max(&column(d, out, "hip_flexion_r_deg"))
+    };
+    let (winter, long) = (peak("winter", "w.csv"), peak("long.toml", "l.csv"));
+    assert!(
+        (long - winter).abs() > 0.1,
+        "hip flexion peak {winter}° and {long}°"
+    );
+}
