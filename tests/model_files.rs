@@ -285,3 +285,103 @@ fn a_longer_thigh_changes_the_walk() {
         "hip flexion peak {winter}° and {long}°"
     );
 }
+
+const IK: &str = include_str!("../models/ik.toml");
+
+fn mean(v: &[f64]) -> f64 {
+    v.iter().sum::<f64>() / v.len() as f64
+}
+
+/// `klaw ik --ik-model`: a bad model file refused before any work, naming the file, the key and
+/// the rule; a copy of models/ik.toml solves byte-identically to none; a rest posture with the
+/// knees flexed 20° instead of 5° bends the knees further over the cycle.
+#[test]
+fn an_ik_model_file_is_checked_and_moves_the_figure() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    run(
+        d,
+        &["poulaine", "extract", "--steps", "4", "--out", "p.csv"],
+    );
+    for (from, to, parts) in [
+        (
+            "knee_flexion = 5.0",
+            "knee_flexion = -5.0",
+            &[
+                "rest.knee_flexion = -5° lies outside its limits models/rom.toml's knee_flexion = [0°, 135°]",
+            ][..],
+        ),
+        (
+            "list = [-35.0, 35.0]",
+            "list = [35.0, -35.0]",
+            &["pelvis_limits.list = [35°, -35°]: the lower limit must be below the upper"],
+        ),
+        (
+            "xi = 20.0",
+            "xi = -1.0",
+            &["weights.xi = -1 must be finite and ≥ 0"],
+        ),
+        (
+            "pelvis_mass = 0.1117",
+            "pelvis_mass = 1.5",
+            &["inertia.pelvis_mass = 1.5 must lie in (0, 1)"],
+        ),
+        ("rest = 10.0\n", "", &["missing field `rest` in [weights]"]),
+        (
+            "xi = 20.0",
+            "xi = 20.0\nzeta = 1.0",
+            &["line 55, column 1: unknown field `zeta`"],
+        ),
+        (
+            "[rest]",
+            "[leg_limits]\nhip_flexion = [-20.0, 100.0]\n\n[rest]",
+            &["missing field `hip_adduction` in [leg_limits]"],
+        ),
+    ] {
+        std::fs::write(d.join("bad.toml"), edited(IK, from, to)).unwrap();
+        let mut expect = vec!["malformed inverse-kinematics model bad.toml: "];
+        expect.extend(parts);
+        refused_in(
+            d,
+            &[
+                "ik",
+                "--poulaine",
+                "p.csv",
+                "--ik-model",
+                "bad.toml",
+                "--out",
+                "ik.csv",
+            ],
+            &expect,
+        );
+    }
+    refused_in(
+        d,
+        &["ik", "--poulaine", "p.csv", "--ik-model", "none.toml"],
+        &["reading inverse-kinematics model none.toml: "],
+    );
+
+    std::fs::write(d.join("copy.toml"), IK).unwrap();
+    std::fs::write(
+        d.join("knee.toml"),
+        edited(IK, "knee_flexion = 5.0", "knee_flexion = 20.0"),
+    )
+    .unwrap();
+    let ik = |model: Option<&str>, out: &str| {
+        let mut args = vec!["ik", "--poulaine", "p.csv", "--cycles", "1", "--out", out];
+        if let Some(m) = model {
+            args.extend(["--ik-model", m]);
+        }
+        run(d, &args);
+    };
+    ik(None, "bundled.csv");
+    ik(Some("copy.toml"), "copy.csv");
+    ik(Some("knee.toml"), "knee.csv");
+    assert_eq!(bytes(d, "copy.csv"), bytes(d, "bundled.csv"));
+    let knee = |f: &str| mean(&column(d, f, "knee_flexion_r_deg"));
+    let (five, twenty) = (knee("bundled.csv"), knee("knee.csv"));
+    assert!(
+        twenty > five + 0.5,
+        "mean knee flexion {five}° and {twenty}°"
+    );
+}
