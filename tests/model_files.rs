@@ -385,3 +385,154 @@ fn an_ik_model_file_is_checked_and_moves_the_figure() {
         "mean knee flexion {five}° and {twenty}°"
     );
 }
+
+const NRS: &str = include_str!("../models/nrs.toml");
+
+/// The rows of the CSV file `dir/file`, the header not counted.
+fn rows(dir: &Path, file: &str) -> usize {
+    std::fs::read_to_string(dir.join(file))
+        .unwrap()
+        .lines()
+        .count()
+        - 1
+}
+
+/// `--nrs-model` of `klaw step`, `turn` and `scenario`: a bad model file refused before any
+/// work, naming the file, the key and the rule; a scenario's values checked against the file's
+/// ranges.
+#[test]
+fn a_bad_nrs_model_file_is_refused_naming_file_key_and_rule() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::write(
+        d.join("s.toml"),
+        "[[action]]\ntype = \"step\"\nside = \"right\"\nforward = 0.4\nswing_height_factor = 3\n",
+    )
+    .unwrap();
+    for (from, to, parts) in [
+        (
+            "region_angle = 60.0",
+            "region_angle = 200.0",
+            &["region_angle = 200° must lie in (0, 172)°"][..],
+        ),
+        (
+            "swing_height = 0.05",
+            "swing_height = -0.05",
+            &["swing_height = -0.05 m must lie in (0, 0.5] m"],
+        ),
+        (
+            "turn_max = 100.0",
+            "turn_max = 0.0",
+            &["turn_max = 0° must lie in (0, 180]°"],
+        ),
+        (
+            "duration_max = 3.0",
+            "duration_max = 0.2",
+            &["duration_max = 0.2 s must lie in (0.3, 60] s"],
+        ),
+        (
+            "neck_share = 0.6666666666666666\n",
+            "",
+            &["missing field `neck_share`"],
+        ),
+        (
+            "table_intervals = 256",
+            "table_intervals = 256\nnu = 60.0",
+            &["line 75, column 1: unknown field `nu`"],
+        ),
+    ] {
+        std::fs::write(d.join("bad.toml"), edited(NRS, from, to)).unwrap();
+        let mut expect = vec!["malformed NRS model bad.toml: "];
+        expect.extend(parts);
+        for command in [
+            &["step", "--forward", "0.4"][..],
+            &["turn"],
+            &["scenario", "s.toml"],
+        ] {
+            let mut args = command.to_vec();
+            args.extend(["--nrs-model", "bad.toml", "--out", "m.csv"]);
+            refused_in(d, &args, &expect);
+        }
+    }
+    refused_in(
+        d,
+        &["turn", "--nrs-model", "none.toml"],
+        &["reading NRS model none.toml: "],
+    );
+    // the scenario's swhf 3 lies within the bundled range [0, 4], not within the file's [0, 2]
+    std::fs::write(
+        d.join("low.toml"),
+        edited(
+            NRS,
+            "swing_height_factor_max = 4.0",
+            "swing_height_factor_max = 2.0",
+        ),
+    )
+    .unwrap();
+    refused_in(
+        d,
+        &[
+            "scenario",
+            "s.toml",
+            "--nrs-model",
+            "low.toml",
+            "--out",
+            "m.csv",
+        ],
+        &[
+            "action 0 (step, from 0), `swing_height_factor`: swing_height_factor = 3 is out of range: valid range is [0, 2]",
+        ],
+    );
+}
+
+/// A copy of models/nrs.toml steps byte-identically to none; a swing peak of 12 cm instead of
+/// Ko & Badler's 5 cm lifts the stepping knee higher; a largest turn of 60° instead of their
+/// 100° makes a 90° turn two turnarounds, twice as long, in `klaw turn` and in a scenario.
+#[test]
+fn an_nrs_model_file_changes_steps_and_turns() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::write(d.join("copy.toml"), NRS).unwrap();
+    std::fs::write(
+        d.join("high.toml"),
+        edited(NRS, "swing_height = 0.05", "swing_height = 0.12"),
+    )
+    .unwrap();
+    std::fs::write(
+        d.join("t60.toml"),
+        edited(NRS, "turn_max = 100.0", "turn_max = 60.0"),
+    )
+    .unwrap();
+    let with = |command: &[&str], model: Option<&str>, out: &str| {
+        let mut args = command.to_vec();
+        args.extend(["--out", out]);
+        if let Some(m) = model {
+            args.extend(["--nrs-model", m]);
+        }
+        run(d, &args);
+    };
+    let step = ["step", "--side", "right", "--forward", "0.4"];
+    with(&step, None, "bundled.csv");
+    with(&step, Some("copy.toml"), "copy.csv");
+    with(&step, Some("high.toml"), "high.csv");
+    assert_eq!(bytes(d, "copy.csv"), bytes(d, "bundled.csv"));
+    let knee = |f: &str| max(&column(d, f, "knee_flexion_r_deg"));
+    let (low, high) = (knee("bundled.csv"), knee("high.csv"));
+    assert!(
+        high > low + 5.0,
+        "peak right knee flexion {low}° and {high}°"
+    );
+
+    let turn = ["turn", "--angle", "90"];
+    with(&turn, None, "t100.csv");
+    with(&turn, Some("t60.toml"), "t60.csv");
+    assert_eq!((rows(d, "t100.csv"), rows(d, "t60.csv")), (151, 301));
+    std::fs::write(
+        d.join("s.toml"),
+        "[[action]]\ntype = \"turn\"\nangle = 90\nside = \"left\"\nkind = \"dynamic\"\n",
+    )
+    .unwrap();
+    with(&["scenario", "s.toml"], None, "s100.csv");
+    with(&["scenario", "s.toml"], Some("t60.toml"), "s60.csv");
+    assert_eq!((rows(d, "s100.csv"), rows(d, "s60.csv")), (151, 301));
+}

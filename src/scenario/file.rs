@@ -37,18 +37,34 @@ pub const MAX_TURN_DEG: f64 = 1080.0;
 /// The largest |foot angle| of `foot_angles` (deg).
 pub const MAX_FOOT_ANGLE_DEG: f64 = 60.0;
 
-/// Read the scenario file `path` (see the module's documentation).
+/// Read the scenario file `path` (see the module's documentation), with `models/nrs.toml`'s
+/// constants.
 pub fn read_scenario(path: &Path) -> Result<Scenario> {
+    read_scenario_with(path, NrsParameters::default())
+}
+
+/// [`read_scenario`] with the NRS constants `nrs` (a model file's, [`NrsParameters::read`]):
+/// the steps' and turns' values are checked against its ranges, and the scenario runs with it.
+pub fn read_scenario_with(path: &Path, nrs: NrsParameters) -> Result<Scenario> {
     let text = std::fs::read_to_string(path).map_err(|source| crate::Error::Io {
         action: "reading",
         path: path.to_path_buf(),
         source,
     })?;
-    Ok(parse_scenario(&text, path)?)
+    Ok(parse_scenario_with(&text, path, nrs)?)
 }
 
 /// Parse the text of a scenario file; `path` names it in errors.
 pub fn parse_scenario(text: &str, path: &Path) -> Result<Scenario, ScenarioFileError> {
+    parse_scenario_with(text, path, NrsParameters::default())
+}
+
+/// [`parse_scenario`] with the NRS constants `nrs`.
+pub fn parse_scenario_with(
+    text: &str,
+    path: &Path,
+    nrs: NrsParameters,
+) -> Result<Scenario, ScenarioFileError> {
     let err = |place: Place, field: &str, problem: Problem| ScenarioFileError {
         path: path.to_path_buf(),
         place,
@@ -117,7 +133,7 @@ pub fn parse_scenario(text: &str, path: &Path) -> Result<Scenario, ScenarioFileE
     let ctx = Context {
         body: &body,
         attrs: &attrs,
-        nrs: NrsParameters::default(),
+        nrs,
     };
     let mut actions = Vec::with_capacity(list.len());
     for (index, value) in list.into_iter().enumerate() {
@@ -133,6 +149,7 @@ pub fn parse_scenario(text: &str, path: &Path) -> Result<Scenario, ScenarioFileE
     Ok(Scenario {
         body,
         attrs,
+        nrs,
         actions,
     })
 }
