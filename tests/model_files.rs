@@ -536,3 +536,173 @@ fn an_nrs_model_file_changes_steps_and_turns() {
     with(&["scenario", "s.toml"], Some("t60.toml"), "s60.csv");
     assert_eq!((rows(d, "s100.csv"), rows(d, "s60.csv")), (151, 301));
 }
+
+const GENERALIZE: &str = include_str!("../models/generalize.toml");
+
+/// `--generalize-model` of `klaw prototype`, `generalize` and `walk --mode kinematic`: a bad
+/// model file refused before any work, naming the file, the key and the rule; the dynamic mode
+/// refuses the flag.
+#[test]
+fn a_bad_generalization_model_file_is_refused_naming_file_key_and_rule() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    for (from, to, parts) in [
+        (
+            "alpha2 = 22.31",
+            "alpha2 = 200",
+            &["alpha2 = 200 °/leg length is out of range: valid range is [-170, 170] °/leg length"]
+                [..],
+        ),
+        (
+            "contact_height = 0.001",
+            "contact_height = -1",
+            &["contact_height = -1 m is out of range: valid range is [0, 0.1] m"],
+        ),
+        (
+            "check_samples = 100",
+            "check_samples = 1",
+            &["check_samples = 1 is out of range: valid range is [2, 1000000]"],
+        ),
+        ("slide_max = 1e-3\n", "", &["missing field `slide_max`"]),
+        (
+            "alpha1 = 0.00",
+            "alpha1 = 0.00\nalpha5 = 1.0",
+            &["line 18, column 1: unknown field `alpha5`"],
+        ),
+    ] {
+        std::fs::write(d.join("bad.toml"), edited(GENERALIZE, from, to)).unwrap();
+        let mut expect = vec!["malformed generalization model bad.toml: "];
+        expect.extend(parts);
+        for command in [
+            &["prototype", "--from-walk", "--out", "p.json"][..],
+            &["generalize", "--step-length", "0.7", "--out", "g.json"],
+            &["walk", "--mode", "kinematic", "--out", "k.csv"],
+        ] {
+            let mut args = command.to_vec();
+            args.extend(["--generalize-model", "bad.toml"]);
+            refused_in(d, &args, &expect);
+        }
+    }
+    refused_in(
+        d,
+        &[
+            "generalize",
+            "--step-length",
+            "0.7",
+            "--out",
+            "g.json",
+            "--generalize-model",
+            "none.toml",
+        ],
+        &["reading generalization model none.toml: "],
+    );
+    std::fs::write(d.join("good.toml"), GENERALIZE).unwrap();
+    refused_in(
+        d,
+        &["walk", "--generalize-model", "good.toml"],
+        &["--generalize-model: applies to --mode kinematic only"],
+    );
+}
+
+/// A copy of models/generalize.toml makes the bundled prototype byte-identically and walks it
+/// byte-identically; α2 = 60 °/leg length instead of 22.31 makes a prototype whose walk at 1.0
+/// m/s (a shorter step than its own) lands with the toes further up; a largest hip drop of 1 cm
+/// instead of 5 cm refuses a step the bundled constants generalize to (its hip comes down 2.4
+/// cm).
+#[test]
+fn a_generalization_model_file_changes_the_kinematic_walk() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::write(d.join("copy.toml"), GENERALIZE).unwrap();
+    std::fs::write(
+        d.join("alpha.toml"),
+        edited(GENERALIZE, "alpha2 = 22.31", "alpha2 = 60.0"),
+    )
+    .unwrap();
+    std::fs::write(
+        d.join("drop.toml"),
+        edited(GENERALIZE, "hip_drop_max = 0.05", "hip_drop_max = 0.01"),
+    )
+    .unwrap();
+    run(d, &["prototype", "--from-walk", "--out", "p.json"]);
+    run(
+        d,
+        &[
+            "prototype",
+            "--from-walk",
+            "--out",
+            "copy.json",
+            "--generalize-model",
+            "copy.toml",
+        ],
+    );
+    run(
+        d,
+        &[
+            "prototype",
+            "--from-walk",
+            "--out",
+            "alpha.json",
+            "--generalize-model",
+            "alpha.toml",
+        ],
+    );
+    assert_eq!(bytes(d, "copy.json"), bytes(d, "p.json"));
+    let walk = |prototype: &str, model: Option<&str>, out: &str| {
+        let mut args = vec![
+            "walk",
+            "--mode",
+            "kinematic",
+            "--velocity",
+            "1.0",
+            "--steps",
+            "3",
+            "--no-plot",
+            "--prototype",
+            prototype,
+            "--out",
+            out,
+        ];
+        if let Some(m) = model {
+            args.extend(["--generalize-model", m]);
+        }
+        let o = klaw(d, &args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8_lossy(&o.stderr).into_owned()
+    };
+    walk("p.json", None, "bundled.csv");
+    assert_eq!(walk("p.json", Some("copy.toml"), "copy.csv"), "");
+    walk("alpha.json", None, "alpha.csv");
+    assert_eq!(bytes(d, "copy.csv"), bytes(d, "bundled.csv"));
+    let ankle = |f: &str| max(&column(d, f, "ankle_dorsiflexion_r_deg"));
+    let (bundled, alpha) = (ankle("bundled.csv"), ankle("alpha.csv"));
+    assert!(
+        alpha > bundled + 1.0,
+        "peak ankle dorsiflexion {bundled}° and {alpha}°"
+    );
+    // the α of a file given to the walk are not the prototype's: said, not used
+    let said = walk("p.json", Some("alpha.toml"), "warned.csv");
+    assert!(said.starts_with("warning: alpha.toml's α slopes"), "{said}");
+    assert_eq!(bytes(d, "warned.csv"), bytes(d, "bundled.csv"));
+
+    run(
+        d,
+        &["generalize", "--step-length", "0.6", "--out", "g.json"],
+    );
+    refused_in(
+        d,
+        &[
+            "generalize",
+            "--step-length",
+            "0.6",
+            "--out",
+            "h.json",
+            "--generalize-model",
+            "drop.toml",
+        ],
+        &[
+            "step length 0.6 m is too short for this body",
+            "(at most 0.01 m allowed)",
+        ],
+    );
+}
