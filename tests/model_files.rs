@@ -253,7 +253,8 @@ fn a_copy_of_the_bundled_table_walks_like_it() {
 }
 
 /// A table of your own with a longer thigh (0.245 H against Winter's 0.23669 H) walks
-/// otherwise: the hip flexes further at the same speed.
+/// otherwise: the hip flexes further at the same speed; a sweep's row and a scenario's step
+/// differ from Winter's too.
 #[test]
 fn a_longer_thigh_changes_the_walk() {
     let dir = tempfile::tempdir().unwrap();
@@ -284,6 +285,36 @@ fn a_longer_thigh_changes_the_walk() {
         (long - winter).abs() > 0.1,
         "hip flexion peak {winter}° and {long}°"
     );
+
+    run(
+        d,
+        &[
+            "sweep",
+            "--body-table",
+            "winter,long.toml",
+            "--velocity",
+            "1.3",
+            "--steps",
+            "2",
+            "--out",
+            "s.csv",
+        ],
+    );
+    let text = std::fs::read_to_string(d.join("s.csv")).unwrap();
+    let rows: Vec<&str> = text.lines().collect();
+    let outputs = |row: &str| row.split(',').skip(8).collect::<Vec<_>>().join(",");
+    assert_ne!(outputs(rows[1]), outputs(rows[2]), "{text}");
+
+    let scenario = |table: &str| {
+        format!(
+            "[body]\ntable = \"{table}\"\n[[action]]\ntype = \"step\"\nside = \"right\"\nforward = 0.4\n"
+        )
+    };
+    std::fs::write(d.join("long-step.toml"), scenario("long.toml")).unwrap();
+    std::fs::write(d.join("winter-step.toml"), scenario("winter")).unwrap();
+    run(d, &["scenario", "long-step.toml", "--out", "ls.csv"]);
+    run(d, &["scenario", "winter-step.toml", "--out", "ws.csv"]);
+    assert_ne!(bytes(d, "ls.csv"), bytes(d, "ws.csv"));
 }
 
 const IK: &str = include_str!("../models/ik.toml");
