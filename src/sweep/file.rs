@@ -72,6 +72,9 @@ pub enum SweepFileError {
     },
 }
 
+/// A parser of a list of names (styles, body tables) into the axis's values.
+type NamesParser<'a> = dyn Fn(&str) -> Result<Vec<f64>, InputError> + 'a;
+
 /// Read a sweep file: a flat TOML table whose keys are the quantities of `klaw sweep`
 /// (`velocity`, `step_length` or `step-length`, …, `steps`) or locomotion attribute names, and
 /// whose values are a number, a string spec (`"0.6:2.0:0.1"`, `"1.5,1.7"`) or an array of numbers;
@@ -121,7 +124,7 @@ pub(crate) fn parse_sweep_toml(
             _ => None,
         };
         let body_tables = |spec: &str| parse_body_tables(spec, base);
-        let names: Option<&dyn Fn(&str) -> Result<Vec<f64>, InputError>> = match axis {
+        let names: Option<&NamesParser> = match axis {
             Axis::Style => Some(&parse_styles),
             Axis::BodyTable => Some(&body_tables),
             _ => None,
