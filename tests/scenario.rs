@@ -15,6 +15,7 @@ fn scenario(actions: Vec<Action>) -> Scenario {
     Scenario {
         body: Body::standard(1.8, 80.0).unwrap(),
         attrs: AttributeTable::builtin().defaults(),
+        nrs: klaw::nrs::NrsParameters::default(),
         actions,
     }
 }

@@ -60,10 +60,52 @@ impl GeneralizeParameters {
         [self.alpha1, self.alpha2, self.alpha3, self.alpha4]
     }
 
-    /// Parse the table's TOML text (angles in degrees); `path` names the source in errors.
+    /// Read and check the model file `path` (the layout of `models/generalize.toml`;
+    /// [`Self::parse`]'s rules).
+    pub fn read(path: &Path) -> Result<Self, InputError> {
+        Self::parse(
+            &crate::model::file::read_text("generalization model", path)?,
+            path,
+        )
+    }
+
+    /// Parse a table in `models/generalize.toml`'s layout (angles in degrees), every key of it
+    /// and no other, converting its angles to rad; `path` names the source in errors. Each
+    /// value must lie in its range, in the file's units: alpha1…alpha4 [−170, 170] °/leg length,
+    /// contact_height [0, 0.1] m, lift_speed [0, 10] m/s, flat_angle [0, 17]°,
+    /// length_tolerance [0, 0.5], min_frames_per_step [3, 1e6], samples_per_step [2, 1e5],
+    /// sample_angle [1e-7, 5.7]°, sample_length [1e-9, 0.01] m, floor_tolerance [0, 0.01] m,
+    /// hip_drop_max [0, 0.5] m, check_samples [2, 1e6], slide_max [0, 0.05] m.
     pub fn parse(text: &str, path: &Path) -> Result<Self, InputError> {
-        let mut p: GeneralizeParameters = toml::from_str(text)
-            .map_err(|e| InputError::malformed("generalization table", path, Box::new(e)))?;
+        let bad = |reason: String| InputError::malformed("generalization model", path, reason);
+        let mut p: GeneralizeParameters = crate::model::file::parse_toml(text).map_err(bad)?;
+        let slope = "°/leg length";
+        for (name, v, lo, hi, unit) in [
+            ("alpha1", p.alpha1, -170.0, 170.0, slope),
+            ("alpha2", p.alpha2, -170.0, 170.0, slope),
+            ("alpha3", p.alpha3, -170.0, 170.0, slope),
+            ("alpha4", p.alpha4, -170.0, 170.0, slope),
+            ("contact_height", p.contact_height, 0.0, 0.1, "m"),
+            ("lift_speed", p.lift_speed, 0.0, 10.0, "m/s"),
+            ("flat_angle", p.flat_angle, 0.0, 17.0, "°"),
+            ("length_tolerance", p.length_tolerance, 0.0, 0.5, ""),
+            (
+                "min_frames_per_step",
+                p.min_frames_per_step as f64,
+                3.0,
+                1e6,
+                "",
+            ),
+            ("samples_per_step", p.samples_per_step as f64, 2.0, 1e5, ""),
+            ("sample_angle", p.sample_angle, 1e-7, 5.7, "°"),
+            ("sample_length", p.sample_length, 1e-9, 0.01, "m"),
+            ("floor_tolerance", p.floor_tolerance, 0.0, 0.01, "m"),
+            ("hip_drop_max", p.hip_drop_max, 0.0, 0.5, "m"),
+            ("check_samples", p.check_samples as f64, 2.0, 1e6, ""),
+            ("slide_max", p.slide_max, 0.0, 0.05, "m"),
+        ] {
+            InputError::check_range(name, v, lo, hi, unit).map_err(|e| bad(e.to_string()))?;
+        }
         for a in [
             &mut p.alpha1,
             &mut p.alpha2,
@@ -73,34 +115,6 @@ impl GeneralizeParameters {
             &mut p.sample_angle,
         ] {
             *a = a.to_radians();
-        }
-        let bad = |name: &str, e: InputError| {
-            InputError::malformed("generalization table", path, format!("{name}: {e}"))
-        };
-        for (name, v, lo, hi) in [
-            ("alpha1", p.alpha1, -3.0, 3.0),
-            ("alpha2", p.alpha2, -3.0, 3.0),
-            ("alpha3", p.alpha3, -3.0, 3.0),
-            ("alpha4", p.alpha4, -3.0, 3.0),
-            ("contact_height", p.contact_height, 0.0, 0.1),
-            ("lift_speed", p.lift_speed, 0.0, 10.0),
-            ("flat_angle", p.flat_angle, 0.0, 0.3),
-            ("length_tolerance", p.length_tolerance, 0.0, 0.5),
-            (
-                "min_frames_per_step",
-                p.min_frames_per_step as f64,
-                3.0,
-                1e6,
-            ),
-            ("samples_per_step", p.samples_per_step as f64, 2.0, 1e5),
-            ("sample_angle", p.sample_angle, 1e-9, 0.1),
-            ("sample_length", p.sample_length, 1e-9, 0.01),
-            ("floor_tolerance", p.floor_tolerance, 0.0, 0.01),
-            ("hip_drop_max", p.hip_drop_max, 0.0, 0.5),
-            ("check_samples", p.check_samples as f64, 2.0, 1e6),
-            ("slide_max", p.slide_max, 0.0, 0.05),
-        ] {
-            InputError::check_range(name, v, lo, hi, "").map_err(|e| bad(name, e))?;
         }
         Ok(p)
     }
@@ -120,7 +134,18 @@ mod tests {
         let e = GeneralizeParameters::parse(&bad, Path::new("g.toml"))
             .unwrap_err()
             .to_string();
-        assert!(e.contains("contact_height"), "{e}");
+        assert!(
+            e.contains("g.toml: contact_height = -1 m is out of range: valid range is [0, 0.1] m"),
+            "{e}"
+        );
+        let bad = TABLE.replace("alpha2 = 22.31", "alpha2 = 200");
+        let e = GeneralizeParameters::parse(&bad, Path::new("g.toml"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("alpha2 = 200 °/leg length is out of range"),
+            "{e}"
+        );
         let e = GeneralizeParameters::parse("alpha1 = 0", Path::new("g.toml")).unwrap_err();
         assert!(matches!(e, InputError::Malformed { .. }));
     }

@@ -8,9 +8,9 @@ use serde::Deserialize;
 
 use crate::ik::chain::{Angles, DOF, PELVIS_LIST, PELVIS_ROTATION, PELVIS_TILT, leg_offset};
 use crate::kinematics::pelvis::Side;
-use crate::model::InputError;
 use crate::model::body::Body;
 use crate::model::rom::RangesOfMotion;
+use crate::model::{InputError, Shown};
 
 const TABLE: &str = include_str!("../../models/ik.toml");
 
@@ -64,10 +64,23 @@ struct Inertia {
     pelvis_longitudinal: f64,
 }
 
+/// The hips' and knees' limits when a model file gives its own (degrees, both legs alike).
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LegLimits {
+    hip_flexion: [f64; 2],
+    hip_adduction: [f64; 2],
+    hip_rotation: [f64; 2],
+    knee_flexion: [f64; 2],
+}
+
 #[derive(Clone, Copy, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct Table {
     pelvis_limits: PelvisLimits,
+    /// Optional: `models/rom.toml`'s ranges when absent.
+    #[serde(default)]
+    leg_limits: Option<LegLimits>,
     rest: Rest,
     weights: Weights,
     inertia: Inertia,
@@ -96,53 +109,118 @@ impl IkModel {
             .expect("models/ik.toml parses (tested)")
     }
 
-    /// Parse a table in `models/ik.toml`'s layout (degrees) for `body`; the hips' and knees'
-    /// limits are `models/rom.toml`'s. Every limit must be ordered with the rest posture inside,
-    /// the weights and ξ finite and ≥ 0, the radii positive.
+    /// Read and check the model file `path` (the layout of `models/ik.toml`) for `body`
+    /// ([`IkModel::parse`]'s rules).
+    pub fn read(path: &Path, body: &Body) -> Result<Self, InputError> {
+        let text = crate::model::file::read_text("inverse-kinematics model", path)?;
+        Self::parse(&text, path, body)
+    }
+
+    /// Parse a table in `models/ik.toml`'s layout (degrees) for `body`: every key of it and no
+    /// other, and optionally `[leg_limits]` (`hip_flexion`, `hip_adduction`, `hip_rotation`,
+    /// `knee_flexion`, each `[lo, hi]`, both legs alike), without which the hips' and knees'
+    /// limits are `models/rom.toml`'s. Every limit must be finite and ordered with the rest
+    /// posture inside, the weights and ξ finite and ≥ 0, the radii and fractions in (0, 1).
     pub fn parse(text: &str, path: &Path, body: &Body) -> Result<Self, InputError> {
-        let bad = |reason: String| InputError::malformed("inverse-kinematics table", path, reason);
-        let t: Table = toml::from_str(text)
-            .map_err(|e| InputError::malformed("inverse-kinematics table", path, Box::new(e)))?;
+        let bad = |reason: String| InputError::malformed("inverse-kinematics model", path, reason);
+        let t: Table = crate::model::file::parse_toml(text).map_err(bad)?;
         let rom = RangesOfMotion::default();
-        let (mut lower, mut upper, mut rest) = (Angles::zeros(), Angles::zeros(), Angles::zeros());
+        let deg = |r: [f64; 2]| [r[0].to_radians(), r[1].to_radians()];
+        let leg: [(&str, [f64; 2], f64); 4] = match t.leg_limits {
+            Some(l) => [
+                (
+                    "leg_limits.hip_flexion",
+                    deg(l.hip_flexion),
+                    t.rest.hip_flexion,
+                ),
+                (
+                    "leg_limits.hip_adduction",
+                    deg(l.hip_adduction),
+                    t.rest.hip_adduction,
+                ),
+                (
+                    "leg_limits.hip_rotation",
+                    deg(l.hip_rotation),
+                    t.rest.hip_rotation,
+                ),
+                (
+                    "leg_limits.knee_flexion",
+                    deg(l.knee_flexion),
+                    t.rest.knee_flexion,
+                ),
+            ],
+            None => [
+                (
+                    "models/rom.toml's hip_flexion",
+                    rom.hip_flexion,
+                    t.rest.hip_flexion,
+                ),
+                (
+                    "models/rom.toml's hip_adduction",
+                    rom.hip_adduction,
+                    t.rest.hip_adduction,
+                ),
+                (
+                    "models/rom.toml's hip_rotation",
+                    rom.hip_rotation,
+                    t.rest.hip_rotation,
+                ),
+                (
+                    "models/rom.toml's knee_flexion",
+                    rom.knee_flexion,
+                    t.rest.knee_flexion,
+                ),
+            ]
+            .map(|(k, r, v)| (k, [r.lo, r.hi], v)),
+        };
         let p = t.pelvis_limits;
-        for (i, [lo, hi], r) in [
-            (PELVIS_TILT, p.tilt, t.rest.pelvis_tilt),
-            (PELVIS_LIST, p.list, t.rest.pelvis_list),
-            (PELVIS_ROTATION, p.rotation, t.rest.pelvis_rotation),
-        ] {
-            lower[i] = lo.to_radians();
-            upper[i] = hi.to_radians();
-            rest[i] = r.to_radians();
+        let r = &t.rest;
+        let pelvis = [
+            ("pelvis_limits.tilt", deg(p.tilt), r.pelvis_tilt),
+            ("pelvis_limits.list", deg(p.list), r.pelvis_list),
+            ("pelvis_limits.rotation", deg(p.rotation), r.pelvis_rotation),
+        ];
+        let rest_key = |limits: &str| {
+            let joint = limits.rsplit(['.', ' ']).next().unwrap_or(limits);
+            match limits.starts_with("pelvis") {
+                true => format!("rest.pelvis_{joint}"),
+                false => format!("rest.{joint}"),
+            }
+        };
+        for (key, [lo, hi], rest) in pelvis.iter().chain(&leg) {
+            if !(lo.is_finite() && hi.is_finite() && lo < hi) {
+                return Err(bad(format!(
+                    "{key} = [{}°, {}°]: the lower limit must be below the upper, both finite",
+                    Shown(lo.to_degrees()),
+                    Shown(hi.to_degrees())
+                )));
+            }
+            let v = rest.to_radians();
+            if !(*lo..=*hi).contains(&v) {
+                return Err(bad(format!(
+                    "{} = {}° lies outside its limits {key} = [{}°, {}°]",
+                    rest_key(key),
+                    Shown(*rest),
+                    Shown(lo.to_degrees()),
+                    Shown(hi.to_degrees())
+                )));
+            }
+        }
+        let (mut lower, mut upper, mut rest) = (Angles::zeros(), Angles::zeros(), Angles::zeros());
+        for (i, (_, [lo, hi], r)) in [PELVIS_TILT, PELVIS_LIST, PELVIS_ROTATION]
+            .iter()
+            .zip(pelvis)
+        {
+            lower[*i] = lo;
+            upper[*i] = hi;
+            rest[*i] = r.to_radians();
         }
         for side in [Side::Right, Side::Left] {
             let o = leg_offset(side);
-            let r = &t.rest;
-            for (k, range, value) in [
-                (0, rom.hip_flexion, r.hip_flexion),
-                (1, rom.hip_adduction, r.hip_adduction),
-                (2, rom.hip_rotation, r.hip_rotation),
-                (3, rom.knee_flexion, r.knee_flexion),
-            ] {
-                lower[o + k] = range.lo;
-                upper[o + k] = range.hi;
-                rest[o + k] = value.to_radians();
-            }
-        }
-        for i in 0..DOF {
-            let name = crate::ik::chain::NAMES[i];
-            if !(lower[i].is_finite() && upper[i].is_finite() && lower[i] < upper[i]) {
-                return Err(bad(format!(
-                    "{name}: the lower limit must be below the upper"
-                )));
-            }
-            if !(lower[i]..=upper[i]).contains(&rest[i]) {
-                return Err(bad(format!(
-                    "{name}: the rest posture {:.2}° lies outside its limits [{:.1}°, {:.1}°]",
-                    rest[i].to_degrees(),
-                    lower[i].to_degrees(),
-                    upper[i].to_degrees()
-                )));
+            for (k, (_, [lo, hi], r)) in leg.iter().enumerate() {
+                lower[o + k] = *lo;
+                upper[o + k] = *hi;
+                rest[o + k] = r.to_radians();
             }
         }
         let w = t.weights;
@@ -154,7 +232,7 @@ impl IkModel {
             ("weights.xi", w.xi),
         ] {
             if !(v.is_finite() && v >= 0.0) {
-                return Err(bad(format!("{name} = {v} must be finite and ≥ 0")));
+                return Err(bad(format!("{name} = {} must be finite and ≥ 0", Shown(v))));
             }
         }
         let i = t.inertia;
@@ -168,7 +246,7 @@ impl IkModel {
             ("inertia.pelvis_longitudinal", i.pelvis_longitudinal),
         ] {
             if !(v.is_finite() && v > 0.0 && v < 1.0) {
-                return Err(bad(format!("{name} = {v} must lie in (0, 1)")));
+                return Err(bad(format!("{name} = {} must lie in (0, 1)", Shown(v))));
             }
         }
         let diag = |x: f64, y: f64, z: f64| DMat3::from_diagonal(glam::DVec3::new(x, y, z));
@@ -246,7 +324,12 @@ mod tests {
             &b,
         )
         .unwrap_err();
-        assert!(e.to_string().contains("knee_flexion_r"), "{e}");
+        assert!(
+            e.to_string().contains(
+                "rest.knee_flexion = -5° lies outside its limits models/rom.toml's knee_flexion = [0°, 135°]"
+            ),
+            "{e}"
+        );
         let e = IkModel::parse(&TABLE.replace("xi = 20.0", "xi = -1.0"), p, &b).unwrap_err();
         assert!(e.to_string().contains("weights.xi"), "{e}");
         let e = IkModel::parse(
@@ -255,7 +338,45 @@ mod tests {
             &b,
         )
         .unwrap_err();
-        assert!(e.to_string().contains("pelvis_tilt"), "{e}");
-        assert!(IkModel::parse(&format!("{TABLE}\n[extra]\n"), p, &b).is_err());
+        assert!(
+            e.to_string().contains("pelvis_limits.tilt = [25°, -80°]"),
+            "{e}"
+        );
+        let e = IkModel::parse(&format!("{TABLE}\n[extra]\n"), p, &b).unwrap_err();
+        assert!(e.to_string().contains("unknown field `extra`"), "{e}");
+    }
+
+    /// `[leg_limits]` replaces models/rom.toml's ranges, for both legs; the rest posture must
+    /// lie inside them.
+    #[test]
+    fn a_file_gives_its_own_leg_limits() {
+        let b = body();
+        let p = Path::new("x.toml");
+        let limits = "\n[leg_limits]\nhip_flexion = [-20.0, 100.0]\nhip_adduction = [-30.0, 20.0]\n\
+                      hip_rotation = [-40.0, 40.0]\nknee_flexion = [0.0, 120.0]\n";
+        let m = IkModel::parse(&format!("{TABLE}{limits}"), p, &b).unwrap();
+        for side in [Side::Right, Side::Left] {
+            let o = leg_offset(side);
+            assert!((m.upper[o] - 100f64.to_radians()).abs() < 1e-15);
+            assert!((m.lower[o + 1] + 30f64.to_radians()).abs() < 1e-15);
+            assert!((m.upper[o + 3] - 120f64.to_radians()).abs() < 1e-15);
+        }
+        let tight = limits.replace(
+            "knee_flexion = [0.0, 120.0]",
+            "knee_flexion = [10.0, 120.0]",
+        );
+        let e = IkModel::parse(&format!("{TABLE}{tight}"), p, &b).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("rest.knee_flexion = 5° lies outside its limits leg_limits.knee_flexion = [10°, 120°]"),
+            "{e}"
+        );
+        let partial = "\n[leg_limits]\nhip_flexion = [-20.0, 100.0]\n";
+        let e = IkModel::parse(&format!("{TABLE}{partial}"), p, &b).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("missing field `hip_adduction` in [leg_limits]"),
+            "{e}"
+        );
     }
 }

@@ -3,7 +3,7 @@
 use serde::Deserialize;
 use std::path::Path;
 
-use crate::model::error::{InputError, Reason};
+use crate::model::error::{InputError, Shown};
 
 /// The table bundled with klaw: Winter's (Dempster's) data as printed in Table B-1.
 pub(crate) const BUILTIN_TABLE: &str = include_str!("../../models/body-winter.toml");
@@ -28,32 +28,44 @@ pub const BODY_TABLES: &[(&str, &str)] = &[
 ];
 
 /// A segment row of the body table (fractions of H and M).
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Copy, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct SegmentRow {
     /// Length as a fraction of body height.
-    #[serde(default)]
     pub(crate) length: f64,
     /// Mass as a fraction of body mass.
-    #[serde(default)]
     pub(crate) mass: f64,
-    /// Centre of mass from the proximal end (whole leg: distal end), fraction of the length.
-    #[serde(default)]
+    /// Centre of mass from the proximal end, fraction of the length.
     pub(crate) r: f64,
     /// Radius of gyration about the centre of mass, fraction of the length.
-    #[serde(default)]
+    pub(crate) gamma: f64,
+}
+
+/// Segment 0, the pelvis: its width only.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct PelvisRow {
+    /// Hip joint to hip joint, fraction of body height.
+    pub(crate) length: f64,
+}
+
+/// Segment 1, the whole leg: its length and mass are the thigh's and the shank's sums.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct LegRow {
+    /// Centre of mass from the distal end (the ankle), fraction of the length.
+    pub(crate) r: f64,
+    /// Radius of gyration about the centre of mass, fraction of the length.
     pub(crate) gamma: f64,
 }
 
 /// Foot distances of Table B-1 (fractions of H).
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Copy, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct FootRow {
     /// l5, mid foot: in the table for completeness, the model's foot does not use it.
-    #[expect(dead_code, reason = "a row of Table B-1 the model does not read")]
     pub(crate) mid_foot: f64,
     /// l6, toe: in the table for completeness, the model's foot does not use it.
-    #[expect(dead_code, reason = "a row of Table B-1 the model does not read")]
     pub(crate) toe: f64,
     /// l8, hind foot: heel to ankle, horizontal.
     pub(crate) hind_foot: f64,
@@ -89,25 +101,36 @@ pub struct FigureRow {
 }
 
 /// Bodies a table is valid for.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Copy, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct Limits {
     pub(crate) height: [f64; 2],
     pub(crate) mass: [f64; 2],
 }
 
-/// A body table as stored in `models/*.toml`.
+/// How far the segment mass fractions, upper_body + 2 × (thigh + shank), may add up from 1: the
+/// rounding of a published table (de Leva's 14 segments sum to 1 within 1e-4; the bundled
+/// tables' to 1e-15).
+pub const MASS_SUM_TOLERANCE: f64 = 1e-4;
+
+/// How far heel_to_ankle may lie from √(hind_foot² + ankle_height²), and the segments stacked
+/// standing above 1 (fractions of H): Table B-1's l11 misses the right triangle by 4e-6, its
+/// rounding to 5 decimals.
+pub const FOOT_TOLERANCE: f64 = 1e-4;
+
+/// An anthropometric table: segment lengths, masses, centres of mass and radii of gyration as
+/// fractions of body height H, body mass M and segment length, in the layout of
+/// `models/body-*.toml` (docs/bodies.md, "Your own table"). [`Body::new`] scales it to a body.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(crate) struct BodyTable {
-    /// The table's name in [`BODY_TABLES`] (`winter` for a table parsed from elsewhere).
+pub struct BodyTable {
+    /// The table's name: a name of [`BODY_TABLES`], or the file's path as given.
     #[serde(skip, default = "default_table_name")]
     pub(crate) key: &'static str,
     /// What the table is and where it comes from.
-    #[expect(dead_code, reason = "the table file's title, for its readers")]
     pub(crate) name: String,
-    pub(crate) pelvis: SegmentRow,
-    pub(crate) leg: SegmentRow,
+    pub(crate) pelvis: PelvisRow,
+    pub(crate) leg: LegRow,
     pub(crate) upper_body: SegmentRow,
     pub(crate) thigh: SegmentRow,
     pub(crate) shank: SegmentRow,
@@ -120,68 +143,198 @@ fn default_table_name() -> &'static str {
     DEFAULT_BODY_TABLE
 }
 
+/// `name` as a `&'static str`: a bundled table's own, or a copy leaked once per distinct name
+/// (a table file's path), so that [`Body`] stays `Copy` with its table's name in it and a
+/// program that loads one file a thousand times holds one copy of its name.
+fn intern(name: &str) -> &'static str {
+    use std::sync::{Mutex, PoisonError};
+    static NAMES: Mutex<Vec<&'static str>> = Mutex::new(Vec::new());
+    if let Some((n, _)) = BODY_TABLES.iter().find(|(n, _)| *n == name) {
+        return n;
+    }
+    let mut names = NAMES.lock().unwrap_or_else(PoisonError::into_inner);
+    if let Some(n) = names.iter().find(|n| **n == name) {
+        return n;
+    }
+    let n: &'static str = Box::leak(name.into());
+    names.push(n);
+    n
+}
+
 impl BodyTable {
     /// The bundled table.
     pub(crate) fn builtin() -> Self {
-        Self::parse(BUILTIN_TABLE, Path::new("models/body-winter.toml"))
+        Self::from_text(BUILTIN_TABLE, Path::new("models/body-winter.toml"))
             .expect("the bundled body table parses (tested)")
     }
 
     /// The bundled table `name` of [`BODY_TABLES`]; an unknown name is an error listing them.
-    pub(crate) fn named(name: &str) -> Result<Self, InputError> {
+    pub fn named(name: &str) -> Result<Self, InputError> {
         let (key, text) = BODY_TABLES
             .iter()
             .find(|(n, _)| *n == name)
             .ok_or_else(|| InputError::bad_value("body-table", unknown_body_table(name)))?;
         let path = format!("models/body-{}.toml", key);
-        let mut table = Self::parse(text, Path::new(&path))?;
+        let mut table = Self::from_text(text, Path::new(&path))?;
         table.key = key;
         Ok(table)
     }
 
-    /// Parse a table from TOML text; `path` only names the source in errors.
-    pub(crate) fn parse(text: &str, path: &Path) -> Result<Self, InputError> {
-        let malformed = |reason: Reason| InputError::malformed("body table", path, reason);
-        let table: BodyTable = toml::from_str(text).map_err(|e| malformed(Box::new(e)))?;
-        let rows = [
-            ("pelvis.length", table.pelvis.length),
-            ("leg.r", table.leg.r),
-            ("leg.gamma", table.leg.gamma),
-            ("upper_body.length", table.upper_body.length),
-            ("upper_body.mass", table.upper_body.mass),
-            ("upper_body.r", table.upper_body.r),
-            ("upper_body.gamma", table.upper_body.gamma),
-            ("thigh.length", table.thigh.length),
-            ("thigh.mass", table.thigh.mass),
-            ("thigh.r", table.thigh.r),
-            ("thigh.gamma", table.thigh.gamma),
-            ("shank.length", table.shank.length),
-            ("shank.mass", table.shank.mass),
-            ("shank.r", table.shank.r),
-            ("shank.gamma", table.shank.gamma),
-            ("foot.hind_foot", table.foot.hind_foot),
-            ("foot.ankle_height", table.foot.ankle_height),
-            ("foot.heel_to_ankle", table.foot.heel_to_ankle),
-            ("foot.ankle_to_metatarsal", table.foot.ankle_to_metatarsal),
-            ("foot.metatarsal_to_toe", table.foot.metatarsal_to_toe),
-            ("figure.spine", table.figure.spine),
-            ("figure.shoulder_width", table.figure.shoulder_width),
-            ("figure.neck", table.figure.neck),
-            ("figure.head", table.figure.head),
-            ("figure.upper_arm", table.figure.upper_arm),
-            ("figure.forearm", table.figure.forearm),
-            ("figure.hand", table.figure.hand),
-        ];
-        for (name, v) in rows {
-            InputError::check_range(name, v, 1e-6, 1.0, "(fraction)")
-                .map_err(|e| malformed(Box::new(e)))?;
+    /// Read and check the table file `path` (the layout of `models/body-*.toml`); its name is
+    /// the path as given.
+    pub fn read(path: &Path) -> Result<Self, InputError> {
+        Self::parse(&crate::model::file::read_text("body table", path)?, path)
+    }
+
+    /// A bundled table by name, or a table file: `spec` names a file when it ends in `.toml` or
+    /// contains a `/` ([`crate::model::file::names_a_file`]), a relative one relative to `base`
+    /// when given (a scenario's folder), else to the working directory.
+    pub fn load(spec: &str, base: Option<&Path>) -> Result<Self, InputError> {
+        if !crate::model::file::names_a_file(spec) {
+            return Self::named(spec);
         }
-        if table.foot.ankle_to_metatarsal <= table.foot.ankle_height {
-            return Err(malformed(
-                "foot.ankle_to_metatarsal must exceed foot.ankle_height".into(),
+        match base {
+            Some(dir) => Self::read(&dir.join(spec)),
+            None => Self::read(Path::new(spec)),
+        }
+    }
+
+    /// Parse and check a table from TOML text in the layout of `models/body-*.toml`; `path`
+    /// names it in errors and is its name. Every key of the layout must be given and no other;
+    /// the rules are [`BodyTable::check`]'s.
+    pub fn parse(text: &str, path: &Path) -> Result<Self, InputError> {
+        let mut table = Self::from_text(text, path)?;
+        table.key = intern(&path.display().to_string());
+        Ok(table)
+    }
+
+    /// [`BodyTable::parse`] without naming the table.
+    fn from_text(text: &str, path: &Path) -> Result<Self, InputError> {
+        let malformed = |reason: String| InputError::malformed("body table", path, reason);
+        let table: BodyTable = crate::model::file::parse_toml(text).map_err(malformed)?;
+        table.check().map_err(malformed)?;
+        Ok(table)
+    }
+
+    /// The table's name: a name of [`BODY_TABLES`], or the path of the file it was read from.
+    pub fn name(&self) -> &'static str {
+        self.key
+    }
+
+    /// What the table is and where it comes from: its `name = "…"` line.
+    pub fn title(&self) -> &str {
+        &self.name
+    }
+
+    /// The rules a table must keep, the first broken in words naming its keys:
+    ///
+    /// - every length, mass fraction, `r` and `gamma` is a finite number in (0, 1] (a fraction
+    ///   of H, of M or of the segment's length);
+    /// - the segment masses make the body: upper_body.mass + 2 × (thigh.mass + shank.mass) = 1
+    ///   within [`MASS_SUM_TOLERANCE`] (the model's body is the upper body and two legs of a
+    ///   thigh and a shank with its foot);
+    /// - the hind foot closes: heel_to_ankle = √(hind_foot² + ankle_height²) within
+    ///   [`FOOT_TOLERANCE`] (the heel is placed by hind_foot and ankle_height, l11 derived);
+    /// - ankle_to_metatarsal > ankle_height (the metatarsal joint on the ground lies
+    ///   √(l12² − l9²) ahead of the ankle);
+    /// - the segments stacked standing fit in the body: foot.ankle_height + thigh.length +
+    ///   shank.length + upper_body.length ≤ 1 + [`FOOT_TOLERANCE`];
+    /// - the limits are ordered: 0 < low < high, finite, for height and mass.
+    pub fn check(&self) -> Result<(), String> {
+        let (f, fig) = (&self.foot, &self.figure);
+        let fractions = [
+            ("pelvis.length", self.pelvis.length),
+            ("leg.r", self.leg.r),
+            ("leg.gamma", self.leg.gamma),
+            ("upper_body.length", self.upper_body.length),
+            ("upper_body.mass", self.upper_body.mass),
+            ("upper_body.r", self.upper_body.r),
+            ("upper_body.gamma", self.upper_body.gamma),
+            ("thigh.length", self.thigh.length),
+            ("thigh.mass", self.thigh.mass),
+            ("thigh.r", self.thigh.r),
+            ("thigh.gamma", self.thigh.gamma),
+            ("shank.length", self.shank.length),
+            ("shank.mass", self.shank.mass),
+            ("shank.r", self.shank.r),
+            ("shank.gamma", self.shank.gamma),
+            ("foot.mid_foot", f.mid_foot),
+            ("foot.toe", f.toe),
+            ("foot.hind_foot", f.hind_foot),
+            ("foot.ankle_height", f.ankle_height),
+            ("foot.heel_to_ankle", f.heel_to_ankle),
+            ("foot.ankle_to_metatarsal", f.ankle_to_metatarsal),
+            ("foot.metatarsal_to_toe", f.metatarsal_to_toe),
+            ("figure.spine", fig.spine),
+            ("figure.shoulder_width", fig.shoulder_width),
+            ("figure.neck", fig.neck),
+            ("figure.head", fig.head),
+            ("figure.upper_arm", fig.upper_arm),
+            ("figure.forearm", fig.forearm),
+            ("figure.hand", fig.hand),
+        ];
+        for (key, v) in fractions {
+            if !(v.is_finite() && v > 0.0 && v <= 1.0) {
+                return Err(format!(
+                    "{key} = {}: every length, mass, r and gamma must be a fraction in (0, 1] \
+                     (of H, of M or of the segment's length)",
+                    Shown(v)
+                ));
+            }
+        }
+        let (ub, th, sh) = (self.upper_body.mass, self.thigh.mass, self.shank.mass);
+        let sum = ub + 2.0 * (th + sh);
+        if (sum - 1.0).abs() > MASS_SUM_TOLERANCE {
+            return Err(format!(
+                "the segment masses must make the body: upper_body.mass + 2 × (thigh.mass + \
+                 shank.mass) = {} + 2 × ({} + {}) = {}, not 1 (within {})",
+                Shown(ub),
+                Shown(th),
+                Shown(sh),
+                Shown(sum),
+                Shown(MASS_SUM_TOLERANCE)
             ));
         }
-        Ok(table)
+        let closed = f.hind_foot.hypot(f.ankle_height);
+        if (f.heel_to_ankle - closed).abs() > FOOT_TOLERANCE {
+            return Err(format!(
+                "the hind foot must close: foot.heel_to_ankle = {} must be √(foot.hind_foot² + \
+                 foot.ankle_height²) = {} (within {})",
+                Shown(f.heel_to_ankle),
+                Shown(closed),
+                Shown(FOOT_TOLERANCE)
+            ));
+        }
+        if f.ankle_to_metatarsal <= f.ankle_height {
+            return Err(format!(
+                "foot.ankle_to_metatarsal = {} must exceed foot.ankle_height = {} (the \
+                 metatarsal joint on the ground lies ahead of the ankle)",
+                Shown(f.ankle_to_metatarsal),
+                Shown(f.ankle_height)
+            ));
+        }
+        let stack = f.ankle_height + self.thigh.length + self.shank.length + self.upper_body.length;
+        if stack > 1.0 + FOOT_TOLERANCE {
+            return Err(format!(
+                "the segments stacked standing must fit in the body: foot.ankle_height + \
+                 thigh.length + shank.length + upper_body.length = {} exceeds 1 (H, within {})",
+                Shown(stack),
+                Shown(FOOT_TOLERANCE)
+            ));
+        }
+        for (key, [lo, hi], unit) in [
+            ("limits.height", self.limits.height, "m"),
+            ("limits.mass", self.limits.mass, "kg"),
+        ] {
+            if !(lo.is_finite() && hi.is_finite() && lo > 0.0 && lo < hi) {
+                return Err(format!(
+                    "{key} = [{}, {}] must be ordered: 0 < low < high {unit}, finite",
+                    Shown(lo),
+                    Shown(hi)
+                ));
+            }
+        }
+        Ok(())
     }
 }
 
@@ -189,7 +342,8 @@ impl BodyTable {
 pub fn unknown_body_table(name: &str) -> String {
     let known: Vec<&str> = BODY_TABLES.iter().map(|(n, _)| *n).collect();
     format!(
-        "unknown body table `{name}`; the tables are {}",
+        "unknown body table `{name}`; the tables are {}, or a file of your own (a value ending \
+         in .toml or containing a /)",
         known.join(", ")
     )
 }
@@ -199,7 +353,8 @@ pub fn unknown_body_table(name: &str) -> String {
 /// r4 from the knee), `i_i` moments of inertia about the centre of mass, I = m (γ l)².
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Body {
-    /// The body table it is scaled from (a name of [`BODY_TABLES`]).
+    /// The body table it is scaled from: a name of [`BODY_TABLES`], or the path of the table
+    /// file ([`BodyTable::name`]).
     pub table: &'static str,
     /// Body height H (m).
     pub height: f64,
@@ -256,7 +411,7 @@ pub struct Body {
 impl Body {
     /// Scale `table` to height `height` (m) and mass `mass` (kg), checking both against the
     /// table's limits.
-    pub(crate) fn new(table: &BodyTable, height: f64, mass: f64) -> Result<Self, InputError> {
+    pub fn new(table: &BodyTable, height: f64, mass: f64) -> Result<Self, InputError> {
         let [hmin, hmax] = table.limits.height;
         let [mmin, mmax] = table.limits.mass;
         InputError::check_range("height", height, hmin, hmax, "m")?;
@@ -319,9 +474,17 @@ impl Body {
         Self::new(&BodyTable::builtin(), height, mass)
     }
 
-    /// The bundled table `table` (a name of [`BODY_TABLES`]) scaled to `height` and `mass`.
+    /// The table `table` scaled to `height` and `mass`: a name of [`BODY_TABLES`], or a table
+    /// file of your own (a value ending in `.toml` or containing a `/`, relative to the working
+    /// directory; [`BodyTable::load`]), read and checked first.
     pub fn from_table(table: &str, height: f64, mass: f64) -> Result<Self, InputError> {
-        Self::new(&BodyTable::named(table)?, height, mass)
+        Self::new(&BodyTable::load(table, None)?, height, mass)
+    }
+
+    /// The table file `path` (the layout of `models/body-*.toml`), read and checked, scaled to
+    /// `height` and `mass`.
+    pub fn from_file(path: &Path, height: f64, mass: f64) -> Result<Self, InputError> {
+        Self::new(&BodyTable::read(path)?, height, mass)
     }
 
     /// Horizontal distance from the ankle to the 1st metatarsal joint with the foot flat
@@ -449,8 +612,84 @@ mod tests {
         let e = BodyTable::parse(&bad, Path::new("x.toml"))
             .unwrap_err()
             .to_string();
-        assert!(e.contains("thigh.length"), "{e}");
+        assert!(e.contains("thigh.length = -0.2"), "{e}");
         let e = BodyTable::parse("name = 3", Path::new("y.toml")).unwrap_err();
         assert!(matches!(e, InputError::Malformed { .. }));
+    }
+
+    /// Each rule of [`BodyTable::check`] refuses a table that breaks it, naming its keys; a
+    /// missing or an unknown key is named by the parser.
+    #[test]
+    fn every_rule_is_named() {
+        let refused = |from: &str, to: &str, expect: &str| {
+            assert!(BUILTIN_TABLE.contains(from), "{from}");
+            let text = BUILTIN_TABLE.replacen(from, to, 1);
+            let e = BodyTable::parse(&text, Path::new("t.toml"))
+                .unwrap_err()
+                .to_string();
+            assert!(e.starts_with("malformed body table t.toml: "), "{e}");
+            assert!(e.contains(expect), "{to}: `{expect}` not in {e}");
+        };
+        refused("gamma = 0.323", "gamma = inf", "thigh.gamma = inf");
+        refused(
+            "mass = 0.1\n",
+            "mass = 0.0\n",
+            "thigh.mass = 0: every length",
+        );
+        refused(
+            "mass = 0.1\n",
+            "mass = 0.12\n",
+            "= 1.04, not 1 (within 0.0001)",
+        );
+        refused(
+            "heel_to_ankle = 0.04853",
+            "heel_to_ankle = 0.05",
+            "foot.heel_to_ankle = 0.05 must be √(foot.hind_foot² + foot.ankle_height²) = 0.0485",
+        );
+        refused(
+            "ankle_to_metatarsal = 0.08901",
+            "ankle_to_metatarsal = 0.03",
+            "foot.ankle_to_metatarsal = 0.03 must exceed foot.ankle_height = 0.03846",
+        );
+        refused("length = 0.47", "length = 0.6", "= 1.12071 exceeds 1");
+        refused(
+            "height = [1.2, 2.2]",
+            "height = [2.2, 1.2]",
+            "limits.height = [2.2, 1.2] must be ordered",
+        );
+        refused(
+            "mass = [25.0, 200.0]",
+            "mass = [0.0, 200.0]",
+            "limits.mass = [0, 200]",
+        );
+        refused("r = 0.553\n", "", "missing field `r`");
+        refused(
+            "gamma = 0.326\n",
+            "gamma = 0.326\nlength = 0.48\n",
+            "unknown field `length`",
+        );
+    }
+
+    /// A table read from a file is named by its path, interned once: two readings share one
+    /// name.
+    #[test]
+    fn a_file_table_is_named_by_its_path() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("mine.toml");
+        std::fs::write(&path, BUILTIN_TABLE).unwrap();
+        let a = Body::from_file(&path, 1.8, 80.0).unwrap();
+        let b = Body::from_table(path.to_str().unwrap(), 1.8, 80.0).unwrap();
+        assert_eq!(a.table, path.display().to_string());
+        assert!(std::ptr::eq(a.table, b.table));
+        let winter = Body::standard(1.8, 80.0).unwrap();
+        assert_eq!(
+            Body {
+                table: "winter",
+                ..a
+            },
+            winter
+        );
+        let e = Body::from_table("missing.toml", 1.8, 80.0).unwrap_err();
+        assert!(matches!(e, InputError::Unreadable { .. }), "{e}");
     }
 }

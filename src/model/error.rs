@@ -136,6 +136,17 @@ pub enum InputError {
         #[source]
         reason: Reason,
     },
+    /// A model file (`--body-table FILE.toml`, `--ik-model`, …) that cannot be read.
+    #[error("reading {what} {path}: {source}")]
+    Unreadable {
+        /// What the file is, in words (`body table`, …).
+        what: &'static str,
+        /// The file's path.
+        path: PathBuf,
+        /// The I/O error.
+        #[source]
+        source: std::io::Error,
+    },
     /// A model, attribute, schedule, sweep or motion file that cannot be parsed, or a path whose
     /// extension names no format.
     #[error("malformed {what} {path}: {reason}")]

@@ -3,6 +3,7 @@
 pub mod attributes;
 pub mod body;
 pub mod error;
+pub mod file;
 pub mod pelvis_speed;
 pub mod rom;
 pub mod servos;

@@ -186,7 +186,8 @@ pub fn stop(state: &WalkerState, walk: &Walk, heading: f64) -> Result<NrsStep, N
         (f.flat[0] + goal.flat[0]) / 2.0,
         (f.flat[1] + goal.flat[1]) / 2.0,
     ];
-    let rest = WalkerState::standing(state.body, state.attrs.clone(), mid, heading);
+    let rest =
+        WalkerState::standing_with(state.body, state.attrs.clone(), state.params, mid, heading);
     let walking = WalkingStep::from_step(last, &walk.attrs, state.params.table_intervals)?;
     let plan = Plan {
         kind: StepType::Forward,

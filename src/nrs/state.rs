@@ -48,7 +48,18 @@ impl WalkerState {
     /// above the ankles' midpoint, tilt and trunk as the walk's at its lean reference, arms
     /// hanging, at rest.
     pub fn standing(body: Body, attrs: Attributes, at: [f64; 2], facing: f64) -> Self {
-        let params = NrsParameters::default();
+        Self::standing_with(body, attrs, NrsParameters::default(), at, facing)
+    }
+
+    /// [`Self::standing`] with the NRS constants `params` (a model file's, `--nrs-model`)
+    /// instead of `models/nrs.toml`'s.
+    pub fn standing_with(
+        body: Body,
+        attrs: Attributes,
+        params: NrsParameters,
+        at: [f64; 2],
+        facing: f64,
+    ) -> Self {
         let w = attrs.step_width / 2.0;
         let r = right_of(facing);
         let foot = |s: f64| Planted {

@@ -1,5 +1,6 @@
-//! Scenario files (`klaw scenario FILE.toml`, docs/scenarios.md): an optional `[body]`
-//! (height m, mass kg, style), optional `[attributes]` (the names, units and ranges of
+//! Scenario files (`klaw scenario FILE.toml`, docs/nrs.md): an optional `[body]` (height m,
+//! mass kg, style, table: a bundled name or a table file relative to the scenario file's folder,
+//! docs/bodies.md), optional `[attributes]` (the names, units and ranges of
 //! `klaw walk --attributes`), and `[[action]]` tables of type stand, walk, step, turn, pause.
 //! Angles are degrees in the file and radians in the [`Scenario`]. The body, attributes and
 //! gaits are built by the same code as `klaw walk`'s ([`Body::standard`],
@@ -15,7 +16,7 @@ use super::{Action, Goal, Scenario};
 use crate::error::Result;
 use crate::model::InputError;
 use crate::model::attributes::{Attributes, overrides_of_table};
-use crate::model::body::{Body, DEFAULT_BODY_TABLE};
+use crate::model::body::{Body, BodyTable, DEFAULT_BODY_TABLE};
 use crate::nrs::parameters::NrsParameters;
 use crate::nrs::specs::{FootAngles, Side, TurnKind};
 use crate::plan::GaitRequest;
@@ -36,18 +37,34 @@ pub const MAX_TURN_DEG: f64 = 1080.0;
 /// The largest |foot angle| of `foot_angles` (deg).
 pub const MAX_FOOT_ANGLE_DEG: f64 = 60.0;
 
-/// Read the scenario file `path` (see the module's documentation).
+/// Read the scenario file `path` (see the module's documentation), with `models/nrs.toml`'s
+/// constants.
 pub fn read_scenario(path: &Path) -> Result<Scenario> {
+    read_scenario_with(path, NrsParameters::default())
+}
+
+/// [`read_scenario`] with the NRS constants `nrs` (a model file's, [`NrsParameters::read`]):
+/// the steps' and turns' values are checked against its ranges, and the scenario runs with it.
+pub fn read_scenario_with(path: &Path, nrs: NrsParameters) -> Result<Scenario> {
     let text = std::fs::read_to_string(path).map_err(|source| crate::Error::Io {
         action: "reading",
         path: path.to_path_buf(),
         source,
     })?;
-    Ok(parse_scenario(&text, path)?)
+    Ok(parse_scenario_with(&text, path, nrs)?)
 }
 
 /// Parse the text of a scenario file; `path` names it in errors.
 pub fn parse_scenario(text: &str, path: &Path) -> Result<Scenario, ScenarioFileError> {
+    parse_scenario_with(text, path, NrsParameters::default())
+}
+
+/// [`parse_scenario`] with the NRS constants `nrs`.
+pub fn parse_scenario_with(
+    text: &str,
+    path: &Path,
+    nrs: NrsParameters,
+) -> Result<Scenario, ScenarioFileError> {
     let err = |place: Place, field: &str, problem: Problem| ScenarioFileError {
         path: path.to_path_buf(),
         place,
@@ -84,12 +101,15 @@ pub fn parse_scenario(text: &str, path: &Path) -> Result<Scenario, ScenarioFileE
         .finish("height, mass, style, table")
         .map_err(at)?;
     let table = table.as_deref().unwrap_or(DEFAULT_BODY_TABLE);
-    let body = Body::from_table(table, height, mass).map_err(|e| {
+    let body = BodyTable::load(table, path.parent()).and_then(|t| Body::new(&t, height, mass));
+    let body = body.map_err(|e| {
         let field = match &e {
             InputError::OutOfRange { name, .. } | InputError::NotFinite { name, .. } => {
                 name.clone()
             }
-            InputError::BadValue { .. } => "table".into(),
+            InputError::BadValue { .. }
+            | InputError::Malformed { .. }
+            | InputError::Unreadable { .. } => "table".into(),
             _ => "height".into(),
         };
         err(Place::Table("body"), &field, e.into())
@@ -113,7 +133,7 @@ pub fn parse_scenario(text: &str, path: &Path) -> Result<Scenario, ScenarioFileE
     let ctx = Context {
         body: &body,
         attrs: &attrs,
-        nrs: NrsParameters::default(),
+        nrs,
     };
     let mut actions = Vec::with_capacity(list.len());
     for (index, value) in list.into_iter().enumerate() {
@@ -129,6 +149,7 @@ pub fn parse_scenario(text: &str, path: &Path) -> Result<Scenario, ScenarioFileE
     Ok(Scenario {
         body,
         attrs,
+        nrs,
         actions,
     })
 }

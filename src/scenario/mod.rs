@@ -17,10 +17,11 @@ pub use run::run;
 use crate::figure::Landmarks;
 use crate::model::attributes::Attributes;
 use crate::model::body::Body;
+use crate::nrs::parameters::NrsParameters;
 use crate::nrs::specs::{FootAngles, Side, TurnKind};
 use crate::plan::GaitRequest;
 
-pub use file::{parse_scenario, read_scenario};
+pub use file::{parse_scenario, parse_scenario_with, read_scenario, read_scenario_with};
 pub use file_error::ScenarioFileError;
 
 /// Where a step's foot goes.
@@ -116,13 +117,16 @@ impl Action {
     }
 }
 
-/// A scenario: one body with its attributes, and its actions in order.
+/// A scenario: one body with its attributes and NRS constants, and its actions in order.
 #[derive(Clone, Debug)]
 pub struct Scenario {
     /// The figure's body.
     pub body: Body,
     /// Its locomotion attributes (the walks' and the steps').
     pub attrs: Attributes,
+    /// The constants of its steps, turns, starts and stops (`models/nrs.toml`'s by default,
+    /// `--nrs-model`).
+    pub nrs: NrsParameters,
     /// The actions, in order.
     pub actions: Vec<Action>,
 }

@@ -287,7 +287,8 @@ pub fn run(scenario: &Scenario, fps: f64) -> Result<Motion, ScenarioError> {
         Some(Action::Stand { at, facing, .. }) => (at.unwrap_or([0.0; 2]), facing.unwrap_or(0.0)),
         _ => ([0.0; 2], 0.0),
     };
-    let state = WalkerState::standing(scenario.body, scenario.attrs.clone(), at, facing);
+    let (body, attrs) = (scenario.body, scenario.attrs.clone());
+    let state = WalkerState::standing_with(body, attrs, scenario.nrs, at, facing);
     let mut r = Runner {
         scenario,
         state,

@@ -17,8 +17,19 @@ impl Sweep {
 }
 
 fn check_values(sweep: &Sweep, table: &AttributeTable) -> Result<(), InputError> {
+    // the bundled tables and the sweep's own files
+    let mut tables: Vec<BodyTable> = (0..BODY_TABLES.len()).map(super::tables::table).collect();
     for (axis, values) in &sweep.axes {
-        let Some((min, max, unit, why)) = range(axis, table) else {
+        if *axis == Axis::BodyTable {
+            let files = values
+                .iter()
+                .map(|&i| i as usize)
+                .filter(|&i| i >= BODY_TABLES.len());
+            tables.extend(files.map(super::tables::table));
+        }
+    }
+    for (axis, values) in &sweep.axes {
+        let Some((min, max, unit, why)) = range(axis, table, &tables) else {
             continue;
         };
         for &x in values {
@@ -30,16 +41,17 @@ fn check_values(sweep: &Sweep, table: &AttributeTable) -> Result<(), InputError>
 }
 
 /// The range of a value of `axis` whatever the rest of its point: the gait's loosest anatomical
-/// limits (the widest the limit attributes may be set to, over the body table's heights for the
-/// step length), the body table's height and mass, the mass per height² that some height of the
-/// table makes a mass of the table, 1 to 1 000 000 steps, an attribute's own range. `None` for a
-/// style (checked by name when parsed).
-fn range(axis: &Axis, table: &AttributeTable) -> Option<(f64, f64, &'static str, &'static str)> {
+/// limits (the widest the limit attributes may be set to, over the body tables' heights for the
+/// step length), the body tables' heights and masses, the mass per height² that some height of
+/// a table makes a mass of the tables, 1 to 1 000 000 steps, an attribute's own range; `tables`
+/// the bundled ones and the sweep's files. `None` for a style or a body table (checked by name
+/// or read when parsed).
+fn range(
+    axis: &Axis,
+    table: &AttributeTable,
+    tables: &[BodyTable],
+) -> Option<(f64, f64, &'static str, &'static str)> {
     let spec = |name: &str| &table.0[name];
-    let tables: Vec<BodyTable> = BODY_TABLES
-        .iter()
-        .map(|(name, _)| BodyTable::named(name).expect("the bundled body tables parse (tested)"))
-        .collect();
     let limit = |f: fn(&BodyTable) -> f64, pick: fn(f64, f64) -> f64| {
         tables.iter().map(f).reduce(pick).unwrap_or(f64::NAN)
     };
@@ -106,6 +118,12 @@ fn range(axis: &Axis, table: &AttributeTable) -> Option<(f64, f64, &'static str,
 mod tests {
     use super::*;
 
+    fn bundled() -> Vec<BodyTable> {
+        (0..BODY_TABLES.len())
+            .map(crate::sweep::tables::table)
+            .collect()
+    }
+
     fn sweep(axis: Axis, values: Vec<f64>) -> Sweep {
         Sweep::build(Vec::new(), vec![(axis, values)]).unwrap()
     }
@@ -149,11 +167,11 @@ mod tests {
         }
         // the step length's bound is the longest step of the tallest body's longest leg, de
         // Leva's men's (l1 = 0.4918 H against Winter's 0.4823 H)
-        let (_, max, ..) = range(&Axis::StepLength, &table).unwrap();
+        let (_, max, ..) = range(&Axis::StepLength, &table, &bundled()).unwrap();
         let tall = Body::from_table("deleva-male", hmax, 80.0).unwrap();
         assert!(tall.l1 > Body::standard(hmax, 80.0).unwrap().l1);
         assert!((max - 1.6 * tall.l1).abs() < 1e-12, "{max}");
         // a style is not range-checked here
-        assert!(range(&Axis::Style, &table).is_none());
+        assert!(range(&Axis::Style, &table, &bundled()).is_none());
     }
 }

@@ -72,9 +72,13 @@ pub enum SweepFileError {
     },
 }
 
+/// A parser of a list of names (styles, body tables) into the axis's values.
+type NamesParser<'a> = dyn Fn(&str) -> Result<Vec<f64>, InputError> + 'a;
+
 /// Read a sweep file: a flat TOML table whose keys are the quantities of `klaw sweep`
 /// (`velocity`, `step_length` or `step-length`, …, `steps`) or locomotion attribute names, and
-/// whose values are a number, a string spec (`"0.6:2.0:0.1"`, `"1.5,1.7"`) or an array of numbers.
+/// whose values are a number, a string spec (`"0.6:2.0:0.1"`, `"1.5,1.7"`) or an array of numbers;
+/// `style` and `body_table` take names (a body table file relative to the sweep file's folder).
 /// Entries come in key order (alphabetical).
 pub fn read_sweep_file(path: &Path, table: &AttributeTable) -> Result<Vec<Entry>> {
     let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
@@ -82,13 +86,15 @@ pub fn read_sweep_file(path: &Path, table: &AttributeTable) -> Result<Vec<Entry>
         path: path.to_path_buf(),
         source: e,
     })?;
-    parse_sweep_toml(&text, table).map_err(|e| InputError::malformed("sweep file", path, e).into())
+    parse_sweep_toml(&text, table, path.parent())
+        .map_err(|e| InputError::malformed("sweep file", path, e).into())
 }
 
-/// `read_sweep_file` on text; errors are the reason only.
+/// `read_sweep_file` on text, body table files relative to `base`; errors are the reason only.
 pub(crate) fn parse_sweep_toml(
     text: &str,
     table: &AttributeTable,
+    base: Option<&Path>,
 ) -> Result<Vec<Entry>, SweepFileError> {
     let doc: toml::Table = toml::from_str(text).map_err(SweepFileError::Toml)?;
     let mut entries: Vec<Entry> = Vec::new();
@@ -117,9 +123,10 @@ pub(crate) fn parse_sweep_toml(
             toml::Value::Float(x) => Some(*x),
             _ => None,
         };
-        let names = match axis {
-            Axis::Style => Some(parse_styles as fn(&str) -> Result<Vec<f64>, InputError>),
-            Axis::BodyTable => Some(parse_body_tables as fn(&str) -> Result<Vec<f64>, InputError>),
+        let body_tables = |spec: &str| parse_body_tables(spec, base);
+        let names: Option<&NamesParser> = match axis {
+            Axis::Style => Some(&parse_styles),
+            Axis::BodyTable => Some(&body_tables),
             _ => None,
         };
         let values = match value {
@@ -170,6 +177,7 @@ mod tests {
         let entries = parse_sweep_toml(
             "velocity = \"0.6:1.0:0.2\"\nstep-length = 0.7\nheight = [1.5, 1.7]\nsteps = 2\nbounciness = [0.2, 0.5]\n",
             &table(),
+            None,
         )
         .unwrap();
         let get = |a: Axis| {
@@ -204,7 +212,9 @@ mod tests {
             ("[velocity]\nx = 1", "`velocity` must be a number"),
             ("velocity = nan", "not a finite number"),
         ] {
-            let e = parse_sweep_toml(text, &table()).unwrap_err().to_string();
+            let e = parse_sweep_toml(text, &table(), None)
+                .unwrap_err()
+                .to_string();
             assert!(e.contains(expect), "{text:?}: {e}");
         }
         let dir = tempfile::tempdir().unwrap();

@@ -15,6 +15,7 @@ pub mod rows;
 pub(crate) mod run;
 pub mod shard;
 pub mod spec;
+pub(crate) mod tables;
 
 pub use file::read_sweep_file;
 pub use product::{Axis, Sweep};

@@ -28,7 +28,7 @@ pub enum Axis {
     Steps,
     /// A style preset of `models/styles/`, by its index in `attributes::STYLES`.
     Style,
-    /// A body table of `models/`, by its index in `body::BODY_TABLES`.
+    /// A body table, bundled or a file, by its index in the sweep's tables (`sweep::tables`).
     BodyTable,
     /// The locomotion attribute of this name (`models/attributes.toml`), in its units there.
     Attribute(String),
@@ -113,7 +113,7 @@ pub(crate) struct Inputs {
     pub steps: f64,
     /// The style preset (index in `attributes::STYLES`), when swept.
     pub style: Option<usize>,
-    /// The body table (index in `body::BODY_TABLES`), when swept.
+    /// The body table (index in the sweep's tables, `sweep::tables`), when swept.
     pub body_table: Option<usize>,
     pub attributes: Vec<(String, f64)>,
 }

@@ -6,7 +6,6 @@ use super::product::{Axis, Inputs, Sweep};
 use crate::error::Result;
 use crate::model::InputError;
 use crate::model::attributes::STYLES;
-use crate::model::body::BODY_TABLES;
 
 /// One cell of an output row.
 #[derive(Clone, Debug, PartialEq)]
@@ -142,7 +141,7 @@ impl Inputs {
             c.push(Cell::Text(STYLES[i].0.to_string()));
         }
         if let Some(i) = self.body_table {
-            c.push(Cell::Text(BODY_TABLES[i].0.to_string()));
+            c.push(Cell::Text(super::tables::name(i).to_string()));
         }
         c.extend(self.attributes.iter().map(|(_, v)| Cell::Num(*v)));
         c

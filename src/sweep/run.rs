@@ -10,7 +10,7 @@ use crate::engine::walker::simulate;
 use crate::error::Result;
 use crate::model::InputError;
 use crate::model::attributes::{AttributeTable, STYLES};
-use crate::model::body::{BODY_TABLES, Body, DEFAULT_BODY_TABLE};
+use crate::model::body::Body;
 use crate::plan::Timing;
 
 /// Steps per walk: valid range.
@@ -72,10 +72,9 @@ pub(crate) fn run_walk(inputs: &mut Inputs, table: &AttributeTable) -> Result<Su
         }
         .into());
     }
-    let body_table = inputs
-        .body_table
-        .map_or(DEFAULT_BODY_TABLE, |i| BODY_TABLES[i].0);
-    let body = Body::from_table(body_table, inputs.height, inputs.mass)?;
+    // index 0: the default table
+    let body_table = super::tables::table(inputs.body_table.unwrap_or(0));
+    let body = Body::new(&body_table, inputs.height, inputs.mass)?;
     let mut overrides: BTreeMap<String, f64> = match inputs.style {
         Some(i) => crate::model::attributes::style(STYLES[i].0)?,
         None => BTreeMap::new(),

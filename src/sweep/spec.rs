@@ -1,8 +1,9 @@
 //! Value specifications of the sweep flags and files: a number `X`, an inclusive range
 //! `START:STOP:STEP` or a list `A,B,C`; `NAME=SPEC` of `--attr`; style names.
+use std::path::Path;
+
 use crate::model::InputError;
 use crate::model::attributes::{AttributeTable, STYLES, unknown_style};
-use crate::model::body::{BODY_TABLES, unknown_body_table};
 
 /// Largest number of values one flag may expand to.
 pub(crate) const MAX_VALUES: usize = 1_000_000;
@@ -212,17 +213,13 @@ pub fn parse_styles(spec: &str) -> Result<Vec<f64>, InputError> {
         .collect()
 }
 
-/// Parse a list of body table names `A,B` into their indices in `body::BODY_TABLES`.
-pub fn parse_body_tables(spec: &str) -> Result<Vec<f64>, InputError> {
+/// Parse a list of body tables `A,B` into their indices in the sweep's tables: bundled names
+/// or table files of your own (a value ending in `.toml` or containing a `/`, relative to `base`
+/// when given, else to the working directory), each file read and checked here, once per
+/// distinct path in the process.
+pub fn parse_body_tables(spec: &str, base: Option<&Path>) -> Result<Vec<f64>, InputError> {
     spec.split(',')
-        .map(|name| {
-            let name = name.trim();
-            BODY_TABLES
-                .iter()
-                .position(|(n, _)| *n == name)
-                .map(|i| i as f64)
-                .ok_or_else(|| InputError::bad_value("body-table", unknown_body_table(name)))
-        })
+        .map(|name| super::tables::index(name.trim(), base).map(|i| i as f64))
         .collect()
 }
 

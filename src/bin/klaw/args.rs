@@ -125,14 +125,16 @@ pub(crate) struct BodyArgs {
     )]
     style: Option<String>,
 
-    /// Anthropometric table: winter, deleva-male or deleva-female
+    /// Anthropometric table: winter, deleva-male, deleva-female or a table file of your own (FILE.toml)
     #[arg(
         long,
-        value_name = "NAME",
+        value_name = "NAME|FILE.toml",
         default_value = DEFAULT_BODY_TABLE,
         long_help = "Anthropometric table the segments scale from with H and M: winter (Winter's / Dempster's\n\
             data, KLAW Table B-1; the default), deleva-male or deleva-female (de Leva 1996, Table 4:\n\
-            other proportions, e.g. a women's thigh 0.212 H against Winter's 0.237 H; docs/bodies.md)."
+            other proportions, e.g. a women's thigh 0.212 H against Winter's 0.237 H), or a table\n\
+            file of your own in the layout of models/body-*.toml (a value ending in .toml or\n\
+            containing a /), checked before any work: docs/bodies.md, \"Your own table\"."
     )]
     body_table: String,
 }

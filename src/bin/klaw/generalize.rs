@@ -4,7 +4,7 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use klaw::generalize::{GeneralizeParameters, KinematicWalk, default_prototype};
+use klaw::generalize::{KinematicWalk, default_prototype};
 use klaw::model::InputError;
 use klaw::model::body::DEFAULT_BODY_TABLE;
 use klaw::{Body, Gait, Result, export, input};
@@ -32,13 +32,20 @@ pub(crate) struct GeneralizeArgs {
     #[arg(long, value_name = "KG", default_value_t = DEFAULT_MASS, allow_negative_numbers = true)]
     mass: f64,
 
-    /// The body's anthropometric table: winter, deleva-male or deleva-female (docs/bodies.md)
-    #[arg(long, value_name = "NAME", default_value = DEFAULT_BODY_TABLE)]
+    /// The body's anthropometric table: winter, deleva-male, deleva-female or a table file of
+    /// your own (FILE.toml; docs/bodies.md)
+    #[arg(long, value_name = "NAME|FILE.toml", default_value = DEFAULT_BODY_TABLE)]
     body_table: String,
 
     /// Style preset: normal, brisk, elderly, march, long-stride or paper (its pelvic rotation and step width place the hip)
     #[arg(long, value_name = "NAME")]
     style: Option<String>,
+
+    /// The generalization's constants (the α slopes, the posing tolerances): a file in the
+    /// layout of models/generalize.toml, checked before any work (docs/cli.md, "Model files")
+    /// [default: models/generalize.toml]
+    #[arg(long, value_name = "FILE.toml")]
+    generalize_model: Option<PathBuf>,
 
     /// Walk data to write: .json or .csv (docs/generalize.md, "Walk data files")
     #[arg(long, value_name = "FILE.json|FILE.csv")]
@@ -48,6 +55,7 @@ pub(crate) struct GeneralizeArgs {
 pub(crate) fn run(args: &GeneralizeArgs) -> Result<()> {
     outputs::check(&[Output::new("out", &args.out, WALK_DATA)])?;
     let body = Body::from_table(&args.body_table, args.height, args.mass)?;
+    let params = crate::kinematic::generalize_parameters(args.generalize_model.as_deref())?;
     let attrs = input::load_attributes(args.style.as_deref(), None)?;
     // the step's duration only paces the determinants of the check: the normalizing formula's,
     // sf = sl / (0.004 H), unchecked (walk data are in normalized time)
@@ -62,7 +70,7 @@ pub(crate) fn run(args: &GeneralizeArgs) -> Result<()> {
         Some(p) => read_walk_data(p)?,
         None => default_prototype(),
     };
-    let params = GeneralizeParameters::default();
+    crate::kinematic::warn_alphas(args.generalize_model.as_deref(), &params, &prototype);
     let walk = KinematicWalk::new(&prototype, body, attrs, gait, 2, &params)?;
     export::write_walk_data(&args.out, &walk.step.data)?;
     let mut out = std::io::stdout().lock();

@@ -4,9 +4,10 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use klaw::ik::{Angles, Ik, Optimizer};
+use klaw::ik::{Angles, Ik, IkModel, Optimizer};
 use klaw::model::InputError;
 use klaw::model::attributes::AttributeTable;
+use klaw::model::body::DEFAULT_BODY_TABLE;
 use klaw::poulaine::database::clamp_to_reach;
 use klaw::poulaine::{Database, Query, Trajectory};
 use klaw::{Body, GaitRequest, Result, export};
@@ -38,6 +39,15 @@ pub(crate) struct IkArgs {
     /// Body mass M in kg, range [25, 200]
     #[arg(long, value_name = "KG", default_value_t = DEFAULT_MASS, allow_negative_numbers = true)]
     mass: f64,
+    /// The body's anthropometric table: winter, deleva-male, deleva-female or a table file of
+    /// your own (FILE.toml; docs/bodies.md)
+    #[arg(long, value_name = "NAME|FILE.toml", default_value = DEFAULT_BODY_TABLE)]
+    body_table: String,
+    /// The secondary tasks' model: a file in the layout of models/ik.toml (joint limits, with
+    /// an optional [leg_limits] in place of models/rom.toml's; rest posture; weights; inertias),
+    /// checked before any work (docs/cli.md, "Model files") [default: models/ik.toml]
+    #[arg(long, value_name = "FILE.toml")]
+    ik_model: Option<PathBuf>,
     /// Walking speed (m/s) [with --poulaine: the poulaine's own; with --db: by klaw's
     /// normalizing formula from --step-length, or 1.4]
     #[arg(long, value_name = "M/S", allow_negative_numbers = true)]
@@ -221,7 +231,11 @@ fn reference(
 }
 
 pub(crate) fn run(a: &IkArgs) -> Result<()> {
-    let body = Body::standard(a.height, a.mass)?;
+    let body = Body::from_table(&a.body_table, a.height, a.mass)?;
+    let model = match &a.ik_model {
+        Some(path) => Some(IkModel::read(path, &body)?),
+        None => None,
+    };
     let cycles = check_count("cycles", a.cycles, 1, 1000, "cycles")?;
     let mut outs = vec![Output::new("out", &a.out, outputs::MOTION)];
     if let Some(r) = &a.report {
@@ -233,6 +247,9 @@ pub(crate) fn run(a: &IkArgs) -> Result<()> {
         InputError::check_range("velocity", v, 0.1, 3.0, "m/s")?;
     }
     let mut ik = Ik::new(&body);
+    if let Some(model) = model {
+        ik.model = model;
+    }
     ik.params.optimizer = match a.minimiser {
         Minimiser::Mds => Optimizer::MultiDirectional,
         Minimiser::NelderMead => Optimizer::NelderMead,

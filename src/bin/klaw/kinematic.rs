@@ -11,6 +11,38 @@ use klaw::{Result, export, plot};
 use crate::walk::{WalkArgs, check_outputs, options, print_files};
 use crate::{MAX_FPS, MIN_FPS, count};
 
+/// The generalization's constants: the model file's (`--generalize-model`), or the bundled
+/// `models/generalize.toml`.
+pub(crate) fn generalize_parameters(path: Option<&Path>) -> Result<GeneralizeParameters> {
+    Ok(match path {
+        Some(p) => GeneralizeParameters::read(p)?,
+        None => GeneralizeParameters::default(),
+    })
+}
+
+/// Warn when a model file's α slopes differ from the prototype's: the prototype carries its own
+/// (`character.alpha1…4`, written when it was made), and those generalize it; a file's α enter a
+/// prototype made with `klaw prototype --generalize-model`.
+pub(crate) fn warn_alphas(
+    model: Option<&Path>,
+    params: &GeneralizeParameters,
+    prototype: &WalkData,
+) {
+    let Some(path) = model else { return };
+    let (file, own) = (params.alphas(), prototype.character.alpha);
+    if file.iter().zip(own).any(|(a, b)| (a - b).abs() > 1e-9) {
+        let deg = |a: [f64; 4]| a.map(|x| format!("{:.2}", x.to_degrees())).join(", ");
+        eprintln!(
+            "warning: {}'s α slopes ({} °/leg length) are not the prototype's ({}), which \
+             generalize it: a file's α enter a prototype made with klaw prototype \
+             --generalize-model",
+            path.display(),
+            deg(file),
+            deg(own)
+        );
+    }
+}
+
 /// Walk data from a file, JSON or CSV by its extension.
 pub(crate) fn read_walk_data(path: &Path) -> Result<WalkData> {
     let text = std::fs::read_to_string(path).map_err(|source| klaw::Error::Io {
@@ -36,6 +68,7 @@ pub(crate) fn read_walk_data(path: &Path) -> Result<WalkData> {
 /// `klaw walk --mode kinematic`: the prototype generalized to the walk's body and gait, written out.
 pub(crate) fn run(args: &WalkArgs) -> Result<()> {
     let fps = InputError::check_range("fps", args.fps, MIN_FPS, MAX_FPS, "frames/s")?;
+    let params = generalize_parameters(args.generalize_model.as_deref())?;
     if args.report.is_some() {
         let reason = "the report records the engine's shooting solves; the kinematic mode has \
                       none (use --mode dynamic)";
@@ -56,7 +89,7 @@ pub(crate) fn run(args: &WalkArgs) -> Result<()> {
         Some(p) => read_walk_data(p)?,
         None => default_prototype(),
     };
-    let params = GeneralizeParameters::default();
+    warn_alphas(args.generalize_model.as_deref(), &params, &prototype);
     let walk = KinematicWalk::new(&prototype, body, attrs, gaits[0], gaits.len(), &params)?;
     let (mut clinical_rows, mut state) = (Vec::new(), Vec::new());
     let keep_state = |step: usize| match (&args.state_out, &plot) {

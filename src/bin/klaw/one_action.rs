@@ -8,7 +8,7 @@ use klaw::scenario::file::{MAX_RELATIVE, MAX_TURN_DEG};
 use klaw::scenario::{Action, Goal, Scenario};
 
 use crate::args::BodyArgs;
-use crate::scenario::MotionOutputs;
+use crate::scenario::{MotionOutputs, NrsModelArg};
 
 /// A leg or a direction of turn.
 #[derive(Clone, Copy, ValueEnum)]
@@ -74,6 +74,8 @@ pub(crate) struct StepArgs {
     #[command(flatten)]
     body: BodyArgs,
     #[command(flatten)]
+    nrs: NrsModelArg,
+    #[command(flatten)]
     outputs: MotionOutputs,
 }
 
@@ -99,11 +101,13 @@ pub(crate) struct TurnArgs {
     #[command(flatten)]
     body: BodyArgs,
     #[command(flatten)]
+    nrs: NrsModelArg,
+    #[command(flatten)]
     outputs: MotionOutputs,
 }
 
-/// `action` after a moment of standing, for the body of `body`.
-fn scenario(body: &BodyArgs, action: Action) -> Result<Scenario> {
+/// `action` after a moment of standing, for the body of `body` with the NRS constants of `nrs`.
+fn scenario(body: &BodyArgs, nrs: &NrsModelArg, action: Action) -> Result<Scenario> {
     let stand = Action::Stand {
         seconds: 0.0,
         at: None,
@@ -112,6 +116,7 @@ fn scenario(body: &BodyArgs, action: Action) -> Result<Scenario> {
     Ok(Scenario {
         body: body.body()?,
         attrs: body.attributes()?,
+        nrs: nrs.parameters()?,
         actions: vec![stand, action],
     })
 }
@@ -153,7 +158,7 @@ pub(crate) fn step(args: &StepArgs) -> Result<()> {
     };
     let what = format!("{} step", name(side));
     args.outputs
-        .write(&scenario(&args.body, action)?, &out, &what)
+        .write(&scenario(&args.body, &args.nrs, action)?, &out, &what)
 }
 
 pub(crate) fn turn(args: &TurnArgs) -> Result<()> {
@@ -173,5 +178,5 @@ pub(crate) fn turn(args: &TurnArgs) -> Result<()> {
     };
     let what = format!("{angle}° turn to the {}", name(side));
     args.outputs
-        .write(&scenario(&args.body, action)?, &out, &what)
+        .write(&scenario(&args.body, &args.nrs, action)?, &out, &what)
 }

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use clap::{ArgGroup, Args};
 use klaw::generalize::extract::from_walk;
-use klaw::generalize::{GeneralizeParameters, measured};
+use klaw::generalize::measured;
 use klaw::model::InputError;
 use klaw::{Result, export};
 
@@ -33,6 +33,12 @@ pub(crate) struct PrototypeArgs {
     #[command(flatten)]
     gait: GaitArgs,
 
+    /// The generalization's constants (reading a measured walk, extracting the sequences): a
+    /// file in the layout of models/generalize.toml, checked before any work (docs/cli.md,
+    /// "Model files") [default: models/generalize.toml]
+    #[arg(long, value_name = "FILE.toml")]
+    generalize_model: Option<PathBuf>,
+
     /// Walk data to write: .json or .csv (docs/generalize.md, "Walk data files")
     #[arg(long, value_name = "FILE.json|FILE.csv")]
     out: PathBuf,
@@ -40,7 +46,7 @@ pub(crate) struct PrototypeArgs {
 
 pub(crate) fn run(args: &PrototypeArgs) -> Result<()> {
     outputs::check(&[Output::new("out", &args.out, WALK_DATA)])?;
-    let params = GeneralizeParameters::default();
+    let params = crate::kinematic::generalize_parameters(args.generalize_model.as_deref())?;
     let data = match &args.from_csv {
         Some(path) => {
             if args.step.is_some() {

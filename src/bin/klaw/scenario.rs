@@ -8,9 +8,10 @@ use clap::Args;
 use klaw::Result;
 use klaw::export::{self, Options};
 use klaw::model::InputError;
+use klaw::nrs::NrsParameters;
 use klaw::plot::animation;
 use klaw::scenario::{
-    Contact, Footprint, Motion, Scenario, Span, read_scenario, run as run_scenario,
+    Contact, Footprint, Motion, Scenario, Span, read_scenario_with, run as run_scenario,
 };
 use serde::Serialize;
 
@@ -23,7 +24,29 @@ pub(crate) struct ScenarioArgs {
     #[arg(value_name = "FILE.toml")]
     file: PathBuf,
     #[command(flatten)]
+    nrs: NrsModelArg,
+    #[command(flatten)]
     outputs: MotionOutputs,
+}
+
+/// The NRS model flag of the commands that run a scenario.
+#[derive(Args)]
+pub(crate) struct NrsModelArg {
+    /// The NRS constants: a file in the layout of models/nrs.toml (ν, the swing's peak rise,
+    /// the largest turn, the defaults and bounds of a step's values, …), checked before any work
+    /// (docs/cli.md, "Model files") [default: models/nrs.toml]
+    #[arg(long, value_name = "FILE.toml")]
+    nrs_model: Option<PathBuf>,
+}
+
+impl NrsModelArg {
+    /// The file's constants, or the bundled ones.
+    pub(crate) fn parameters(&self) -> Result<NrsParameters> {
+        Ok(match &self.nrs_model {
+            Some(path) => NrsParameters::read(path)?,
+            None => NrsParameters::default(),
+        })
+    }
 }
 
 /// The output flags of the commands that run a scenario.
@@ -85,7 +108,7 @@ pub(crate) fn run(args: &ScenarioArgs) -> Result<()> {
     let o = &args.outputs;
     let out = o.out_path("scenario");
     o.check(&out)?;
-    let scenario = read_scenario(&args.file)?;
+    let scenario = read_scenario_with(&args.file, args.nrs.parameters()?)?;
     o.write(
         &scenario,
         &out,

@@ -57,8 +57,9 @@ pub(crate) struct SweepArgs {
     /// Style presets A,B,C (normal, brisk, elderly, march, long-stride, paper); --attr overrides them
     #[arg(long, value_name = "NAMES")]
     style: Option<String>,
-    /// Body tables A,B (winter, deleva-male, deleva-female)
-    #[arg(long, value_name = "NAMES")]
+    /// Body tables A,B: winter, deleva-male, deleva-female or a table file of your own
+    /// (FILE.toml, docs/bodies.md); names and files may mix
+    #[arg(long, value_name = "NAMES|FILES")]
     body_table: Option<String>,
     /// A locomotion attribute to sweep, NAME=SPEC in the units of models/attributes.toml (repeatable)
     #[arg(long, value_name = "NAME=SPEC", allow_hyphen_values = true)]
@@ -163,7 +164,7 @@ fn build(args: &SweepArgs) -> Result<Sweep> {
         flags.push((Axis::Style, sw::parse_styles(spec)?));
     }
     if let Some(spec) = &args.body_table {
-        flags.push((Axis::BodyTable, sw::parse_body_tables(spec)?));
+        flags.push((Axis::BodyTable, sw::parse_body_tables(spec, None)?));
     }
     for arg in &args.attr {
         let (name, values) = sw::parse_attr(arg, &table)?;

@@ -112,6 +112,12 @@ pub(crate) struct WalkArgs {
     #[arg(long, value_name = "FILE.json|FILE.csv")]
     pub(crate) prototype: Option<PathBuf>,
 
+    /// The kinematic mode's generalization constants: a file in the layout of
+    /// models/generalize.toml (the α slopes, the posing tolerances), checked before any work
+    /// (docs/cli.md, "Model files") [default: models/generalize.toml]
+    #[arg(long, value_name = "FILE.toml")]
+    pub(crate) generalize_model: Option<PathBuf>,
+
     /// Per-step report to write as JSON [default: none]
     #[arg(
         long,
@@ -128,6 +134,10 @@ pub(crate) fn run(args: &WalkArgs) -> Result<()> {
     if args.prototype.is_some() {
         let reason = "applies to --mode kinematic only (the dynamic mode walks no prototype)";
         return Err(InputError::bad_value("prototype", reason).into());
+    }
+    if args.generalize_model.is_some() {
+        let reason = "applies to --mode kinematic only (the dynamic mode generalizes nothing)";
+        return Err(InputError::bad_value("generalize-model", reason).into());
     }
     let fps = InputError::check_range("fps", args.fps, MIN_FPS, MAX_FPS, "frames/s")?;
     let body = args.gait.body()?;
