@@ -147,13 +147,22 @@ struct Fallbacks {
 }
 
 impl EngineParameters {
+    /// The constants of the model file `path` (a user's copy of `models/engine.toml`, docs/cli.md
+    /// "Model files"), checked as [`Self::parse`] checks them.
+    pub fn read(path: &Path) -> Result<Self, InputError> {
+        Self::parse(
+            &crate::model::file::read_text("engine constants", path)?,
+            path,
+        )
+    }
+
     /// The constants of a table in `models/engine.toml`'s layout (`path` names it in errors):
     /// every key present, none unknown, each finite and in its range (frequencies and damping
     /// ratios positive, tolerances in (0, 1e-3], counts at least 1 where a step needs one).
     pub fn parse(text: &str, path: &Path) -> Result<Self, InputError> {
         let what = "engine constants";
-        let t: Table =
-            toml::from_str(text).map_err(|e| InputError::malformed(what, path, Box::new(e)))?;
+        let t: Table = crate::model::file::parse_toml(text)
+            .map_err(|reason| InputError::malformed(what, path, reason))?;
         let bad =
             |name: &str, e: InputError| InputError::malformed(what, path, format!("{name}: {e}"));
         let (s, m, f) = (&t.solve, &t.measure, &t.fallbacks);

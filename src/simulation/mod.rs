@@ -15,8 +15,9 @@ use std::path::Path;
 
 use crate::analysis::cycle::{CycleCurves, cycle_average};
 use crate::analysis::events::{self, Event};
+use crate::engine::parameters::EngineParameters;
 use crate::engine::report::{Report, StateFrame};
-use crate::engine::walker::{self, simulate};
+use crate::engine::walker::{self, simulate_with};
 use crate::error::Result;
 use crate::export::{self, Format, Options};
 use crate::figure::clinical::{Clinical, clinical};
@@ -81,6 +82,7 @@ pub struct Simulation {
     attributes: AttributeSource,
     requests: Requests,
     steps: Option<usize>,
+    parameters: EngineParameters,
 }
 
 impl Default for Simulation {
@@ -99,9 +101,10 @@ impl Simulation {
     pub fn new(body: Body) -> Self {
         Simulation {
             body,
-            attributes: AttributeSource::Given(Box::new(AttributeTable::builtin().defaults())),
+            attributes: AttributeSource::Given(Box::default()),
             requests: Requests::Preferred,
             steps: None,
+            parameters: EngineParameters::default(),
         }
     }
 
@@ -155,6 +158,13 @@ impl Simulation {
         self
     }
 
+    /// The engine's model constants (default: the bundled `models/engine.toml`; a user's copy
+    /// through [`EngineParameters::parse`]).
+    pub fn engine_parameters(mut self, parameters: EngineParameters) -> Self {
+        self.parameters = parameters;
+        self
+    }
+
     /// Check and complete the inputs without simulating anything: the step count, the style,
     /// and every step's gait (the errors of the command line for the same values).
     pub fn prepare(&self) -> Result<Prepared> {
@@ -195,6 +205,7 @@ impl Simulation {
             body: self.body,
             attributes,
             gaits,
+            parameters: self.parameters,
         })
     }
 
@@ -220,6 +231,7 @@ pub struct Prepared {
     body: Body,
     attributes: Attributes,
     gaits: Vec<Gait>,
+    parameters: EngineParameters,
 }
 
 impl Prepared {
@@ -246,7 +258,7 @@ impl Prepared {
     /// Simulate the walk, every step kept.
     pub fn run(self) -> Result<Walk> {
         Ok(Walk {
-            walk: simulate(self.body, self.attributes, &self.gaits)?,
+            walk: simulate_with(self.body, self.attributes, &self.gaits, self.parameters)?,
             gaits: self.gaits,
         })
     }
@@ -271,13 +283,10 @@ impl Prepared {
     /// ```
     pub fn stream(&self, fps: f64, gather: Gather) -> Result<WalkStream<'_>> {
         check_fps(fps)?;
-        Ok(WalkStream::new(
-            self.body,
-            self.attributes.clone(),
-            &self.gaits,
-            fps,
-            gather,
-        ))
+        Ok(
+            WalkStream::new(self.body, self.attributes.clone(), &self.gaits, fps, gather)
+                .with_parameters(self.parameters),
+        )
     }
 }
 

@@ -4,6 +4,7 @@
 //! reports, events, the engine's state frames and the clinical angles for cycle averaging are
 //! gathered on the side, each only when asked for.
 use crate::analysis::events::{Event, step_events};
+use crate::engine::parameters::EngineParameters;
 use crate::engine::report::{StateFrame, StepReport};
 use crate::engine::walker::{Step, Walker, walk_attributes};
 use crate::error::{Error, Result};
@@ -62,6 +63,13 @@ pub struct WalkStream<'a> {
 }
 
 impl<'a> WalkStream<'a> {
+    /// The stream with the engine's model constants `parameters` instead of the bundled ones
+    /// (before its first frame).
+    pub fn with_parameters(mut self, parameters: EngineParameters) -> Self {
+        self.walker = self.walker.with_parameters(parameters);
+        self
+    }
+
     /// One step per gait, frames at `fps` from t = 0 to the last heel strike (inclusive), with
     /// the walk's attributes ([`walk_attributes`]).
     pub fn new(body: Body, attrs: Attributes, gaits: &'a [Gait], fps: f64, gather: Gather) -> Self {

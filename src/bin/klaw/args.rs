@@ -3,7 +3,8 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use klaw::engine::walker::{Walk, simulate};
+use klaw::engine::parameters::EngineParameters;
+use klaw::engine::walker::{Walk, simulate_with};
 use klaw::model::body::DEFAULT_BODY_TABLE;
 use klaw::{Attributes, Body, Gait, GaitRequest, Result, input};
 
@@ -79,6 +80,12 @@ pub(crate) struct GaitArgs {
 
     #[command(flatten)]
     body: BodyArgs,
+
+    /// The engine's model constants: a file in the layout of models/engine.toml (servos, solve
+    /// tolerances, fallback limits), checked before any work (docs/cli.md, "Model files")
+    /// [default: models/engine.toml]
+    #[arg(long, value_name = "FILE.toml")]
+    pub(crate) engine_model: Option<PathBuf>,
 }
 
 /// The body and style flags of every command that moves a figure.
@@ -152,6 +159,14 @@ impl BodyArgs {
 }
 
 impl GaitArgs {
+    /// The engine's model constants: the file's (`--engine-model`), or the bundled ones.
+    pub(crate) fn engine_parameters(&self) -> Result<EngineParameters> {
+        Ok(match &self.engine_model {
+            Some(path) => EngineParameters::read(path)?,
+            None => EngineParameters::default(),
+        })
+    }
+
     /// The body of the flags.
     pub(crate) fn body(&self) -> Result<Body> {
         self.body.body()
@@ -197,6 +212,7 @@ impl GaitArgs {
     pub(crate) fn plan(&self, min_steps: usize, max_steps: usize) -> Result<Planned> {
         let body = self.body()?;
         let attrs = self.attributes()?;
+        let parameters = self.engine_parameters()?;
         let gaits = self.gaits(&body, &attrs)?;
         if gaits.len() < min_steps {
             let reason = format!(
@@ -224,6 +240,7 @@ impl GaitArgs {
         Ok(Planned {
             body,
             attrs,
+            parameters,
             gaits,
             title,
         })
@@ -234,6 +251,7 @@ impl GaitArgs {
 pub(crate) struct Planned {
     body: Body,
     attrs: Attributes,
+    parameters: EngineParameters,
     /// The completed gait of every step.
     pub gaits: Vec<Gait>,
     title: String,
@@ -242,6 +260,7 @@ pub(crate) struct Planned {
 impl Planned {
     /// Simulate the walk; also the title line of its parameters.
     pub(crate) fn simulate(self) -> Result<(Walk, String)> {
-        Ok((simulate(self.body, self.attrs, &self.gaits)?, self.title))
+        let walk = simulate_with(self.body, self.attrs, &self.gaits, self.parameters)?;
+        Ok((walk, self.title))
     }
 }

@@ -67,6 +67,10 @@ pub(crate) fn read_walk_data(path: &Path) -> Result<WalkData> {
 
 /// `klaw walk --mode kinematic`: the prototype generalized to the walk's body and gait, written out.
 pub(crate) fn run(args: &WalkArgs) -> Result<()> {
+    if args.gait.engine_model.is_some() {
+        let reason = "applies to --mode dynamic only (the kinematic mode simulates nothing)";
+        return Err(InputError::bad_value("engine-model", reason).into());
+    }
     let fps = InputError::check_range("fps", args.fps, MIN_FPS, MAX_FPS, "frames/s")?;
     let params = generalize_parameters(args.generalize_model.as_deref())?;
     if args.report.is_some() {

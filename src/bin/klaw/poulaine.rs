@@ -142,6 +142,7 @@ fn extract(a: &ExtractArgs) -> Result<()> {
         })
         .collect();
     let walk = Simulation::new(body)
+        .engine_parameters(a.gait.engine_parameters()?)
         .attributes(attrs)
         .schedule(requests)
         .run()?;

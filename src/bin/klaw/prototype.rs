@@ -48,6 +48,10 @@ pub(crate) fn run(args: &PrototypeArgs) -> Result<()> {
     outputs::check(&[Output::new("out", &args.out, WALK_DATA)])?;
     let params = crate::kinematic::generalize_parameters(args.generalize_model.as_deref())?;
     let data = match &args.from_csv {
+        Some(_) if args.gait.engine_model.is_some() => {
+            let reason = "applies to --from-walk only (a measured walk is not simulated)";
+            return Err(InputError::bad_value("engine-model", reason).into());
+        }
         Some(path) => {
             if args.step.is_some() {
                 let reason =
@@ -77,7 +81,8 @@ pub(crate) fn run(args: &PrototypeArgs) -> Result<()> {
                 Some(k) => crate::check_count("step", k, 1, n - 2, "")?,
                 None => n - 2,
             };
-            let walk = klaw::engine::walker::simulate(body, attrs, &gaits)?;
+            let parameters = args.gait.engine_parameters()?;
+            let walk = klaw::engine::walker::simulate_with(body, attrs, &gaits, parameters)?;
             from_walk(&walk, k, &params)?
         }
     };

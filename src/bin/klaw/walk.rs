@@ -142,6 +142,7 @@ pub(crate) fn run(args: &WalkArgs) -> Result<()> {
     let fps = InputError::check_range("fps", args.fps, MIN_FPS, MAX_FPS, "frames/s")?;
     let body = args.gait.body()?;
     let attrs = args.gait.attributes()?;
+    let parameters = args.gait.engine_parameters()?;
     let gaits = args.gait.gaits(&body, &attrs)?;
     let plot = check_outputs(args, gaits.len())?;
     let format = export::Format::from_path(&args.out)?;
@@ -168,7 +169,7 @@ pub(crate) fn run(args: &WalkArgs) -> Result<()> {
             "frames",
         )?;
     }
-    let mut stream = WalkStream::new(body, attrs, &gaits, fps, gather);
+    let mut stream = WalkStream::new(body, attrs, &gaits, fps, gather).with_parameters(parameters);
     let frames = stream.frames() as u64;
     let progress = Progress::new("walk", frames, "frames");
     let mut done = 0;

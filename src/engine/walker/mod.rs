@@ -192,8 +192,19 @@ pub fn walk_attributes(body: &Body, attrs: &Attributes, gaits: &[Gait]) -> Attri
 /// Simulate one step per entry of `gaits` (parameters may change from step to step), with the
 /// walk's attributes ([`walk_attributes`]).
 pub fn simulate(body: Body, attrs: Attributes, gaits: &[Gait]) -> Result<Walk, SimulationError> {
+    simulate_with(body, attrs, gaits, EngineParameters::default())
+}
+
+/// [`simulate`] with the engine's model constants `parameters` (e.g. a user's
+/// `models/engine.toml`, [`EngineParameters::parse`]).
+pub fn simulate_with(
+    body: Body,
+    attrs: Attributes,
+    gaits: &[Gait],
+    parameters: EngineParameters,
+) -> Result<Walk, SimulationError> {
     let attrs = walk_attributes(&body, &attrs, gaits);
-    let mut walker = Walker::new(body, attrs.clone());
+    let mut walker = Walker::new(body, attrs.clone()).with_parameters(parameters);
     let steps = gaits
         .iter()
         .map(|g| walker.step(*g))
