@@ -2,34 +2,16 @@
 //! segments, feet on (never under) the ground, stance contacts that do not slide, heels that
 //! land where the step constraints put them, and no joint angle jumping at a phase boundary.
 mod common;
+use common::{d, foot_pitch, knee_angle, sub};
 
 use common::{body_of_height, default_attributes, default_body};
 use klaw::engine::walker as walk;
 use klaw::figure::{Landmarks, LegPoints, landmarks};
 use klaw::{Attributes, Body};
 
-fn d(a: [f64; 3], b: [f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-}
 
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
 
-/// Knee flexion from the points: the angle between thigh and shank directions.
-fn knee_angle(l: &LegPoints) -> f64 {
-    let (u, v) = (sub(l.knee, l.hip), sub(l.ankle, l.knee));
-    let dot = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-    (dot / (d(l.knee, l.hip) * d(l.ankle, l.knee)))
-        .clamp(-1.0, 1.0)
-        .acos()
-}
 
-/// Foot pitch (heel up +) from heel and metatarsal joint.
-fn foot_pitch(l: &LegPoints) -> f64 {
-    let (a, b) = (l.heel, l.mtp);
-    -(b[1] - a[1]).atan2(b[0] - a[0])
-}
 
 fn walk_of(v: f64, h: f64) -> (Body, Attributes, walk::Walk) {
     let body = body_of_height(h);

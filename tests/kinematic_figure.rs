@@ -6,8 +6,9 @@
 //! and de Leva's male (H 1.85 m) and female (H 1.65 m) bodies at the default gait, as
 //! `klaw walk --mode kinematic` walks them.
 mod common;
+use common::{d, foot_pitch, knee_angle};
 
-use klaw::figure::{Landmarks, LegPoints};
+use klaw::figure::Landmarks;
 use klaw::generalize::{
     GeneralizeParameters, KinematicWalk, WalkData, default_prototype, measured,
 };
@@ -15,28 +16,9 @@ use klaw::{Body, Event};
 
 const CLIP: &str = include_str!("../models/prototypes/deepmimic-walk.csv");
 
-fn d(a: [f64; 3], b: [f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-}
 
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
 
-/// Knee flexion from the points: the angle between thigh and shank directions.
-fn knee_angle(l: &LegPoints) -> f64 {
-    let (u, v) = (sub(l.knee, l.hip), sub(l.ankle, l.knee));
-    let dot = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-    (dot / (d(l.knee, l.hip) * d(l.ankle, l.knee)))
-        .clamp(-1.0, 1.0)
-        .acos()
-}
 
-/// Foot pitch (heel up +) from heel and metatarsal joint.
-fn foot_pitch(l: &LegPoints) -> f64 {
-    let (a, b) = (l.heel, l.mtp);
-    -(b[1] - a[1]).atan2(b[0] - a[0])
-}
 
 /// The two prototypes: the bundled one (klaw's own walk) and DeepMimic's clip.
 fn prototypes() -> [(&'static str, WalkData); 2] {

@@ -211,15 +211,6 @@ pub fn schedule_gaits(
     Ok(gaits)
 }
 
-/// Line and column (1-based) of byte `offset` in `text`.
-fn line_col(text: &str, offset: usize) -> (usize, usize) {
-    let offset = offset.min(text.len());
-    let before = text.get(..offset).unwrap_or(text);
-    let line = before.matches('\n').count() + 1;
-    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-    (line, col)
-}
-
 fn parse_schedule_toml(text: &str) -> Result<Vec<GaitRequest>, ScheduleError> {
     match toml::from_str::<TomlSchedule>(text) {
         Ok(s) => Ok(s
@@ -235,7 +226,7 @@ fn parse_schedule_toml(text: &str) -> Result<Vec<GaitRequest>, ScheduleError> {
             let Some(span) = e.span() else {
                 return Err(ScheduleError::Toml(e));
             };
-            let (line, column) = line_col(text, span.start);
+            let (line, column) = crate::model::file::line_col(text, span.start);
             // the step whose table holds the error: count the `[[step]]` headers above it
             let step = text
                 .get(..span.start)

@@ -177,3 +177,28 @@ pub fn scratch(file: &str, name: &str) -> std::path::PathBuf {
     std::fs::create_dir_all(&d).unwrap();
     d
 }
+
+/// The distance between two points.
+pub fn d(a: [f64; 3], b: [f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+/// a − b.
+pub fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// Knee flexion from the points: the angle between thigh and shank directions.
+pub fn knee_angle(l: &klaw::figure::LegPoints) -> f64 {
+    let (u, v) = (sub(l.knee, l.hip), sub(l.ankle, l.knee));
+    let dot = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+    (dot / (d(l.knee, l.hip) * d(l.ankle, l.knee)))
+        .clamp(-1.0, 1.0)
+        .acos()
+}
+
+/// Foot pitch (heel up +) from heel and metatarsal joint.
+pub fn foot_pitch(l: &klaw::figure::LegPoints) -> f64 {
+    let (a, b) = (l.heel, l.mtp);
+    -(b[1] - a[1]).atan2(b[0] - a[0])
+}
