@@ -67,7 +67,7 @@ const DROP_SAMPLES: usize = 400;
 /// How far the hip comes down is planned over the whole step, not found instant by instant: the
 /// least *concave* function of t on [0, 1] at or above every leg's need at every instant (the
 /// upper hull of the needs, each the drop that lets the leg reach its ankle with the knee bent
-/// [`KNEE_MIN`]). Found instant by instant (until issue 38) the drop was the need itself: the
+/// `KNEE_MIN`, 2°). Found instant by instant the drop was the need itself: the
 /// leg that set it was held straight, and where it began or stopped setting it its knee snapped
 /// (0.15–0.17° in 2 µs on DeepMimic's clip: the square root of a straight leg) and the pelvis
 /// turned from H's vertical speed to the leg's reach arc in an instant (it fell 7 mm in one 10 ms
