@@ -9,10 +9,6 @@ use klaw::engine::walker as walk;
 use klaw::figure::{Landmarks, LegPoints, landmarks};
 use klaw::{Attributes, Body};
 
-
-
-
-
 fn walk_of(v: f64, h: f64) -> (Body, Attributes, walk::Walk) {
     let body = body_of_height(h);
     (

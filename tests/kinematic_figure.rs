@@ -16,10 +16,6 @@ use klaw::{Body, Event};
 
 const CLIP: &str = include_str!("../models/prototypes/deepmimic-walk.csv");
 
-
-
-
-
 /// The two prototypes: the bundled one (klaw's own walk) and DeepMimic's clip.
 fn prototypes() -> [(&'static str, WalkData); 2] {
     let clip = measured::from_csv(CLIP, &GeneralizeParameters::default()).unwrap();
