@@ -696,3 +696,55 @@ fn the_least_walk_of_a_gait_cycle_is_min_steps() {
         Err(CycleError::NoSteadyCycle { .. })
     ));
 }
+
+/// The overlay of two walks' cycles (`measure/compare_modes.rs`): its legend lies in a row of
+/// its own, outside every panel's plotting area and inside the image, so no curve runs under
+/// it. Curves that fill their panels' upper left corners (where a legend inside the chart sat,
+/// over the hip's and the ankle's curves): none of their points is in a legend entry's box.
+#[test]
+fn the_overlay_legend_covers_no_curve() {
+    use klaw::plot::overlay::write_overlay;
+    // high at both ends and at the start, where the upper corners are
+    let first = synthetic(|_, _, p| 40.0 * (2.0 * PI * p / 100.0).cos());
+    let second = synthetic(|_, _, p| 38.0 * (2.0 * PI * p / 100.0).cos() - 3.0);
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("overlay.png");
+    let layout = write_overlay(
+        ("dynamic mode", &first),
+        ("kinematic mode", &second),
+        "synthetic",
+        &path,
+    )
+    .unwrap();
+    let img = image::open(&path).unwrap().to_rgb8();
+    let (w, h) = img.dimensions();
+    assert_eq!(layout.legend.len(), 2);
+    let apart = |a: (i32, i32, i32, i32), b: (i32, i32, i32, i32)| {
+        a.2 < b.0 || b.2 < a.0 || a.3 < b.1 || b.3 < a.1
+    };
+    for &entry in &layout.legend {
+        let (l, t, r, b) = entry;
+        assert!(
+            0 <= l && r < w as i32 && 0 <= t && b < h as i32,
+            "{entry:?}"
+        );
+        for &panel in &layout.panels {
+            assert!(apart(entry, panel), "legend {entry:?} over panel {panel:?}");
+        }
+        for (k, curve) in layout.curves.iter().enumerate() {
+            assert_eq!(curve.len(), 202, "panel {k}");
+            for &(x, y) in curve {
+                assert!(
+                    !(l <= x && x <= r && t <= y && y <= b),
+                    "panel {k}'s curve at ({x}, {y}) under the legend {entry:?}"
+                );
+            }
+        }
+    }
+    // the curves are inside their panels
+    for (panel, curve) in layout.panels.iter().zip(&layout.curves) {
+        for &(x, y) in curve {
+            assert!(panel.0 <= x && x <= panel.2 + 1 && panel.1 <= y && y <= panel.3 + 1);
+        }
+    }
+}
