@@ -78,7 +78,7 @@ fn gif_has_a_frame_per_interval_and_dots_under_flat_feet() {
         .expect("a frame of single support on a flat right foot");
     let (img, _) = &frames[k];
     let lm = &landmarks[k];
-    let view = summary.views[k];
+    let view = summary.views[k].clone();
     // the side view's map: the camera on the pelvis (the centre of the left two thirds), the
     // ground line where the map puts y = 0
     let (px, _) = view.side.pixel(lm.pelvis[0], lm.pelvis[1]);
@@ -232,4 +232,81 @@ fn cli_writes_the_gif() {
         .collect();
     names.sort();
     assert_eq!(names, vec!["w.gif".to_string()]);
+}
+
+/// The text above the views fits: the header across the image and each view's caption, at
+/// most two lines each and not below the smallest font, inside the image and its view's column,
+/// apart from each other, and all of it within the top 45 % of the frame, at every size from
+/// the least allowed (200 × 100) to large; at the README's doorway size (600 × 225) and the
+/// default (900 × 450) every caption is there and nothing is cut ("…"). (The doorway's front
+/// caption took five lines of the 108 px column at 600 × 225.)
+#[test]
+fn captions_fit_at_every_size() {
+    use klaw::plot::animation::{MAX_LINES, MIN_FONT_PX, write_scenario_gif};
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = klaw::scenario::read_scenario(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenarios/doorway.toml"),
+    )
+    .unwrap();
+    let motion = klaw::scenario::run(&scenario, 2.0).unwrap();
+    let walk = default_walk(3);
+    let title = "scenario examples/scenarios/doorway.toml";
+    for size in [(200, 100), (300, 150), (600, 225), (900, 450), (1600, 800)] {
+        let options = AnimationOptions::new(2.0, size).unwrap();
+        let path = dir.path().join("text.gif");
+        let summaries = [
+            (
+                "doorway",
+                write_scenario_gif(&motion, &scenario.body, title, &path, &options).unwrap(),
+            ),
+            (
+                "walk",
+                animate_walk(
+                    &walk,
+                    "v 1.40 m/s, sl 0.778 m, sf 108.0 steps/min, H 1.80 m, M 80 kg, style \
+                     default",
+                    &path,
+                    &options,
+                )
+                .unwrap(),
+            ),
+        ];
+        let (w, h) = (size.0 as i32, size.1 as i32);
+        for (what, summary) in &summaries {
+            for views in &summary.views {
+                let blocks = &views.text;
+                assert!(!blocks.is_empty(), "{what} {size:?}: no header");
+                for (k, b) in blocks.iter().enumerate() {
+                    let at = format!("{what} {size:?} block {k}: {b:?}");
+                    assert!(
+                        b.lines.len() <= MAX_LINES && b.font_px >= MIN_FONT_PX,
+                        "{at}"
+                    );
+                    let (l, t, r, bottom) = b.bbox;
+                    assert!(0 <= l && r < w && 0 <= t && bottom < h, "{at}");
+                    assert!(f64::from(bottom) <= 8.0 + 0.45 * f64::from(h - 16), "{at}");
+                    if k > 0 {
+                        let (c0, c1) = views.columns[k - 1];
+                        assert!(c0 <= l && r <= c1, "{at} outside its column {c0}..{c1}");
+                    }
+                    for other in &blocks[k + 1..] {
+                        let o = other.bbox;
+                        assert!(
+                            r < o.0 || o.2 < l || bottom < o.1 || o.3 < t,
+                            "{at} over {o:?}"
+                        );
+                    }
+                }
+                if matches!(size, (600, 225) | (900, 450)) {
+                    assert_eq!(blocks.len(), 1 + views.columns.len(), "{what} {size:?}");
+                    for b in blocks {
+                        assert!(
+                            b.lines.iter().all(|l| !l.ends_with('…')),
+                            "{what} {size:?}: {b:?}"
+                        );
+                    }
+                }
+            }
+        }
+    }
 }

@@ -34,7 +34,7 @@ fn the_table_example_draws_as_png_and_svg() {
     let d = dir("table");
     let (s, m) = table();
     let png = d.join("table.png");
-    let map = footprints::write(&png, &m, &s.body, "table").unwrap();
+    let map = footprints::write(&png, &m, &s.body, "table").unwrap().map;
     let bytes = std::fs::read(&png).unwrap();
     assert!(bytes.starts_with(b"\x89PNG\r\n\x1a\n"), "a PNG");
     let img = image::load_from_memory(&bytes).unwrap();
@@ -178,5 +178,115 @@ fn cli_checks_the_footprints_path_before_any_work() {
     assert_eq!(code, 0, "{err}");
     assert!(std::fs::metadata(&good).unwrap().len() > 1000);
     assert!(out.exists());
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// The step numbers of the table example pile up nowhere: one label per place (the right foot
+/// pivots in the turn: 12, 15 and 17 are one place, one label), every footprint named exactly
+/// once, the labels inside the plotting area's image, apart from each other and from every
+/// footprint's outline (its pixel box), and from every gaze arrow's shaft.
+#[test]
+fn step_numbers_are_apart_from_each_other_and_from_the_feet() {
+    let d = dir("labels");
+    let (s, m) = table();
+    let png = d.join("table.png");
+    let layout = footprints::write(&png, &m, &s.body, "table").unwrap();
+    let img = image::open(&png).unwrap();
+    let (w, h) = (img.width() as i32, img.height() as i32);
+    let mut named: Vec<usize> = layout
+        .labels
+        .iter()
+        .flat_map(|l| l.indices.clone())
+        .collect();
+    named.sort_unstable();
+    assert_eq!(named, (0..m.footprints.len()).collect::<Vec<_>>());
+    let pivot = layout
+        .labels
+        .iter()
+        .find(|l| l.indices.contains(&15))
+        .unwrap();
+    assert_eq!(pivot.indices, [12, 15, 17]);
+    assert_eq!(pivot.text, "12, 15, 17");
+    assert_eq!(layout.labels.len(), m.footprints.len() - 2);
+    let overlap = |a: (i32, i32, i32, i32), b: (i32, i32, i32, i32)| {
+        a.0 <= b.2 && b.0 <= a.2 && a.1 <= b.3 && b.1 <= a.3
+    };
+    let pixel_box = |points: Vec<(f64, f64)>| {
+        points.iter().fold(
+            (i32::MAX, i32::MAX, i32::MIN, i32::MIN),
+            |(l, t, r, b), &(u, v)| {
+                let (x, y) = layout.map.pixel(u, v);
+                (l.min(x), t.min(y), r.max(x), b.max(y))
+            },
+        )
+    };
+    let feet: Vec<_> = m
+        .footprints
+        .iter()
+        .map(|f| pixel_box(foot_outline(&s.body, f.side, f.ankle, f.direction)))
+        .collect();
+    for (i, a) in layout.labels.iter().enumerate() {
+        let (l, t, r, b) = a.bbox;
+        assert!(0 <= l && r < w && 0 <= t && b < h, "{a:?}");
+        for other in &layout.labels[i + 1..] {
+            assert!(!overlap(a.bbox, other.bbox), "{a:?} over {other:?}");
+        }
+        for (f, foot) in m.footprints.iter().zip(&feet) {
+            assert!(!overlap(a.bbox, *foot), "{a:?} over footprint {}", f.index);
+        }
+        // the arrows' shafts, every 5 mm
+        for &(at, dir) in &layout.gaze {
+            for k in 0..=60 {
+                let d = 0.005 * f64::from(k);
+                let (x, y) = layout.map.pixel(at.0 + d * dir.cos(), at.1 + d * dir.sin());
+                assert!(
+                    !(l <= x && x <= r && t <= y && y <= b),
+                    "{a:?} over the gaze arrow at {at:?}"
+                );
+            }
+        }
+    }
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// The gaze arrows pile up nowhere: any two arrows start a metre apart or differ by 60° of
+/// heading (standing, stepping aside and turning on the spot gave one arrow every 0.5 s at one
+/// place), and every turn shows: the arrows' headings cover the walk out (0°), the turn's middle
+/// and the walk back (180°).
+#[test]
+fn gaze_arrows_are_a_metre_or_a_turn_apart() {
+    let d = dir("gaze");
+    let (s, m) = table();
+    let layout = footprints::write(&d.join("table.png"), &m, &s.body, "table").unwrap();
+    let g = &layout.gaze;
+    assert!((10..=25).contains(&g.len()), "{} arrows", g.len());
+    for (i, &(p, a)) in g.iter().enumerate() {
+        for &(q, b) in &g[i + 1..] {
+            let apart = (p.0 - q.0).hypot(p.1 - q.1);
+            let turned = (a - b).sin().atan2((a - b).cos()).abs().to_degrees();
+            assert!(
+                apart >= 1.0 - 1e-9 || turned >= 60.0 - 1e-9,
+                "arrows at {p:?} ({:.0}°) and {q:?} ({:.0}°): {apart:.2} m, {turned:.0}°",
+                a.to_degrees(),
+                b.to_degrees()
+            );
+        }
+    }
+    let degrees: Vec<f64> = g
+        .iter()
+        .map(|&(_, a)| a.to_degrees().rem_euclid(360.0))
+        .collect();
+    assert!(
+        degrees.iter().any(|&a| !(5.0..=355.0).contains(&a)),
+        "{degrees:?}"
+    );
+    assert!(
+        degrees.iter().any(|&a| (45.0..=135.0).contains(&a)),
+        "{degrees:?}"
+    );
+    assert!(
+        degrees.iter().any(|&a| (175.0..=185.0).contains(&a)),
+        "{degrees:?}"
+    );
     std::fs::remove_dir_all(&d).unwrap();
 }

@@ -356,14 +356,166 @@ fn norm_bands_are_drawn_over_their_windows_only() {
         0.5 * (panel(Panel::KneeFlexion).y_range.1),
     );
     assert_ne!(img.get_pixel(x as u32, y as u32).0, band);
-    // the excursion band: min 87 cm → 91–92 cm, where the curve is low (25 %, 87 cm)
+    // the excursion norm is not drawn over the cycle (where the curve's values are not what it
+    // bounds): no excursion colour anywhere in the pelvis panel's plotting area
     let exc = rgb(EXCURSION_BAND_COLOR);
-    let (x, y) = px(Panel::PelvisHeight, 25.0, 91.5);
-    assert_eq!(img.get_pixel(x as u32, y as u32).0, exc);
-    let (x, y) = px(Panel::PelvisHeight, 25.0, 90.5);
-    assert_ne!(img.get_pixel(x as u32, y as u32).0, exc);
-    let (x, y) = px(Panel::PelvisHeight, 25.0, 92.5);
-    assert_ne!(img.get_pixel(x as u32, y as u32).0, exc);
+    let m = panel(Panel::PelvisHeight);
+    for y in m.left_top.1..=m.right_bottom.1 {
+        for x in m.left_top.0..=m.right_bottom.0 {
+            assert_ne!(img.get_pixel(x as u32, y as u32).0, exc, "at ({x}, {y})");
+        }
+    }
+    // but beside it (tests `range_norms_are_drawn_beside_their_panels`)
+    assert_eq!(fig.ranges.len(), 1);
+}
+
+/// A range norm (peak to peak) is drawn beside its panel, right of the plotting area: a bracket
+/// from the curve's minimum to its maximum, and a bar from min + low to min + high, each where
+/// the panel's axis puts those values; a by-speed one light blue. The pelvis height 90 ± 3 cm
+/// (min 87, max 93, a range of 6 cm, outside 4–5 cm): the bar 91–92 cm lies under the bracket's
+/// top, so the reader sees the range too large. The speed bands of pelvic rotation and pelvis
+/// height are nowhere over their cycles.
+#[test]
+fn range_norms_are_drawn_beside_their_panels() {
+    let cycle = synthetic(|panel, side, p| match (panel, side) {
+        (Panel::PelvisHeight, _) => 90.0 + 3.0 * (4.0 * PI * p / 100.0).cos(),
+        (Panel::PelvisRotation, _) => 5.0 * (2.0 * PI * p / 100.0).cos(),
+        (Panel::HipFlexion, Some(Side::Right)) => 10.0 + 20.0 * (2.0 * PI * p / 100.0).cos(),
+        (Panel::HipFlexion, _) => 12.0 + 24.0 * (2.0 * PI * p / 100.0).cos(),
+        _ => 0.0,
+    });
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("ranges.png");
+    let table = NormTable::builtin();
+    let fig = write_cycle_figure(&cycle, &table, SPEED, "synthetic", &path).unwrap();
+    let img = image::open(&path).unwrap().to_rgb8();
+    let (w, _) = img.dimensions();
+    // every range norm of the table, on each curve of its panel (the speed ones are in their
+    // span at 1.4 m/s, l1 0.9 m)
+    let expected: Vec<(Panel, &str, Option<Side>)> = table
+        .norms
+        .iter()
+        .filter(|n| n.measure == Measure::PeakToPeak)
+        .flat_map(|n| {
+            let sides = if n.panel.per_leg() {
+                vec![Some(Side::Right), Some(Side::Left)]
+            } else {
+                vec![None]
+            };
+            sides.into_iter().map(|s| (n.panel, n.name.as_str(), s))
+        })
+        .collect();
+    assert_eq!(expected.len(), 5, "{expected:?}");
+    let drawn: Vec<(Panel, &str, Option<Side>)> = fig
+        .ranges
+        .iter()
+        .map(|r| (r.panel, r.name.as_str(), r.side))
+        .collect();
+    let key = |&(p, n, s): &(Panel, &str, Option<Side>)| {
+        (
+            Panel::ALL.iter().position(|&q| q == p),
+            n.to_string(),
+            s.is_some_and(|s| s == Side::Left),
+        )
+    };
+    let (mut drawn, mut expected) = (drawn, expected);
+    drawn.sort_by_key(key);
+    expected.sort_by_key(key);
+    assert_eq!(drawn, expected);
+    for r in &fig.ranges {
+        let m = fig.panels.iter().find(|p| p.panel == r.panel).unwrap();
+        let row = |v: f64| pixel(&fig, r.panel, 0.0, v).1 as i32;
+        let ((lo, hi), (low, high)) = r.values;
+        let n = table.norms.iter().find(|n| n.name == r.name).unwrap();
+        let (nl, nh) = n.range.at(SPEED).unwrap();
+        assert_eq!((low, high), (nl, nh), "{}", r.name);
+        // the curve's own extent
+        let c = cycle
+            .curves
+            .iter()
+            .find(|c| c.panel == r.panel && c.side == r.side)
+            .unwrap();
+        let cmin = c.values.iter().copied().fold(f64::INFINITY, f64::min);
+        let cmax = c.values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        assert_eq!((lo, hi), (cmin, cmax), "{}", r.name);
+        // where the axis puts them, to a pixel
+        let (bx, (bt, bb)) = r.bracket;
+        assert!(
+            (bt - row(hi)).abs() <= 1 && (bb - row(lo)).abs() <= 1,
+            "{r:?}"
+        );
+        let ((l, rr), (t, b)) = r.bar;
+        assert!((t - row(lo + high)).abs() <= 1, "{r:?}");
+        assert!((b - row(lo + low)).abs() <= 1, "{r:?}");
+        // right of the plotting area, inside the image
+        let right = m.right_bottom.0;
+        assert!(
+            right < bx && bx < l && l < rr && rr < w as i32,
+            "{r:?}, plot ends at {right}"
+        );
+        // the bar's colour: light blue by speed, orange fixed
+        let fill = if n.range.by_speed().is_some() {
+            rgb(SPEED_BAND_COLOR)
+        } else {
+            rgb(EXCURSION_BAND_COLOR)
+        };
+        let mid = img.get_pixel(((l + rr) / 2) as u32, ((t + b) / 2) as u32).0;
+        assert_eq!(mid, fill, "{r:?}");
+    }
+    // the pelvis: a range of 6 cm against 4–5: the bracket's top is above the fixed bar
+    let exc = fig
+        .ranges
+        .iter()
+        .find(|r| r.name == "vertical excursion of the hip, peak to peak")
+        .unwrap();
+    assert!(exc.bracket.1.0 < exc.bar.1.0);
+    // no range norm's colour over the cycle in the pelvis panels (which have no other norm of
+    // that colour: the by-speed list and rotation peaks are drawn, so check height only)
+    let m = fig
+        .panels
+        .iter()
+        .find(|p| p.panel == Panel::PelvisHeight)
+        .unwrap();
+    for y in m.left_top.1..=m.right_bottom.1 {
+        for x in m.left_top.0..=m.right_bottom.0 {
+            let c = img.get_pixel(x as u32, y as u32).0;
+            assert!(
+                c != rgb(SPEED_BAND_COLOR) && c != rgb(EXCURSION_BAND_COLOR),
+                "a range norm's fill at ({x}, {y}) over the cycle"
+            );
+        }
+    }
+    // the rotation panel: its range norm is not over the cycle either; the only speed fill
+    // inside it lies in the windows of the + and − peaks (0–10 %, 40–60 %, 90–100 %)
+    let m = fig
+        .panels
+        .iter()
+        .find(|p| p.panel == Panel::PelvisRotation)
+        .unwrap();
+    let (x15, _) = pixel(&fig, Panel::PelvisRotation, 15.0, 0.0);
+    let (x35, _) = pixel(&fig, Panel::PelvisRotation, 35.0, 0.0);
+    for y in m.left_top.1..=m.right_bottom.1 {
+        for x in x15..=x35 {
+            assert_ne!(
+                img.get_pixel(x, y as u32).0,
+                rgb(SPEED_BAND_COLOR),
+                "({x}, {y})"
+            );
+        }
+    }
+    // the legend's texts lie inside the image, above the panels, on rows of their own
+    let top = fig.panels.iter().map(|p| p.left_top.1).min().unwrap();
+    assert!(fig.legend.len() >= 7, "{:?}", fig.legend);
+    for (i, &(l, t, r, b)) in fig.legend.iter().enumerate() {
+        assert!(
+            0 <= l && l < r && r < w as i32 && 0 <= t && b < top,
+            "{:?}",
+            fig.legend
+        );
+        for &(l2, t2, r2, b2) in &fig.legend[i + 1..] {
+            assert!(r2 <= l || r <= l2 || b2 <= t || b <= t2, "{:?}", fig.legend);
+        }
+    }
 }
 
 /// The pixel of (cycle %, value) on `panel` of a written figure, from the panel's corners,
@@ -543,4 +695,56 @@ fn the_least_walk_of_a_gait_cycle_is_min_steps() {
         right(min_steps(false) - 1),
         Err(CycleError::NoSteadyCycle { .. })
     ));
+}
+
+/// The overlay of two walks' cycles (`measure/compare_modes.rs`): its legend lies in a row of
+/// its own, outside every panel's plotting area and inside the image, so no curve runs under
+/// it. Curves that fill their panels' upper left corners (where a legend inside the chart sat,
+/// over the hip's and the ankle's curves): none of their points is in a legend entry's box.
+#[test]
+fn the_overlay_legend_covers_no_curve() {
+    use klaw::plot::overlay::write_overlay;
+    // high at both ends and at the start, where the upper corners are
+    let first = synthetic(|_, _, p| 40.0 * (2.0 * PI * p / 100.0).cos());
+    let second = synthetic(|_, _, p| 38.0 * (2.0 * PI * p / 100.0).cos() - 3.0);
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("overlay.png");
+    let layout = write_overlay(
+        ("dynamic mode", &first),
+        ("kinematic mode", &second),
+        "synthetic",
+        &path,
+    )
+    .unwrap();
+    let img = image::open(&path).unwrap().to_rgb8();
+    let (w, h) = img.dimensions();
+    assert_eq!(layout.legend.len(), 2);
+    let apart = |a: (i32, i32, i32, i32), b: (i32, i32, i32, i32)| {
+        a.2 < b.0 || b.2 < a.0 || a.3 < b.1 || b.3 < a.1
+    };
+    for &entry in &layout.legend {
+        let (l, t, r, b) = entry;
+        assert!(
+            0 <= l && r < w as i32 && 0 <= t && b < h as i32,
+            "{entry:?}"
+        );
+        for &panel in &layout.panels {
+            assert!(apart(entry, panel), "legend {entry:?} over panel {panel:?}");
+        }
+        for (k, curve) in layout.curves.iter().enumerate() {
+            assert_eq!(curve.len(), 202, "panel {k}");
+            for &(x, y) in curve {
+                assert!(
+                    !(l <= x && x <= r && t <= y && y <= b),
+                    "panel {k}'s curve at ({x}, {y}) under the legend {entry:?}"
+                );
+            }
+        }
+    }
+    // the curves are inside their panels
+    for (panel, curve) in layout.panels.iter().zip(&layout.curves) {
+        for &(x, y) in curve {
+            assert!(panel.0 <= x && x <= panel.2 + 1 && panel.1 <= y && y <= panel.3 + 1);
+        }
+    }
 }

@@ -222,3 +222,107 @@ fn plot_sweep_of_a_real_sweep() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--column: no column `nope`"));
 }
+
+/// The axes' ticks are the swept values, whatever they are: off-round velocities (0.35, 0.55, …)
+/// and heights (1.53, 1.61, …), where plotters' round ticks (0.4, 0.6, …) would fall between the
+/// cells. A tick per value at its cells' centres, a dark mark below (left of) the plotting area
+/// there and none halfway to the next, labelled with the value itself; on a dense axis (47
+/// values) the labels that would overlap are left out, every value keeps its mark.
+#[test]
+fn ticks_are_the_swept_values_at_the_cells_centres() {
+    let dir = tempfile::tempdir().unwrap();
+    let (vs, hs) = (
+        [0.35, 0.55, 0.75, 0.95, 1.15, 1.35],
+        [1.53, 1.61, 1.69, 1.77],
+    );
+    let mut csv = String::from("point,velocity,height,converged,error,mean_iterations\n");
+    for (i, v) in vs.iter().enumerate() {
+        for (j, h) in hs.iter().enumerate() {
+            csv += &format!("{},{v},{h},true,,{}\n", i * 4 + j, 4 + i + j);
+        }
+    }
+    let input = dir.path().join("offround.csv");
+    fs::write(&input, csv).unwrap();
+    let out = dir.path().join("offround.png");
+    let map = heat_map(&input, "velocity", "height", "mean_iterations", &out).unwrap();
+    let img = image::open(&out).unwrap().to_rgb8();
+    let dark = |x: i32, y: i32| pixel(&img, x, y).iter().all(|&c| c < 80);
+    assert_eq!(
+        map.x_ticks.iter().map(|t| t.value).collect::<Vec<_>>(),
+        vs.to_vec()
+    );
+    assert_eq!(
+        map.y_ticks.iter().map(|t| t.value).collect::<Vec<_>>(),
+        hs.to_vec()
+    );
+    let labels = |ticks: &[klaw::plot::heat_map::Tick]| {
+        ticks
+            .iter()
+            .map(|t| t.label.clone().unwrap_or_default())
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(
+        labels(&map.x_ticks),
+        ["0.35", "0.55", "0.75", "0.95", "1.15", "1.35"]
+    );
+    assert_eq!(labels(&map.y_ticks), ["1.53", "1.61", "1.69", "1.77"]);
+    // the plotting area's bottom and left edges: the cells' extremes
+    let bottom = map.cells.iter().map(|c| c.pixels.3).max().unwrap();
+    let left = map.cells.iter().map(|c| c.pixels.0).min().unwrap();
+    for t in &map.x_ticks {
+        let c = map.cells.iter().find(|c| c.x == t.value).unwrap();
+        assert!(
+            (t.pixel - (c.pixels.0 + c.pixels.2) / 2).abs() <= 1,
+            "{t:?}"
+        );
+        assert!(dark(t.pixel, bottom + 3), "no tick mark at {t:?}");
+    }
+    for t in &map.y_ticks {
+        let c = map.cells.iter().find(|c| c.y == t.value).unwrap();
+        assert!(
+            (t.pixel - (c.pixels.1 + c.pixels.3) / 2).abs() <= 1,
+            "{t:?}"
+        );
+        assert!(dark(left - 3, t.pixel), "no tick mark at {t:?}");
+    }
+    // halfway between two values (a cell's edge) no mark
+    for w in map.x_ticks.windows(2) {
+        let mid = (w[0].pixel + w[1].pixel) / 2;
+        assert!(!dark(mid, bottom + 3), "a mark at column {mid}");
+    }
+    for w in map.y_ticks.windows(2) {
+        let mid = (w[0].pixel + w[1].pixel) / 2;
+        assert!(!dark(left - 3, mid), "a mark at row {mid}");
+    }
+
+    // a dense axis: 0.3, 0.35, …, 2.6 m/s × two heights
+    let mut csv = String::from("point,velocity,height,converged,error,mean_iterations\n");
+    let vs: Vec<f64> = (0..47).map(|k| (30 + 5 * k) as f64 / 100.0).collect();
+    for (i, v) in vs.iter().enumerate() {
+        for (j, h) in [1.6, 1.8].iter().enumerate() {
+            csv += &format!("{},{v},{h},true,,{}\n", i * 2 + j, 4 + j);
+        }
+    }
+    let input = dir.path().join("dense.csv");
+    fs::write(&input, csv).unwrap();
+    let out = dir.path().join("dense.png");
+    let map = heat_map(&input, "velocity", "height", "mean_iterations", &out).unwrap();
+    let (w, h) = HEAT_MAP_SIZE;
+    assert_eq!(map.x_ticks.len(), 47);
+    let labelled: Vec<_> = map.x_ticks.iter().filter(|t| t.label.is_some()).collect();
+    assert!(
+        labelled.len() >= 10 && labelled.len() < 47,
+        "{} labels",
+        labelled.len()
+    );
+    assert_eq!(map.x_ticks[0].label.as_deref(), Some("0.30"));
+    for t in &labelled {
+        assert_eq!(t.label.as_ref().unwrap().parse::<f64>().unwrap(), t.value);
+        let (l, top, r, b) = t.label_box.unwrap();
+        assert!(0 <= l && r < w as i32 && 0 <= top && b < h as i32, "{t:?}");
+    }
+    for p in labelled.windows(2) {
+        let (a, b) = (p[0].label_box.unwrap(), p[1].label_box.unwrap());
+        assert!(a.2 < b.0, "labels overlap: {:?} {:?}", p[0], p[1]);
+    }
+}

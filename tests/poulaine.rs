@@ -447,3 +447,62 @@ fn a_sparse_poulaines_model_stays_near_its_samples() {
         free.iter().fold(0.0f64, |a, &b| a.max(b))
     );
 }
+
+/// The fit figure shows both ankles: a symmetric walk's two sagittal loops coincide, so each
+/// ankle gets a sagittal panel of its own. Two mirror-image synthetic ankles (the same x, y loop;
+/// z ± 0.08 m): the right's model line in its blue fills its panel as the left's red fills the
+/// other, neither colour in the other's panel, and in the whole figure as many blue pixels as
+/// red (over each other, the right's loop hid under the left's: half as many).
+#[test]
+fn the_fit_figure_shows_both_ankles() {
+    use klaw::plot::poulaine::{AnklePoulaine, write};
+    const BLUE: [u8; 3] = [31, 119, 180]; // the right side's colour of every figure
+    const RED: [u8; 3] = [214, 39, 40];
+    let ankle = |z: f64| {
+        let at = |t: f64| {
+            let a = 2.0 * std::f64::consts::PI * t;
+            [
+                0.35 * a.cos(),
+                -0.8 + 0.07 * a.sin().max(-0.3),
+                z + 0.01 * a.sin(),
+            ]
+        };
+        AnklePoulaine {
+            samples: (0..60).map(|i| at(f64::from(i) / 60.0)).collect(),
+            model: (0..400).map(|i| at(f64::from(i) / 400.0)).collect(),
+            points: [0.25, 0.0, 0.75, 0.5].map(at),
+        }
+    };
+    let legs = [ankle(0.08), ankle(-0.08)];
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("fit.png");
+    let layout = write(&path, &legs, "mirror ankles").unwrap();
+    let img = image::open(&path).unwrap().to_rgb8();
+    let count = |(l, t, r, b): (i32, i32, i32, i32), color: [u8; 3]| {
+        let mut n = 0;
+        for y in t..=b {
+            for x in l..=r {
+                n += usize::from(img.get_pixel(x as u32, y as u32).0 == color);
+            }
+        }
+        n
+    };
+    let [right, left] = layout.sagittal;
+    let (rb, lr) = (count(right, BLUE), count(left, RED));
+    assert!(
+        rb > 500 && lr > 500,
+        "right panel {rb} blue px, left panel {lr} red px"
+    );
+    assert_eq!(count(right, RED), 0);
+    assert_eq!(count(left, BLUE), 0);
+    // the panels lie apart, and the frontal one shows both ankles
+    assert!(right.3 < left.1 && right.2 < layout.frontal.0);
+    assert!(count(layout.frontal, BLUE) > 100 && count(layout.frontal, RED) > 100);
+    let (w, h) = img.dimensions();
+    let whole = (0, 0, w as i32 - 1, h as i32 - 1);
+    let (blue, red) = (count(whole, BLUE) as f64, count(whole, RED) as f64);
+    assert!(
+        (blue / red - 1.0).abs() < 0.1,
+        "{blue} blue px, {red} red px"
+    );
+}

@@ -38,13 +38,15 @@ use crate::figure::skeleton::Skeleton;
 use crate::figure::{Landmarks, LegPoints};
 use crate::model::InputError;
 use crate::model::body::Body;
-use crate::plot::{self, Chart, DrawError, FONT, LEFT_COLOR, RIGHT_COLOR, msg};
+use crate::plot::{self, Chart, DrawError, LEFT_COLOR, RIGHT_COLOR, msg};
 use crate::scenario::Motion;
 
 pub use crate::plot::ViewMap;
 
 mod text;
 mod top;
+
+pub use text::{MAX_LINES, MIN_FONT_PX, TextBlock};
 
 /// A foot point this close to the ground (m) is drawn as a contact.
 pub(crate) const CONTACT_TOLERANCE_M: f64 = 1e-3;
@@ -65,6 +67,8 @@ pub(crate) const TRUNK_COLOR: RGBColor = RGBColor(95, 95, 95);
 const GROUND_COLOR: RGBColor = RGBColor(140, 140, 140);
 const CONTACT_RADIUS: i32 = 4;
 const MARGIN: u32 = 8;
+/// The most of a frame's height the text above the figure may take.
+const TEXT_SHARE: f64 = 0.45;
 
 /// The animation's frame rate and image size.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -156,7 +160,7 @@ pub fn check_path(path: &Path) -> Result<(), InputError> {
 }
 
 /// Where one frame's views were drawn.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct FrameViews {
     /// The side view (x across, y up).
     pub side: ViewMap,
@@ -164,6 +168,11 @@ pub struct FrameViews {
     pub front: ViewMap,
     /// The top view of a scenario (x across, −z up; [`crate::plot::floor`]).
     pub top: Option<ViewMap>,
+    /// The text drawn (empty without a font): the header across the image, then each view's
+    /// caption (side, front, top).
+    pub text: Vec<TextBlock>,
+    /// Each view's column (left, right) in pixels: side, front (and top).
+    pub columns: Vec<(i32, i32)>,
 }
 
 /// What was written.
@@ -397,22 +406,34 @@ fn draw_frame<DB: DrawingBackend>(
         Some(_) => top::panel_widths(w),
     };
     let f = &body.figure;
-    // the text, wrapped to each view's width, in the room above the figure
+    // the header across the image and each view's caption, above the figure
     let font_px = (h / 30).clamp(12, 16) as i32;
-    let style = (FONT, font_px).into_font().color(&BLACK);
-    let lines = if text {
-        text::frame_text(root, lm, title, &widths, &style)?
+    let (mut header, mut captions, header_text) = if text {
+        let (header_text, header, captions) =
+            text::frame_text(root, lm, title, w, &widths, font_px)?;
+        (Some(header), captions, header_text)
     } else {
-        vec![Vec::new(); widths.len()]
+        (None, Vec::new(), String::new())
     };
-    let line_px = font_px + 4;
-    let text_px = match lines.iter().map(Vec::len).max().unwrap_or(0) {
-        0 => 0.0,
-        n => f64::from(n as i32 * line_px + 8),
+    let ph = f64::from(h.saturating_sub(2 * MARGIN));
+    let text_px = |header: &Option<text::TextBlock>, captions: &[text::TextBlock]| {
+        let captions = captions.iter().map(text::TextBlock::height).max();
+        match header {
+            None => 0.0,
+            Some(b) => f64::from(MARGIN as i32 + 4 + b.height() + captions.unwrap_or(0) + 6),
+        }
     };
+    // a low frame keeps the figure: the captions go, then the header's second line
+    if text_px(&header, &captions) > TEXT_SHARE * ph {
+        captions.clear();
+    }
+    if text_px(&header, &captions) > TEXT_SHARE * ph {
+        header = Some(text::fit(root, &header_text, w, font_px, 1)?);
+    }
+    let header_px = header.as_ref().map_or(0, |b| b.height() + 2);
+    let text_px = text_px(&header, &captions);
     // the head's top; the vertical range leaves text_px above it
     let top = (lm.pelvis[1] + f.spine + f.neck + f.head).max(body.height) + 0.05;
-    let ph = f64::from(h.saturating_sub(2 * MARGIN));
     let headroom = if ph > text_px + 40.0 {
         text_px * (top + 0.12) / (ph - text_px)
     } else {
@@ -432,24 +453,48 @@ fn draw_frame<DB: DrawingBackend>(
         // a scenario's figure leaves the plane z = 0: the front view follows it
         front_u: if floor.is_some() { -lm.pelvis[2] } else { 0.0 },
         v_range: (-0.12, top + headroom),
-        style,
-        line_px,
         text_px: text_px as u32,
     };
     let (side_area, rest) = root.split_horizontally(widths[0]);
     let (front_area, top_area) = rest.split_horizontally(widths[1]);
+    let side = draw_view(&side_area, &scene, View::Side)?;
+    let front = draw_view(&front_area, &scene, View::Front)?;
+    let top = match floor {
+        Some(floor) => Some(draw_view(&top_area, &scene, View::Top(floor))?),
+        None => None,
+    };
+    // the text over the views
+    let y = MARGIN as i32 + 2;
+    let mut blocks = Vec::new();
+    if let Some(header) = header.as_mut() {
+        text::draw(root, header, (text::left_px(), y))?;
+        blocks.push(header.clone());
+    }
+    let areas = [&side_area, &front_area, &top_area];
+    for (block, area) in captions.iter_mut().zip(areas) {
+        text::draw(area, block, (text::left_px(), y + header_px))?;
+        blocks.push(block.clone());
+    }
+    let mut left = 0;
+    let columns = widths
+        .iter()
+        .map(|&px| {
+            let column = (left, left + px as i32 - 1);
+            left += px as i32;
+            column
+        })
+        .collect();
     Ok(FrameViews {
-        side: draw_view(&side_area, &scene, View::Side, &lines[0])?,
-        front: draw_view(&front_area, &scene, View::Front, &lines[1])?,
-        top: match floor {
-            Some(floor) => Some(draw_view(&top_area, &scene, View::Top(floor), &lines[2])?),
-            None => None,
-        },
+        side,
+        front,
+        top,
+        text: blocks,
+        columns,
     })
 }
 
 /// What the views of a frame show, in world coordinates (m).
-struct Scene<'a> {
+struct Scene {
     segments: Vec<(Limb, Vec<[f64; 3]>)>,
     contacts: Vec<[f64; 3]>,
     head_centre: [f64; 3],
@@ -464,9 +509,7 @@ struct Scene<'a> {
     front_u: f64,
     /// The vertical range of the side and front views.
     v_range: (f64, f64),
-    style: TextStyle<'a>,
-    line_px: i32,
-    /// The height of the views' text (px).
+    /// The height of the text above the views (px).
     text_px: u32,
 }
 
@@ -492,18 +535,17 @@ impl View<'_> {
     }
 }
 
-/// One view of `scene` on `area` and its lines of text: the ground (with moving ticks in the
-/// side view) or the floor from above, the segments, the head, the contacts.
+/// One view of `scene` on `area`: the ground (with moving ticks in the side view) or the
+/// floor from above, the segments, the head, the contacts.
 fn draw_view<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     scene: &Scene,
     view: View,
-    lines: &[String],
 ) -> std::result::Result<ViewMap, DrawError> {
-    let (text_area, chart_area) = match view {
+    let chart_area = match view {
         // the floor's extent is fixed: the text goes above it
-        View::Top(_) => area.split_vertically(scene.text_px),
-        _ => (area.clone(), area.clone()),
+        View::Top(_) => area.split_vertically(scene.text_px).1,
+        _ => area.clone(),
     };
     let (mut chart, map) = match view {
         View::Side | View::Front => {
@@ -523,16 +565,6 @@ fn draw_view<DB: DrawingBackend>(
         }
     };
     figure(&mut chart, scene, view, &map)?;
-    let style = &scene.style;
-    for (i, line) in lines.iter().enumerate() {
-        let at = (
-            MARGIN as i32 + 6,
-            MARGIN as i32 + 4 + scene.line_px * i as i32,
-        );
-        text_area
-            .draw(&Text::new(line.clone(), at, style.clone()))
-            .map_err(msg)?;
-    }
     Ok(map)
 }
 

@@ -6,6 +6,13 @@
 //! fixed ones) and each panel's norm checks noted above its curves. Each leg's curves start at its own heel strike (the phase of
 //! [`crate::analysis::cycle`]); right solid, left dashed.
 //!
+//! A range norm (peak to peak: a range of motion, an excursion) says nothing about where the
+//! curve lies, only how far it spans: it is drawn beside the panel, right of the plotting area,
+//! not over the cycle. Per curve a bracket from the curve's minimum to its maximum, and next to
+//! it per range norm a bar from min + low to min + high, with a dotted stem down to the minimum
+//! they are measured from: the curve's range is normal when the bracket's top lies level with
+//! the bar.
+//!
 //! PNG or SVG by the extension, 1500 × 1000 px, written whole or not at all; text needs the font
 //! of [`crate::plot`] and is left out without one.
 use std::path::Path;
@@ -30,7 +37,8 @@ use crate::plot::{
 pub const CYCLE_FIGURE_SIZE: (u32, u32) = (1500, 1000);
 /// Fill of a norm band (value ranges over their windows).
 pub const BAND_COLOR: RGBColor = RGBColor(196, 230, 188);
-/// Fill of a peak-to-peak norm, anchored at the curve's minimum.
+/// Fill of a fixed peak-to-peak norm's bar beside the panel, [min + low, min + high] of the
+/// curve (a speed-dependent one is filled with [`SPEED_BAND_COLOR`] and edged).
 pub const EXCURSION_BAND_COLOR: RGBColor = RGBColor(253, 218, 168);
 /// Fill of a speed-dependent norm at the walk's speed (drawn under the fixed bands).
 pub const SPEED_BAND_COLOR: RGBColor = RGBColor(204, 224, 247);
@@ -41,6 +49,16 @@ pub(crate) const PELVIS_COLOR: RGBColor = RGBColor(30, 30, 30);
 const LABEL_SIZE: i32 = 15;
 const NOTE_SIZE: i32 = 13;
 const LEGEND_ROW_H: u32 = 30;
+/// The range marks beside a panel: the gap before each curve's bracket, the gap from it to the
+/// bars, a bar's width and the gap after each bar (px).
+const RANGE_GAP: i32 = 10;
+const BRACKET_GAP: i32 = 5;
+const BAR_W: i32 = 10;
+const BAR_GAP: i32 = 4;
+/// The panels' right margin without range marks (px).
+const PANEL_MARGIN_RIGHT: i32 = 18;
+/// The stems and the baseline of the range marks.
+const RANGE_STEM_COLOR: RGBColor = RGBColor(90, 90, 90);
 
 /// A panel's title.
 fn title(panel: Panel) -> &'static str {
@@ -81,6 +99,24 @@ pub struct PanelPixels {
     pub y_range: (f64, f64),
 }
 
+/// Where a range norm (peak to peak) was drawn beside its panel, for one curve: the bracket of
+/// the curve's own range and the bar of the norm's, in the figure's pixels.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RangePixels {
+    /// The panel.
+    pub panel: Panel,
+    /// The norm's name.
+    pub name: String,
+    /// The curve's leg (`None`: the pelvis).
+    pub side: Option<Side>,
+    /// The bracket: its column and its rows (top, bottom) at the curve's maximum and minimum.
+    pub bracket: (i32, (i32, i32)),
+    /// The bar: its columns (left, right) and rows (top, bottom) at min + high and min + low.
+    pub bar: ((i32, i32), (i32, i32)),
+    /// The curve's extent (min, max) and the norm's range (low, high) drawn, in the panel's unit.
+    pub values: ((f64, f64), (f64, f64)),
+}
+
 /// What a written figure shows: the norm checks and where each panel was drawn.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CycleFigure {
@@ -88,6 +124,10 @@ pub struct CycleFigure {
     pub checks: Vec<NormCheck>,
     /// The panels, in [`Panel::ALL`]'s order.
     pub panels: Vec<PanelPixels>,
+    /// The range norms drawn beside the panels, per curve.
+    pub ranges: Vec<RangePixels>,
+    /// The legend's texts' boxes (left, top, right, bottom) in the figure's pixels.
+    pub legend: Vec<(i32, i32, i32, i32)>,
 }
 
 /// Draw the cycle figure to `path` (PNG or SVG by its extension), the speed-dependent norms
@@ -111,12 +151,13 @@ pub fn write_cycle_figure(
         checks: check(cycle, norms, speed),
         subtitle,
         text: plot::text_available(),
+        legend: Vec::new(),
     };
     render(&mut figure, path, format)
 }
 
 fn render(figure: &mut CycleDrawing, path: &Path, format: FigureFormat) -> Result<CycleFigure> {
-    let panels = plot::write_figure(
+    let (panels, ranges) = plot::write_figure(
         figure,
         path,
         format,
@@ -127,6 +168,8 @@ fn render(figure: &mut CycleDrawing, path: &Path, format: FigureFormat) -> Resul
     Ok(CycleFigure {
         checks: figure.checks.clone(),
         panels,
+        ranges,
+        legend: figure.legend.clone(),
     })
 }
 
@@ -137,9 +180,38 @@ struct CycleDrawing<'a> {
     checks: Vec<NormCheck>,
     subtitle: &'a str,
     text: bool,
+    /// The legend's text boxes, once drawn.
+    legend: Vec<(i32, i32, i32, i32)>,
 }
 
 impl CycleDrawing<'_> {
+    /// The legend's entries: the curves, the bands, the toe-off lines, the speed-dependent
+    /// bands (when the table has any) and the range marks (when any is drawn).
+    fn legend_entries(&self) -> Vec<(Sample, String)> {
+        let mut out: Vec<(Sample, String)> = [
+            (Sample::Right, "right leg, from right heel strike"),
+            (Sample::Left, "left leg, from left heel strike"),
+            (Sample::Pelvis, "pelvis (right cycle)"),
+            (Sample::Band, "normal range (gait-norms.md) over its window"),
+            (Sample::ToeOff, "toe-off"),
+        ]
+        .into_iter()
+        .map(|(s, t)| (s, t.to_string()))
+        .collect();
+        if let Some(line) = self.speed_legend() {
+            out.push((Sample::SpeedBand, line));
+        }
+        if self.norms.norms.iter().any(drawn_beside) {
+            out.push((
+                Sample::Range,
+                "right of a panel: the curve's range, min to max (bracket), and its normal range \
+                 above the curve's min (bar)"
+                    .into(),
+            ));
+        }
+        out
+    }
+
     /// The legend's line on the speed-dependent norms, if the table has any: the speed they are
     /// taken at and their sources (`cite`).
     fn speed_legend(&self) -> Option<String> {
@@ -163,13 +235,13 @@ impl CycleDrawing<'_> {
 }
 
 impl Draw for CycleDrawing<'_> {
-    type Output = Vec<PanelPixels>;
+    type Output = (Vec<PanelPixels>, Vec<RangePixels>);
 
     /// The title, the legend and the panels in a 2 × 3 grid.
     fn draw<DB: DrawingBackend>(
         &mut self,
         root: &DrawingArea<DB, Shift>,
-    ) -> std::result::Result<Vec<PanelPixels>, DrawError> {
+    ) -> std::result::Result<Self::Output, DrawError> {
         root.fill(&WHITE).map_err(msg)?;
         let (r, l) = self.cycle.cycles;
         let title = format!(
@@ -177,83 +249,167 @@ impl Draw for CycleDrawing<'_> {
             self.subtitle
         );
         let body = titled(root, &title, TITLE_SIZE, self.text)?;
-        let speed_line = self.speed_legend();
-        let rows = if speed_line.is_some() { 2 } else { 1 };
+        let entries = self.legend_entries();
+        let (w, _) = body.dim_in_pixel();
+        let layout = if self.text {
+            legend_layout(&body, &entries, w as i32)?
+        } else {
+            Vec::new()
+        };
+        let rows = layout.last().map_or(1, |l| l.0 + 1) as u32;
         let (legend, grid) = body.split_vertically(rows * LEGEND_ROW_H);
-        if self.text {
-            let (first, second) = legend.split_vertically(LEGEND_ROW_H);
-            draw_legend(&first)?;
-            if let Some(line) = speed_line {
-                draw_speed_legend(&second, &line)?;
-            }
-        }
-        let mut out = Vec::new();
+        self.legend = if self.text {
+            draw_legend(&legend, &entries, &layout)?
+        } else {
+            Vec::new()
+        };
+        let (mut panels, mut ranges) = (Vec::new(), Vec::new());
         for (area, panel) in grid.split_evenly((2, 3)).iter().zip(Panel::ALL) {
-            out.push(draw_panel(area, panel, self)?);
+            let (pixels, marks) = draw_panel(area, panel, self)?;
+            panels.push(pixels);
+            ranges.extend(marks);
         }
-        Ok(out)
+        Ok((panels, ranges))
     }
 }
 
-/// One row of samples of the legend: line styles and fills, each followed by its text.
-fn draw_legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>) -> Drawn {
-    let (_, h) = area.dim_in_pixel();
-    let y = h as i32 / 2;
+/// Whether a norm is a range drawn beside its panel: peak to peak, with windows (an empty list
+/// is only checked).
+fn drawn_beside(norm: &Norm) -> bool {
+    norm.measure == Measure::PeakToPeak && !norm.windows.is_empty()
+}
+
+/// A legend entry's sample, drawn left of its text.
+#[derive(Clone, Copy)]
+enum Sample {
+    Right,
+    Left,
+    Pelvis,
+    Band,
+    ToeOff,
+    SpeedBand,
+    /// A range mark: a bracket and a bar.
+    Range,
+}
+
+impl Sample {
+    /// The room the sample takes before its text (px).
+    fn width(self) -> i32 {
+        match self {
+            Sample::ToeOff => 24,
+            Sample::Range => 12 + BAR_W + 6,
+            _ => 36,
+        }
+    }
+
+    /// Draw the sample with its left end at `x`, centred on row `y`.
+    fn draw<DB: DrawingBackend>(self, area: &DrawingArea<DB, Shift>, (x, y): (i32, i32)) -> Drawn {
+        let line =
+            |color: RGBColor| PathElement::new(vec![(x, y), (x + 30, y)], color.stroke_width(2));
+        match self {
+            Sample::Right => area.draw(&line(RIGHT_COLOR)),
+            Sample::Pelvis => area.draw(&line(PELVIS_COLOR)),
+            Sample::Left => area.draw(&DashedPathElement::new(
+                vec![(x, y), (x + 30, y)],
+                7,
+                4,
+                LEFT_COLOR.stroke_width(2),
+            )),
+            Sample::Band => area.draw(&Rectangle::new(
+                [(x, y - 8), (x + 30, y + 8)],
+                BAND_COLOR.filled(),
+            )),
+            Sample::SpeedBand => {
+                let corners = [(x, y - 8), (x + 30, y + 8)];
+                area.draw(&Rectangle::new(corners, SPEED_BAND_COLOR.filled()))
+                    .and_then(|_| {
+                        area.draw(&Rectangle::new(corners, SPEED_EDGE_COLOR.stroke_width(2)))
+                    })
+            }
+            Sample::ToeOff => area.draw(&DashedPathElement::new(
+                vec![(x + 15, y - 10), (x + 15, y + 10)],
+                3,
+                3,
+                RGBColor(90, 90, 90).stroke_width(1),
+            )),
+            Sample::Range => area
+                .draw(&PathElement::new(
+                    vec![(x, y - 9), (x + 5, y - 9), (x + 5, y + 9), (x, y + 9)],
+                    PELVIS_COLOR.stroke_width(2),
+                ))
+                .and_then(|_| {
+                    area.draw(&Rectangle::new(
+                        [(x + 12, y - 9), (x + 11 + BAR_W, y + 4)],
+                        EXCURSION_BAND_COLOR.filled(),
+                    ))
+                })
+                .and_then(|_| {
+                    area.draw(&PathElement::new(
+                        vec![(x + 5, y + 9), (x + 12 + BAR_W / 2, y + 9)],
+                        RANGE_STEM_COLOR.stroke_width(1),
+                    ))
+                })
+                .and_then(|_| {
+                    area.draw(&DashedPathElement::new(
+                        vec![(x + 12 + BAR_W / 2, y + 4), (x + 12 + BAR_W / 2, y + 9)],
+                        2,
+                        2,
+                        RANGE_STEM_COLOR.stroke_width(1),
+                    ))
+                }),
+        }
+        .map_err(msg)
+    }
+}
+
+/// The legend's left edge, the gap after an entry and the room kept at the right edge (px).
+const LEGEND_LEFT: i32 = 20;
+const LEGEND_GAP: i32 = 22;
+const LEGEND_RIGHT: i32 = 10;
+
+/// The legend's entries laid out in rows across `width` px: each entry's row and left end, and
+/// its text's width.
+fn legend_layout<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    entries: &[(Sample, String)],
+    width: i32,
+) -> std::result::Result<Vec<(usize, i32, i32)>, DrawError> {
     let style = legend_style();
-    let mut x = 20;
-    let label = |x: &mut i32, s: &str| -> Drawn {
-        area.draw(&Text::new(s.to_string(), (*x, y), style.clone()))
+    let (mut row, mut x) = (0, LEGEND_LEFT);
+    let mut out = Vec::with_capacity(entries.len());
+    for (sample, text) in entries {
+        let (tw, _) = area.estimate_text_size(text, &style).map_err(msg)?;
+        let need = sample.width() + tw as i32;
+        if x > LEGEND_LEFT && x + need > width - LEGEND_RIGHT {
+            row += 1;
+            x = LEGEND_LEFT;
+        }
+        out.push((row, x, tw as i32));
+        x += need + LEGEND_GAP;
+    }
+    Ok(out)
+}
+
+/// The legend: every entry's sample and text where `layout` puts it; the texts' boxes (left,
+/// top, right, bottom) in the figure's pixels.
+fn draw_legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    entries: &[(Sample, String)],
+    layout: &[(usize, i32, i32)],
+) -> std::result::Result<Vec<(i32, i32, i32, i32)>, DrawError> {
+    let style = legend_style();
+    let (bx, by) = area.get_base_pixel();
+    let mut boxes = Vec::with_capacity(entries.len());
+    for ((sample, text), &(row, x, tw)) in entries.iter().zip(layout) {
+        let y = row as i32 * LEGEND_ROW_H as i32 + LEGEND_ROW_H as i32 / 2;
+        sample.draw(area, (x, y))?;
+        let tx = x + sample.width();
+        area.draw(&Text::new(text.clone(), (tx, y), style.clone()))
             .map_err(msg)?;
-        let (tw, _) = area.estimate_text_size(s, &style).map_err(msg)?;
-        *x += tw as i32 + 22;
-        Ok(())
-    };
-    area.draw(&PathElement::new(
-        vec![(x, y), (x + 30, y)],
-        RIGHT_COLOR.stroke_width(2),
-    ))
-    .map_err(msg)?;
-    x += 36;
-    label(&mut x, "right leg, from right heel strike")?;
-    area.draw(&DashedPathElement::new(
-        vec![(x, y), (x + 30, y)],
-        7,
-        4,
-        LEFT_COLOR.stroke_width(2),
-    ))
-    .map_err(msg)?;
-    x += 36;
-    label(&mut x, "left leg, from left heel strike")?;
-    area.draw(&PathElement::new(
-        vec![(x, y), (x + 30, y)],
-        PELVIS_COLOR.stroke_width(2),
-    ))
-    .map_err(msg)?;
-    x += 36;
-    label(&mut x, "pelvis (right cycle)")?;
-    area.draw(&Rectangle::new(
-        [(x, y - 8), (x + 30, y + 8)],
-        BAND_COLOR.filled(),
-    ))
-    .map_err(msg)?;
-    x += 36;
-    label(&mut x, "normal range (gait-norms.md) over its window")?;
-    area.draw(&Rectangle::new(
-        [(x, y - 8), (x + 30, y + 8)],
-        EXCURSION_BAND_COLOR.filled(),
-    ))
-    .map_err(msg)?;
-    x += 36;
-    label(&mut x, "excursion norm above the curve's minimum")?;
-    area.draw(&DashedPathElement::new(
-        vec![(x + 15, y - 10), (x + 15, y + 10)],
-        3,
-        3,
-        RGBColor(90, 90, 90).stroke_width(1),
-    ))
-    .map_err(msg)?;
-    x += 24;
-    label(&mut x, "toe-off")
+        let half = LABEL_SIZE / 2 + 2;
+        boxes.push((bx + tx, by + y - half, bx + tx + tw, by + y + half));
+    }
+    Ok(boxes)
 }
 
 /// The legend's text style: left-aligned, vertically centred.
@@ -262,19 +418,6 @@ fn legend_style() -> TextStyle<'static> {
         plotters::style::text_anchor::HPos::Left,
         plotters::style::text_anchor::VPos::Center,
     ))
-}
-
-/// The legend's second row: a speed band's sample and `line`.
-fn draw_speed_legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, line: &str) -> Drawn {
-    let (_, h) = area.dim_in_pixel();
-    let (x, y) = (20, h as i32 / 2);
-    let sample = [(x, y - 8), (x + 30, y + 8)];
-    area.draw(&Rectangle::new(sample, SPEED_BAND_COLOR.filled()))
-        .map_err(msg)?;
-    area.draw(&Rectangle::new(sample, SPEED_EDGE_COLOR.stroke_width(2)))
-        .map_err(msg)?;
-    area.draw(&Text::new(line.to_string(), (x + 36, y), legend_style()))
-        .map_err(msg)
 }
 
 /// A norm's band over one window, in the panel's unit: cycle % [x0, x1], values [y0, y1].
@@ -289,38 +432,87 @@ struct Band {
     speed: bool,
 }
 
-/// The bands of a norm whose range is [low, high] on a panel.
-fn bands(norm: &Norm, (low, high): (f64, f64), curves: &[&PanelCurve]) -> Vec<Band> {
-    let base = match norm.measure {
-        Measure::PeakToPeak => {
-            // anchored at the lowest curve of the panel
-            let lo = curves
-                .iter()
-                .filter_map(|c| extent(c.values.iter().copied()))
-                .map(|r| r.0)
-                .fold(f64::INFINITY, f64::min);
-            if !lo.is_finite() {
-                return Vec::new();
-            }
-            lo
-        }
-        _ => 0.0,
-    };
+/// The bands of a norm of values (not a range) whose range is [low, high] on a panel.
+fn bands(norm: &Norm, (low, high): (f64, f64)) -> Vec<Band> {
+    if norm.measure == Measure::PeakToPeak {
+        return Vec::new();
+    }
     let speed = norm.range.by_speed().is_some();
-    let fill = match (speed, norm.measure) {
-        (true, _) => SPEED_BAND_COLOR,
-        (false, Measure::PeakToPeak) => EXCURSION_BAND_COLOR,
-        (false, _) => BAND_COLOR,
-    };
+    let fill = if speed { SPEED_BAND_COLOR } else { BAND_COLOR };
     norm.windows
         .iter()
         .map(|w| Band {
             x0: w[0],
             x1: w[1],
-            y0: base + low,
-            y1: base + high,
+            y0: low,
+            y1: high,
             fill,
             speed,
+        })
+        .collect()
+}
+
+/// One range norm's bar beside a curve: [low, high] above the curve's minimum.
+struct RangeBar {
+    name: String,
+    low: f64,
+    high: f64,
+    speed: bool,
+}
+
+/// A curve's range marks beside the panel: its extent and the bars of the range norms.
+struct RangeGroup {
+    side: Option<Side>,
+    extent: (f64, f64),
+    bars: Vec<RangeBar>,
+}
+
+impl RangeGroup {
+    /// The marks' width (px): the gap, the bracket, the bars.
+    fn width(&self) -> i32 {
+        RANGE_GAP + 2 + BRACKET_GAP + self.bars.len() as i32 * (BAR_W + BAR_GAP)
+    }
+
+    /// The values the panel's axis must show: the curve's and the bars' ends.
+    fn values(&self) -> impl Iterator<Item = f64> + '_ {
+        let min = self.extent.0;
+        [self.extent.0, self.extent.1].into_iter().chain(
+            self.bars
+                .iter()
+                .flat_map(move |b| [min + b.low, min + b.high]),
+        )
+    }
+}
+
+/// Per curve of the panel, the range norms drawn beside it (`ranges`: each norm's [low, high]
+/// here, `None` outside its speed span).
+fn range_groups(
+    norms: &[&Norm],
+    ranges: &[Option<(f64, f64)>],
+    curves: &[&PanelCurve],
+) -> Vec<RangeGroup> {
+    curves
+        .iter()
+        .filter_map(|c| {
+            let extent = extent(c.values.iter().copied())?;
+            let bars: Vec<RangeBar> = norms
+                .iter()
+                .zip(ranges)
+                .filter(|(n, _)| drawn_beside(n))
+                .filter_map(|(n, r)| {
+                    r.map(|(low, high)| RangeBar {
+                        name: n.name.clone(),
+                        low,
+                        high,
+                        speed: n.range.by_speed().is_some(),
+                    })
+                })
+                .collect();
+            (!bars.is_empty()).then_some(RangeGroup {
+                side: c.side,
+                extent,
+                bars,
+            })
         })
         .collect()
 }
@@ -337,11 +529,17 @@ struct PanelRange {
 }
 
 impl PanelRange {
-    fn new(curves: &[&PanelCurve], bands: &[Band], note_lines: usize) -> PanelRange {
+    fn new(
+        curves: &[&PanelCurve],
+        bands: &[Band],
+        groups: &[RangeGroup],
+        note_lines: usize,
+    ) -> PanelRange {
         let ys = curves
             .iter()
             .flat_map(|c| c.values.iter().copied())
-            .chain(bands.iter().flat_map(|b| [b.y0, b.y1]));
+            .chain(bands.iter().flat_map(|b| [b.y0, b.y1]))
+            .chain(groups.iter().flat_map(RangeGroup::values));
         let (lo, hi) = extent(ys).unwrap_or((0.0, 1.0));
         let span = (hi - lo).max(1.0);
         PanelRange {
@@ -354,12 +552,13 @@ impl PanelRange {
     }
 }
 
-/// One panel: its norms' bands, the toe-off lines, the zero line, the curves and the notes.
+/// One panel: its norms' bands, the toe-off lines, the zero line, the curves, the range marks
+/// beside it and the notes.
 fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     panel: Panel,
     figure: &CycleDrawing,
-) -> std::result::Result<PanelPixels, DrawError> {
+) -> std::result::Result<(PanelPixels, Vec<RangePixels>), DrawError> {
     let text = figure.text;
     let area = titled(area, title(panel), 19, text)?;
     let curves: Vec<&PanelCurve> = figure.cycle.panel_curves(panel).collect();
@@ -376,9 +575,10 @@ fn draw_panel<DB: DrawingBackend>(
     let all_bands: Vec<Band> = panel_norms
         .iter()
         .zip(&ranges)
-        .filter_map(|(n, r)| r.map(|r| bands(n, r, &curves)))
+        .filter_map(|(n, r)| r.map(|r| bands(n, r)))
         .flatten()
         .collect();
+    let groups = range_groups(&panel_norms, &ranges, &curves);
     let notes: Vec<String> = panel_norms
         .iter()
         .zip(&ranges)
@@ -390,19 +590,121 @@ fn draw_panel<DB: DrawingBackend>(
             note(n, r, checks)
         })
         .collect();
-    let range = PanelRange::new(&curves, &all_bands, if text { notes.len() } else { 0 });
-    let mut chart = panel_chart(&area, panel, range, text)?;
+    let note_lines = if text { notes.len() } else { 0 };
+    let range = PanelRange::new(&curves, &all_bands, &groups, note_lines);
+    let beside: i32 = groups.iter().map(RangeGroup::width).sum();
+    let mut chart = panel_chart(&area, panel, range, text, PANEL_MARGIN_RIGHT + beside)?;
     draw_marks(&mut chart, panel, figure.cycle, &all_bands, range)?;
     draw_curves(&mut chart, &curves)?;
     if text {
         draw_notes(&mut chart, &notes, range.y_hi)?;
     }
-    Ok(PanelPixels {
+    let marks = draw_ranges(&area, &chart, panel, &groups)?;
+    let pixels = PanelPixels {
         panel,
         left_top: chart.backend_coord(&(0.0, range.y_hi)),
         right_bottom: chart.backend_coord(&(100.0, range.y_lo)),
         y_range: (range.y_lo, range.y_hi),
-    })
+    };
+    Ok((pixels, marks))
+}
+
+/// The range marks right of the plotting area, per curve: a bracket from the curve's minimum to
+/// its maximum in the curve's colour, then per range norm a bar from min + low to min + high
+/// (light blue, edged, for a norm by speed), a dotted stem from each bar down to the minimum, a
+/// line along the minimum from the bracket to the stems and a dotted one along the maximum
+/// across the bars.
+fn draw_ranges<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    chart: &Chart<'_, DB>,
+    panel: Panel,
+    groups: &[RangeGroup],
+) -> std::result::Result<Vec<RangePixels>, DrawError> {
+    // the chart's rows are the figure's; the area draws in its own pixels
+    let (bx, by) = area.get_base_pixel();
+    let row = |v: f64| chart.backend_coord(&(100.0, v)).1;
+    let draw =
+        |e: &dyn Fn((i32, i32)) -> (i32, i32), points: Vec<(i32, i32)>, style: ShapeStyle| {
+            let points: Vec<(i32, i32)> = points.into_iter().map(e).collect();
+            area.draw(&PathElement::new(points, style)).map_err(msg)
+        };
+    let local = |(x, y): (i32, i32)| (x - bx, y - by);
+    let mut x = chart.backend_coord(&(100.0, 0.0)).0;
+    let mut out = Vec::new();
+    for g in groups {
+        let color = match g.side {
+            Some(Side::Right) => RIGHT_COLOR,
+            Some(Side::Left) => LEFT_COLOR,
+            None => PELVIS_COLOR,
+        };
+        x += RANGE_GAP;
+        let bracket_x = x;
+        let (top, bottom) = (row(g.extent.1), row(g.extent.0));
+        let bracket = vec![
+            (bracket_x - 4, top),
+            (bracket_x, top),
+            (bracket_x, bottom),
+            (bracket_x - 4, bottom),
+        ];
+        draw(&local, bracket, color.stroke_width(2))?;
+        x += 2 + BRACKET_GAP;
+        let min = g.extent.0;
+        for bar in &g.bars {
+            let (l, r) = (x, x + BAR_W - 1);
+            let (t, b) = (row(min + bar.high), row(min + bar.low));
+            let fill = if bar.speed {
+                SPEED_BAND_COLOR
+            } else {
+                EXCURSION_BAND_COLOR
+            };
+            area.draw(&Rectangle::new(
+                [local((l, t)), local((r, b))],
+                fill.filled(),
+            ))
+            .map_err(msg)?;
+            if bar.speed {
+                area.draw(&Rectangle::new(
+                    [local((l, t)), local((r, b))],
+                    SPEED_EDGE_COLOR.stroke_width(1),
+                ))
+                .map_err(msg)?;
+            }
+            let stem = (l + r) / 2;
+            if b < bottom {
+                area.draw(&DashedPathElement::new(
+                    vec![local((stem, b)), local((stem, bottom))],
+                    2,
+                    2,
+                    RANGE_STEM_COLOR.stroke_width(1),
+                ))
+                .map_err(msg)?;
+            }
+            out.push(RangePixels {
+                panel,
+                name: bar.name.clone(),
+                side: g.side,
+                bracket: (bracket_x, (top, bottom)),
+                bar: ((l, r), (t, b)),
+                values: (g.extent, (bar.low, bar.high)),
+            });
+            x = r + 1 + BAR_GAP;
+        }
+        let end = x - BAR_GAP - 1;
+        draw(
+            &local,
+            vec![(bracket_x, bottom), (end, bottom)],
+            RANGE_STEM_COLOR.stroke_width(1),
+        )?;
+        // the curve's maximum carried across the bars, to read against them
+        area.draw(&DashedPathElement::new(
+            vec![local((bracket_x + 2, top)), local((end, top))],
+            2,
+            2,
+            RANGE_STEM_COLOR.stroke_width(1),
+        ))
+        .map_err(msg)?;
+    }
+    Ok(out)
 }
 
 /// A panel's chart, 0–100 % across, and its mesh.
@@ -411,9 +713,10 @@ fn panel_chart<'a, DB: DrawingBackend>(
     panel: Panel,
     range: PanelRange,
     text: bool,
+    margin_right: i32,
 ) -> std::result::Result<Chart<'a, DB>, DrawError> {
     let mut b = ChartBuilder::on(area);
-    b.margin(10).margin_right(18);
+    b.margin(10).margin_right(margin_right);
     if text {
         b.x_label_area_size(42).y_label_area_size(58);
     }

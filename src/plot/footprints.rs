@@ -1,9 +1,17 @@
 //! A scenario's footprints seen from above (`klaw scenario --footprints`, issue 15): every
 //! footprint as a foot outline ([`crate::plot::floor`]) in its side's colour, numbered by its
 //! index; the path of the pelvis centre over the floor; the gaze (the head's heading) as an
-//! arrow from the pelvis path every 0.5 s (`GAZE_INTERVAL_S`). One scale on both axes, in
-//! metres: x to the right and −z up (the top view of [`crate::plot::floor`]), the vertical axis
-//! labelled in z, which grows downwards.
+//! arrow from the pelvis path at the start, after every metre of the path (`GAZE_SPACING_M`,
+//! about a stride) and wherever it has turned by 60° (`GAZE_TURN_DEG`) since the last arrow, so
+//! that standing, stepping aside and turning on the spot pile no arrows up. One scale on both
+//! axes, in metres: x to the right and −z up (the top view of [`crate::plot::floor`]), the
+//! vertical axis labelled in z, which grows downwards.
+//!
+//! The numbers: a foot put down again where it stood (a pivot in a turn) gets one label with
+//! all its indices ("12, 15, 17"). Each label goes beside its foot on the outward side (the
+//! left foot's left, the right foot's right), or, where that place is taken, at the nearest
+//! place around the foot that overlaps no other label, footprint or gaze arrow, with a thin
+//! leader line to the foot when it had to move away.
 //!
 //! PNG or SVG by the file's extension, 1400 px wide and as high as the floor's extent needs
 //! (500–1400 px), written whole or not at all.
@@ -24,8 +32,12 @@ use crate::plot::{
 };
 use crate::scenario::{Footprint, Motion};
 
-/// The gaze is drawn this often (s of scenario time).
-pub const GAZE_INTERVAL_S: f64 = 0.5;
+/// A gaze arrow after this much of the pelvis's way from the last one (m; about a stride).
+pub const GAZE_SPACING_M: f64 = 1.0;
+/// A gaze arrow wherever the gaze has turned this far from the last one (°).
+pub const GAZE_TURN_DEG: f64 = 60.0;
+/// Footprints of one foot this close (m) are one place: one label.
+pub const SAME_PLACE_M: f64 = 0.03;
 /// The figure's width (px).
 pub const WIDTH_PX: u32 = 1400;
 /// The figure's height range (px): as much as the floor's extent needs at the width's scale.
@@ -35,15 +47,52 @@ const GAZE_ARROW_M: f64 = 0.3;
 /// Room around the footprints and the path (m).
 const PAD_M: f64 = 0.25;
 const PATH_COLOR: RGBColor = RGBColor(110, 110, 110);
-/// Labels closer than this (px) to one already placed move down a line.
-const LABEL_CLEARANCE_PX: i32 = 15;
+/// Room kept around a label (px).
+const LABEL_PAD_PX: i32 = 2;
+/// The label's search: the gap from the foot's edge to the first place tried, the step outwards
+/// and the farthest (px).
+const LABEL_GAP_PX: f64 = 6.0;
+const LABEL_STEP_PX: f64 = 7.0;
+const LABEL_REACH_PX: f64 = 160.0;
+/// … or this far (m), whichever is farther.
+const LABEL_REACH_M: f64 = 0.4;
+/// A label farther than this from its first place gets a leader line (px).
+const LEADER_PX: f64 = 12.0;
+const LABEL_FONT: i32 = 14;
+/// The legend's row (px).
+const LEGEND_ROW_PX: u32 = 30;
+
+/// A step number's label: the footprints it names, its text and where it was drawn.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StepLabel {
+    /// The indices of the footprints at this place (one, or a foot put down again in place).
+    pub indices: Vec<usize>,
+    /// The text: the indices, comma-separated.
+    pub text: String,
+    /// The label's box (left, top, right, bottom) in the figure's pixels.
+    pub bbox: (i32, i32, i32, i32),
+    /// Whether a leader line joins it to its foot (it moved away from its first place).
+    pub leader: bool,
+}
+
+/// What the footprint figure drew: the chart's map from top-view coordinates to pixels, the
+/// step numbers, the gaze arrows (top-view point and heading, rad).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FootprintLayout {
+    /// The chart's map from top-view coordinates (m) to pixels.
+    pub map: ViewMap,
+    /// The step numbers' labels (empty without text).
+    pub labels: Vec<StepLabel>,
+    /// The gaze arrows: their top-view start on the pelvis path and heading (rad, + left).
+    pub gaze: Vec<((f64, f64), f64)>,
+}
 
 /// Write the footprint figure of `motion` (the scenario run by `body`) to `path`, PNG or SVG by
 /// its extension (see the module doc); `title` names the scenario. Returns the chart's map from
-/// top-view coordinates to pixels. Errors: an extension other than .png or .svg
+/// top-view coordinates to pixels, the labels and the gaze arrows drawn. Errors: an extension other than .png or .svg
 /// ([`crate::model::InputError::Malformed`]), a frame the skeleton cannot be built from
 /// ([`crate::Error::Figure`]), drawing ([`crate::Error::Draw`]) or writing ([`crate::Error::Io`]).
-pub fn write(path: &Path, motion: &Motion, body: &Body, title: &str) -> Result<ViewMap> {
+pub fn write(path: &Path, motion: &Motion, body: &Body, title: &str) -> Result<FootprintLayout> {
     let format = plot::figure_format(path)?;
     write_as(path, format, motion, body, title, plot::text_available())
 }
@@ -56,7 +105,7 @@ pub(crate) fn write_as(
     body: &Body,
     title: &str,
     text: bool,
-) -> Result<ViewMap> {
+) -> Result<FootprintLayout> {
     let gaze = gaze_samples(&motion.frames, body)?;
     let extent = floor::extent(&motion.footprints, &motion.frames, body, PAD_M);
     let size = figure_size(extent);
@@ -78,27 +127,46 @@ pub(crate) fn write_as(
 /// The figure's size: `WIDTH_PX` wide and the height that shows `extent` at the width's scale,
 /// within `HEIGHT_RANGE_PX`.
 fn figure_size(((u_lo, u_hi), (v_lo, v_hi)): ((f64, f64), (f64, f64))) -> (u32, u32) {
-    // the plotting area is the image less the margins, label areas and the title (about 180 px
-    // high and 90 px wide)
+    // the plotting area is the image less the margins, label areas, the title and the legend's
+    // row (about 210 px high and 90 px wide)
     let pw = f64::from(WIDTH_PX - 90);
     let ph = pw * (v_hi - v_lo) / (u_hi - u_lo).max(1e-9);
-    let h = (ph + 180.0).clamp(f64::from(HEIGHT_RANGE_PX.0), f64::from(HEIGHT_RANGE_PX.1));
+    let h = (ph + 210.0).clamp(f64::from(HEIGHT_RANGE_PX.0), f64::from(HEIGHT_RANGE_PX.1));
     (WIDTH_PX, h as u32)
 }
 
-/// The pelvis's floor point and the gaze's heading at the first frame at or after every multiple
-/// of [`GAZE_INTERVAL_S`].
+/// The pelvis's floor point and the gaze's heading at every frame.
 fn gaze_samples(frames: &[Landmarks], body: &Body) -> Result<Vec<((f64, f64), f64)>> {
-    let mut out = Vec::new();
-    let mut next = f64::NEG_INFINITY;
-    for lm in frames {
-        if lm.time + 1e-9 >= next {
+    let all = frames
+        .iter()
+        .map(|lm| {
             let sk = Skeleton::new(lm, body)?;
-            out.push((floor::pelvis_point(lm), floor::gaze_heading(&sk)));
-            next = (lm.time / GAZE_INTERVAL_S + 1e-9).floor() * GAZE_INTERVAL_S + GAZE_INTERVAL_S;
+            Ok((floor::pelvis_point(lm), floor::gaze_heading(&sk)))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    Ok(gaze_arrows(&all))
+}
+
+/// The samples (top-view point, heading) that get an arrow: the first, then each that lies
+/// [`GAZE_SPACING_M`] from the last arrow's point or has turned [`GAZE_TURN_DEG`] from its
+/// heading.
+pub(crate) fn gaze_arrows(samples: &[((f64, f64), f64)]) -> Vec<((f64, f64), f64)> {
+    let mut out: Vec<((f64, f64), f64)> = Vec::new();
+    for &(p, d) in samples {
+        let due = match out.last() {
+            None => true,
+            Some(&(q, e)) => {
+                let turned = (d - e).sin().atan2((d - e).cos()).abs().to_degrees();
+                // (to rounding: a turn of exactly 60° counts)
+                (p.0 - q.0).hypot(p.1 - q.1) >= GAZE_SPACING_M - 1e-9
+                    || turned >= GAZE_TURN_DEG - 1e-9
+            }
+        };
+        if due && p.0.is_finite() && p.1.is_finite() && d.is_finite() {
+            out.push((p, d));
         }
     }
-    Ok(out)
+    out
 }
 
 struct FootprintFigure<'a> {
@@ -111,29 +179,32 @@ struct FootprintFigure<'a> {
 }
 
 impl Draw for FootprintFigure<'_> {
-    type Output = ViewMap;
+    type Output = FootprintLayout;
     fn draw<DB: DrawingBackend>(
         &mut self,
         root: &DrawingArea<DB, Shift>,
-    ) -> std::result::Result<ViewMap, DrawError> {
+    ) -> std::result::Result<FootprintLayout, DrawError> {
         root.fill(&WHITE).map_err(msg)?;
         let area = titled(root, &self.title, TITLE_SIZE, self.text)?;
+        // the legend in a row of its own, over no footprint or label
+        let area = if self.text {
+            let (row, rest) = area.split_vertically(LEGEND_ROW_PX);
+            legend(&row)?;
+            rest
+        } else {
+            area
+        };
         let (mut chart, fit) = floor_chart(&area, self.text, self.extent)?;
         let map = ViewMap::of_chart(&chart, &fit);
         let path: Vec<(f64, f64)> = self.motion.frames.iter().map(floor::pelvis_point).collect();
-        let series = chart
+        chart
             .draw_series(std::iter::once(PathElement::new(
                 path,
                 PATH_COLOR.stroke_width(2),
             )))
             .map_err(msg)?;
-        if self.text {
-            series.label("pelvis path").legend(|(x, y)| {
-                PathElement::new([(x, y), (x + 20, y)], PATH_COLOR.stroke_width(2))
-            });
-        }
         floor::draw_footprints(&mut chart, &self.motion.footprints, self.body, 1.0)?;
-        let series = chart
+        chart
             .draw_series(self.gaze.iter().map(|&(at, d)| {
                 PathElement::new(
                     floor::arrow(at, d, GAZE_ARROW_M),
@@ -141,18 +212,19 @@ impl Draw for FootprintFigure<'_> {
                 )
             }))
             .map_err(msg)?;
+        let mut labels_drawn = Vec::new();
         if self.text {
-            series
-                .label(format!("gaze every {GAZE_INTERVAL_S} s"))
-                .legend(|(x, y)| {
-                    PathElement::new([(x, y), (x + 20, y)], floor::GAZE_COLOR.stroke_width(2))
-                });
-            legend(&mut chart)?;
-            labels(root, &map, &self.motion.footprints, self.body)?;
+            let (xr, yr) = chart.plotting_area().get_pixel_range();
+            let within = (xr.start, yr.start, xr.end - 1, yr.end - 1);
+            labels_drawn = labels(root, &map, within, self.motion, self.body, &self.gaze)?;
         } else {
             frame_border(&chart)?;
         }
-        Ok(map)
+        Ok(FootprintLayout {
+            map,
+            labels: labels_drawn,
+            gaze: self.gaze.clone(),
+        })
     }
 }
 
@@ -186,61 +258,248 @@ fn floor_chart<'a, DB: DrawingBackend>(
     Ok((chart, fit))
 }
 
-/// The feet's entries in the legend, and the legend.
-fn legend<'a, DB: DrawingBackend + 'a>(
-    chart: &mut Chart<'a, DB>,
-) -> std::result::Result<(), DrawError> {
-    for (side, name) in [(Side::Left, "left foot"), (Side::Right, "right foot")] {
-        let color = side_color(side);
-        chart
-            .draw_series(std::iter::once(PathElement::new(
-                Vec::<(f64, f64)>::new(),
-                color.stroke_width(2),
-            )))
-            .map_err(msg)?
-            .label(name)
-            .legend(move |(x, y)| {
-                Rectangle::new([(x, y - 5), (x + 20, y + 5)], color.mix(0.5).filled())
-            });
+/// The legend's row, centred: the pelvis path, the gaze, the feet.
+fn legend<DB: DrawingBackend>(row: &DrawingArea<DB, Shift>) -> std::result::Result<(), DrawError> {
+    let style = TextStyle::from((FONT, 15)).pos(Pos::new(HPos::Left, VPos::Center));
+    let gaze =
+        format!("gaze: at the start, every {GAZE_SPACING_M} m, at every {GAZE_TURN_DEG}° of turn");
+    let entries = [
+        ("pelvis path", 0),
+        (gaze.as_str(), 1),
+        ("left foot", 2),
+        ("right foot", 3),
+        (
+            "step number (a foot put down again in place: \"12, 15, 17\")",
+            4,
+        ),
+    ];
+    let (w, h) = row.dim_in_pixel();
+    let y = h as i32 / 2;
+    let widths = entries
+        .iter()
+        .map(|(t, _)| {
+            let (tw, _) = row.estimate_text_size(t, &style).map_err(msg)?;
+            Ok(30 + tw as i32)
+        })
+        .collect::<std::result::Result<Vec<i32>, DrawError>>()?;
+    let gap = 28;
+    let total: i32 = widths.iter().sum::<i32>() + gap * (widths.len() as i32 - 1);
+    let mut x = ((w as i32 - total) / 2).max(8);
+    for ((text, kind), width) in entries.iter().zip(widths) {
+        match kind {
+            0 => row.draw(&PathElement::new(
+                vec![(x, y), (x + 22, y)],
+                PATH_COLOR.stroke_width(2),
+            )),
+            1 => row.draw(&PathElement::new(
+                vec![
+                    (x, y),
+                    (x + 22, y),
+                    (x + 16, y - 4),
+                    (x + 22, y),
+                    (x + 16, y + 4),
+                ],
+                floor::GAZE_COLOR.stroke_width(2),
+            )),
+            2 | 3 => {
+                let side = if *kind == 2 { Side::Left } else { Side::Right };
+                let color = side_color(side);
+                row.draw(&Rectangle::new(
+                    [(x, y - 5), (x + 22, y + 5)],
+                    color.mix(0.18).filled(),
+                ))
+                .and_then(|_| {
+                    row.draw(&Rectangle::new(
+                        [(x, y - 5), (x + 22, y + 5)],
+                        color.stroke_width(2),
+                    ))
+                })
+            }
+            _ => row.draw(&Text::new(
+                "7".to_string(),
+                (x + 8, y),
+                TextStyle::from((FONT, LABEL_FONT)).pos(Pos::new(HPos::Center, VPos::Center)),
+            )),
+        }
+        .map_err(msg)?;
+        row.draw(&Text::new(text.to_string(), (x + 30, y), style.clone()))
+            .map_err(msg)?;
+        x += width + gap;
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.4))
-        .label_font((FONT, 15))
-        .draw()
-        .map_err(msg)
+    Ok(())
 }
 
-/// Every footprint's index, just beyond its toe; a label that would sit on one already placed
-/// moves down until it is clear.
+/// A pixel box (left, top, right, bottom).
+type PxBox = (i32, i32, i32, i32);
+
+fn overlaps(a: PxBox, b: PxBox) -> bool {
+    a.0 <= b.2 && b.0 <= a.2 && a.1 <= b.3 && b.1 <= a.3
+}
+
+/// The pixels along a gaze arrow (every 2 px of its strokes), each as a box of its own: an
+/// arrow across a label's place is in the way, its bounding box is not.
+fn arrow_points(map: &ViewMap, at: (f64, f64), direction: f64) -> Vec<PxBox> {
+    let points: Vec<(i32, i32)> = floor::arrow(at, direction, GAZE_ARROW_M)
+        .into_iter()
+        .map(|(u, v)| map.pixel(u, v))
+        .collect();
+    points
+        .windows(2)
+        .flat_map(|w| {
+            let ((x0, y0), (x1, y1)) = (w[0], w[1]);
+            let n = ((x1 - x0).abs().max((y1 - y0).abs()) / 2).max(1);
+            (0..=n).map(move |k| {
+                let x = x0 + (x1 - x0) * k / n;
+                let y = y0 + (y1 - y0) * k / n;
+                (x - 1, y - 1, x + 1, y + 1)
+            })
+        })
+        .collect()
+}
+
+/// The pixel box around top-view `points` on `map`.
+fn pixel_box(map: &ViewMap, points: impl IntoIterator<Item = (f64, f64)>) -> PxBox {
+    points.into_iter().fold(
+        (i32::MAX, i32::MAX, i32::MIN, i32::MIN),
+        |(l, t, r, b), (u, v)| {
+            let (x, y) = map.pixel(u, v);
+            (l.min(x), t.min(y), r.max(x), b.max(y))
+        },
+    )
+}
+
+/// The footprints grouped by place: a foot put down within [`SAME_PLACE_M`] of one of its
+/// earlier prints joins that print's group; in the order of their first prints.
+pub(crate) fn places(footprints: &[Footprint]) -> Vec<Vec<&Footprint>> {
+    let mut groups: Vec<Vec<&Footprint>> = Vec::new();
+    for f in footprints {
+        let same = groups.iter_mut().find(|g| {
+            let first = g[0];
+            first.side == f.side
+                && (first.ankle[0] - f.ankle[0]).hypot(first.ankle[1] - f.ankle[1]) <= SAME_PLACE_M
+        });
+        match same {
+            Some(g) => g.push(f),
+            None => groups.push(vec![f]),
+        }
+    }
+    groups
+}
+
+/// Every place's step numbers (see the module doc), inside `within` (the plotting area's pixel
+/// box): beside the foot on its outward side where that is free, else at the nearest free place
+/// around it (rings every `LABEL_STEP_PX`, the outward directions first), with a leader line.
 fn labels<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     map: &ViewMap,
-    footprints: &[Footprint],
+    within: PxBox,
+    motion: &Motion,
     body: &Body,
-) -> std::result::Result<(), DrawError> {
-    let ahead = body.ankle_to_metatarsal_horizontal() + body.l13 + 0.06;
-    let style = (FONT, 14)
+    gaze: &[((f64, f64), f64)],
+) -> std::result::Result<Vec<StepLabel>, DrawError> {
+    let style = (FONT, LABEL_FONT)
         .into_font()
         .color(&BLACK)
         .pos(Pos::new(HPos::Center, VPos::Center));
-    let mut placed: Vec<(i32, i32)> = Vec::with_capacity(footprints.len());
-    for f in footprints {
-        let (u, v) = floor::top(f.ankle[0], f.ankle[1]);
-        let (du, dv) = heading_vector(f.direction);
-        let (x, mut y) = map.pixel(u + ahead * du, v + ahead * dv);
-        while placed.iter().any(|&(px, py)| {
-            (px - x).abs() < 2 * LABEL_CLEARANCE_PX && (py - y).abs() < LABEL_CLEARANCE_PX
-        }) {
-            y += LABEL_CLEARANCE_PX;
-        }
-        placed.push((x, y));
-        root.draw(&Text::new(f.index.to_string(), (x, y), style.clone()))
+    let length = body.l8 + body.ankle_to_metatarsal_horizontal() + body.l13;
+    let breadth = floor::FOOT_BREADTH_PER_LENGTH * length;
+    // what a label must not cover: the footprints and the gaze arrows
+    let marks: Vec<PxBox> = motion
+        .footprints
+        .iter()
+        .map(|f| pixel_box(map, floor::foot_outline(body, f.side, f.ankle, f.direction)))
+        .chain(gaze.iter().flat_map(|&(at, d)| arrow_points(map, at, d)))
+        .collect();
+    let mut placed: Vec<PxBox> = Vec::new();
+    let mut out = Vec::new();
+    for group in places(&motion.footprints) {
+        let f = group[0];
+        let indices: Vec<usize> = group.iter().map(|f| f.index).collect();
+        let text = indices
+            .iter()
+            .map(usize::to_string)
+            .collect::<Vec<_>>()
+            .join(", ");
+        let (w, h) = root.estimate_text_size(&text, &style).map_err(msg)?;
+        let (hw, hh) = (w as i32 / 2 + LABEL_PAD_PX, h as i32 / 2 + LABEL_PAD_PX);
+        // the foot's middle and its outward side (the left foot's left), in pixels
+        let (a_u, a_v) = floor::top(f.ankle[0], f.ankle[1]);
+        let (fu, fv) = heading_vector(f.direction);
+        let mid = 0.5 * length - body.l8;
+        let (cx, cy) = map.pixel(a_u + mid * fu, a_v + mid * fv);
+        let out_sign = -f.side.sign();
+        // in pixels y grows downwards: the top view's (u, v) turns into (u, −v)
+        let outward = (-fv * out_sign, -fu * out_sign);
+        let first = 0.5 * breadth * map.scale() + LABEL_GAP_PX;
+        let fits = |x: i32, y: i32, obstacles: &[&[PxBox]]| {
+            let b = (x - hw, y - hh, x + hw, y + hh);
+            let inside = b.0 >= within.0 && b.1 >= within.1 && b.2 <= within.2 && b.3 <= within.3;
+            inside
+                && !obstacles
+                    .iter()
+                    .flat_map(|o| o.iter())
+                    .any(|&t| overlaps(b, t))
+        };
+        // rings around the foot's middle, every LABEL_STEP_PX outwards; on each, sixteen
+        // directions from the outward side (0, +1, −1, +2, −2, … sixteenths of a turn); the
+        // centre past the foot's half breadth and the label's own half extent that way
+        let search = |obstacles: &[&[PxBox]]| {
+            let mut r = 0.0;
+            while r <= LABEL_REACH_PX.max(LABEL_REACH_M * map.scale()) {
+                for k in 0..16 {
+                    let step = (k + 1) / 2;
+                    let turn = if k % 2 == 1 { step } else { -step } as f64;
+                    let a = turn * std::f64::consts::PI / 8.0;
+                    let (c, s) = (a.cos(), a.sin());
+                    let (dx, dy) = (outward.0 * c - outward.1 * s, outward.0 * s + outward.1 * c);
+                    let half = (f64::from(hw) * dx.abs()).max(f64::from(hh) * dy.abs());
+                    let d = first + half + r;
+                    let (x, y) = (cx + (d * dx).round() as i32, cy + (d * dy).round() as i32);
+                    if fits(x, y, obstacles) {
+                        return Some((x, y, r > LEADER_PX || k > 2));
+                    }
+                }
+                r += LABEL_STEP_PX;
+            }
+            None
+        };
+        // clear of everything; else clear of the other labels at least (over a foot); else the
+        // first place
+        let (x, y, leader) = search(&[&marks, &placed])
+            .or_else(|| search(&[&placed]))
+            .unwrap_or_else(|| {
+                let half = f64::from(hw).max(f64::from(hh));
+                let d = first + half;
+                (
+                    cx + (d * outward.0).round() as i32,
+                    cy + (d * outward.1).round() as i32,
+                    false,
+                )
+            });
+        if leader {
+            root.draw(&PathElement::new(
+                vec![(cx, cy), (x, y)],
+                RGBColor(120, 120, 120).stroke_width(1),
+            ))
             .map_err(msg)?;
+        }
+        let bbox = (x - hw, y - hh, x + hw, y + hh);
+        root.draw(&Rectangle::new(
+            [(bbox.0 + 1, bbox.1 + 1), (bbox.2 - 1, bbox.3 - 1)],
+            WHITE.mix(0.8).filled(),
+        ))
+        .map_err(msg)?;
+        root.draw(&Text::new(text.clone(), (x, y), style.clone()))
+            .map_err(msg)?;
+        placed.push(bbox);
+        out.push(StepLabel {
+            indices,
+            text,
+            bbox,
+            leader,
+        });
     }
-    Ok(())
+    Ok(out)
 }
 
 #[cfg(test)]
@@ -269,6 +528,29 @@ mod tests {
     }
 
     #[test]
+    fn gaze_arrows_at_a_metre_or_a_turn() {
+        let at = |u: f64, deg: f64| ((u, 0.0), deg.to_radians());
+        // standing for 2 s (100 frames), one arrow
+        let still: Vec<_> = (0..100).map(|_| at(0.0, 0.0)).collect();
+        assert_eq!(gaze_arrows(&still).len(), 1);
+        // turning on the spot through 180°: 0, 60, 120, 180
+        let turn: Vec<_> = (0..=180).map(|k| at(0.0, f64::from(k))).collect();
+        let arrows = gaze_arrows(&turn);
+        let degrees: Vec<i64> = arrows
+            .iter()
+            .map(|a| a.1.to_degrees().round() as i64)
+            .collect();
+        assert_eq!(degrees, [0, 60, 120, 180]);
+        // walking 3 m straight in 1 cm steps: 0, 1, 2, 3 m
+        let walk: Vec<_> = (0..=300).map(|k| at(f64::from(k) / 100.0, 0.0)).collect();
+        let us: Vec<f64> = gaze_arrows(&walk).iter().map(|a| a.0.0).collect();
+        assert_eq!(us.len(), 4);
+        for (u, want) in us.iter().zip([0.0, 1.0, 2.0, 3.0]) {
+            assert!((u - want).abs() < 0.011, "{us:?}");
+        }
+    }
+
+    #[test]
     fn the_height_follows_the_extent() {
         // a long narrow floor gets the least height, a square one the most
         assert_eq!(figure_size(((0.0, 10.0), (0.0, 1.0))).1, HEIGHT_RANGE_PX.0);
@@ -276,6 +558,6 @@ mod tests {
         // between the two, the plotting area keeps the extent's proportions
         let (w, h) = figure_size(((0.0, 4.0), (0.0, 2.0)));
         assert_eq!(w, WIDTH_PX);
-        assert_eq!(h, ((f64::from(WIDTH_PX - 90) / 2.0) + 180.0) as u32);
+        assert_eq!(h, ((f64::from(WIDTH_PX - 90) / 2.0) + 210.0) as u32);
     }
 }

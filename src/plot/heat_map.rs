@@ -2,7 +2,10 @@
 //! parameters, a cell per (x, y) value pair, coloured on a viridis scale with a colour bar;
 //! points that failed are light grey with a dark cross.
 //!
-//! Cells span halfway to the neighbouring values (so uneven grids are drawn to scale). When the
+//! Cells span halfway to the neighbouring values (so uneven grids are drawn to scale), and the
+//! axes' ticks are the swept values themselves, at the cells' centres: a tick per value, labelled
+//! as many as fit without overlapping (the first always), each label the value with the fewest
+//! decimals that all the axis's values need. When the
 //! sweep varies other parameters too, several rows fall on one cell: the cell shows the mean
 //! over its converged rows (for `converged`, the fraction converged over all its rows), and is
 //! failed when none of its rows converged. (x, y) pairs without any row are left white.
@@ -61,6 +64,20 @@ impl MapCell {
     }
 }
 
+/// A tick of a heat map's axis: one swept value.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Tick {
+    /// The swept value.
+    pub value: f64,
+    /// Its pixel along the axis (the column of an x tick, the row of a y tick), at the centre of
+    /// its cells.
+    pub pixel: i32,
+    /// The label, when there is room for it.
+    pub label: Option<String>,
+    /// The label's box (left, top, right, bottom) in the figure's pixels, when labelled.
+    pub label_box: Option<(i32, i32, i32, i32)>,
+}
+
 /// The data of a heat map.
 #[derive(Clone, Debug, PartialEq)]
 pub struct HeatMap {
@@ -76,6 +93,10 @@ pub struct HeatMap {
     pub ys: Vec<f64>,
     /// One cell per (x, y) pair found in the rows.
     pub cells: Vec<MapCell>,
+    /// The ticks of the horizontal axis, one per value of `xs`, once drawn.
+    pub x_ticks: Vec<Tick>,
+    /// The ticks of the vertical axis, one per value of `ys`, once drawn.
+    pub y_ticks: Vec<Tick>,
 }
 
 fn bad(parameter: &str, reason: String) -> Error {
@@ -330,6 +351,8 @@ impl HeatMap {
             xs,
             ys,
             cells,
+            x_ticks: Vec::new(),
+            y_ticks: Vec::new(),
         })
     }
 
@@ -407,7 +430,8 @@ impl HeatMap {
             .build_cartesian_2d(xe[0]..xe[xe.len() - 1], ye[0]..ye[ye.len() - 1])
             .map_err(msg)?;
         let mut mesh = chart.configure_mesh();
-        mesh.disable_mesh();
+        // the ticks are the swept values, drawn below: none of plotters' round numbers
+        mesh.disable_mesh().x_labels(0).y_labels(0);
         if text {
             mesh.x_desc(label(&self.x))
                 .y_desc(label(&self.y))
@@ -427,6 +451,20 @@ impl HeatMap {
             let corners = ((xe[i], xe[i + 1]), (ye[j], ye[j + 1]));
             cell.pixels = draw_cell(&mut chart, corners, color, cell.failed())?;
         }
+        let ((x_lo, _), (y_lo, _)) = ((xe[0], 0.0), (ye[0], 0.0));
+        let x_px: Vec<i32> = self
+            .xs
+            .iter()
+            .map(|&x| chart.backend_coord(&(x, y_lo)).0)
+            .collect();
+        let y_px: Vec<i32> = self
+            .ys
+            .iter()
+            .map(|&y| chart.backend_coord(&(x_lo, y)).1)
+            .collect();
+        let (left, bottom) = chart.backend_coord(&(x_lo, y_lo));
+        self.x_ticks = draw_ticks(root, &self.xs, &x_px, Axis::X(bottom), text)?;
+        self.y_ticks = draw_ticks(root, &self.ys, &y_px, Axis::Y(left), text)?;
         self.colour_bar(&bar, text, (lo, hi))
     }
 
@@ -464,6 +502,116 @@ impl HeatMap {
             .map_err(msg)?;
         Ok(())
     }
+}
+
+/// Tick marks' lengths (px): every value's, and a labelled one's.
+const TICK_PX: i32 = 4;
+const LABELLED_TICK_PX: i32 = 8;
+/// The gap between the tick and its label, and the least gap between two labels (px).
+const LABEL_GAP_PX: i32 = 4;
+const LABEL_SPACING_PX: i32 = 10;
+const TICK_FONT: i32 = 16;
+
+/// A heat map's axis and where it lies: the row of the horizontal axis or the column of the
+/// vertical one (the figure's pixels).
+#[derive(Clone, Copy)]
+enum Axis {
+    X(i32),
+    Y(i32),
+}
+
+/// The fewest decimals (at most 6) that show every one of `values` to 1e-9 of its size.
+fn decimals(values: &[f64]) -> usize {
+    let need = |v: f64| {
+        (0..=6)
+            .find(|&d| {
+                let scale = 10f64.powi(d as i32);
+                ((v * scale).round() / scale - v).abs() <= 1e-9 * v.abs().max(1.0)
+            })
+            .unwrap_or(6)
+    };
+    values.iter().map(|&v| need(v)).max().unwrap_or(0)
+}
+
+/// A tick on `axis` at every value of `values` (`pixels` along the axis), outside the plotting
+/// area; with text, labels left to right (bottom to top) wherever one clears the last labelled,
+/// the first always.
+fn draw_ticks<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    values: &[f64],
+    pixels: &[i32],
+    axis: Axis,
+    text: bool,
+) -> std::result::Result<Vec<Tick>, DrawError> {
+    use plotters::style::text_anchor::{HPos, Pos, VPos};
+    let d = decimals(values);
+    let pos = match axis {
+        Axis::X(_) => Pos::new(HPos::Center, VPos::Top),
+        Axis::Y(_) => Pos::new(HPos::Right, VPos::Center),
+    };
+    let style = TextStyle::from((FONT, TICK_FONT)).color(&BLACK).pos(pos);
+    let mut ticks = Vec::with_capacity(values.len());
+    // the end of the last label along the axis: its right edge (x) or its top (y)
+    let mut last_end: Option<i32> = None;
+    for (&value, &p) in values.iter().zip(pixels) {
+        let label = format!("{value:.d$}");
+        let label_box = if text {
+            let (w, h) = root.estimate_text_size(&label, &style).map_err(msg)?;
+            let (w, h) = (w as i32, h as i32);
+            let (lbox, start, end) = match axis {
+                Axis::X(row) => {
+                    let top = row + LABELLED_TICK_PX + LABEL_GAP_PX;
+                    (
+                        (p - w / 2, top, p - w / 2 + w, top + h),
+                        p - w / 2,
+                        p - w / 2 + w,
+                    )
+                }
+                // along y the pixels fall upwards: "start" is the bottom, as a negative row
+                Axis::Y(col) => {
+                    let right = col - LABELLED_TICK_PX - LABEL_GAP_PX;
+                    (
+                        (right - w, p - h / 2, right, p - h / 2 + h),
+                        -(p - h / 2 + h),
+                        -(p - h / 2),
+                    )
+                }
+            };
+            let clear = last_end.is_none_or(|e| start >= e + LABEL_SPACING_PX);
+            clear.then(|| {
+                last_end = Some(end);
+                lbox
+            })
+        } else {
+            None
+        };
+        let len = if label_box.is_some() {
+            LABELLED_TICK_PX
+        } else {
+            TICK_PX
+        };
+        let mark = match axis {
+            Axis::X(row) => [(p, row), (p, row + len)],
+            Axis::Y(col) => [(col - len, p), (col, p)],
+        };
+        root.draw(&PathElement::new(mark.to_vec(), BLACK.stroke_width(1)))
+            .map_err(msg)?;
+        if let Some((l, t, r, b)) = label_box {
+            let at = match axis {
+                Axis::X(_) => ((l + r) / 2, t),
+                Axis::Y(_) => (r, (t + b) / 2),
+            };
+            root.draw(&Text::new(label.clone(), at, style.clone()))
+                .map_err(msg)?;
+        }
+        ticks.push(Tick {
+            value,
+            pixel: p,
+            label: label_box.map(|_| label),
+            label_box,
+        });
+    }
+    Ok(ticks)
 }
 
 /// The edges of the cells around sorted distinct values: halfway to each neighbour, the outer

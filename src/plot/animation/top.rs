@@ -48,10 +48,8 @@ pub(super) fn panel_widths(w: u32) -> Vec<u32> {
     vec![side, front, w.saturating_sub(side + front)]
 }
 
-/// The top view's lines of text.
-pub(super) fn text() -> Vec<String> {
-    vec!["top view: the start's left up; footprints so far, pelvis path, gaze".to_string()]
-}
+/// The top view's caption.
+pub(super) const TEXT: &str = "top, the start's left up: footprints so far, pelvis path, gaze";
 
 /// The pelvis path and the footprints placed by `time`.
 pub(super) fn draw_floor<DB: DrawingBackend>(
