@@ -2,7 +2,7 @@
 //! segments, feet on (never under) the ground, stance contacts that do not slide, heels that
 //! land where the step constraints put them, and no joint angle jumping at a phase boundary.
 mod common;
-use common::{d, foot_pitch, knee_angle, sub};
+use common::{d, foot_pitch, knee_angle, sub, worst_contact_slide};
 
 use common::{body_of_height, default_attributes, default_body};
 use klaw::engine::walker as walk;
@@ -71,19 +71,7 @@ fn segments_are_rigid_and_feet_stay_on_or_above_the_ground() {
 fn stance_contacts_do_not_slide() {
     let (_, attrs, w) = walk_of(1.4, 1.8);
     let n = (w.duration() * 1000.0) as usize;
-    let mut prev = figure_at(&w, &attrs, 0.0);
-    let mut worst: f64 = 0.0;
-    for k in 1..=n {
-        let f = figure_at(&w, &attrs, k as f64 / 1000.0);
-        for (a, b) in [(&prev.right, &f.right), (&prev.left, &f.left)] {
-            for (p, q) in [(a.heel, b.heel), (a.mtp, b.mtp), (a.toe, b.toe)] {
-                if p[1].abs() < 1e-9 && q[1].abs() < 1e-9 {
-                    worst = worst.max(d(p, q));
-                }
-            }
-        }
-        prev = f;
-    }
+    let worst = worst_contact_slide(n, |t| figure_at(&w, &attrs, t));
     assert!(worst < 1e-3, "a contact slides {worst} m in 1 ms");
 }
 

@@ -6,7 +6,7 @@
 //! and de Leva's male (H 1.85 m) and female (H 1.65 m) bodies at the default gait, as
 //! `klaw walk --mode kinematic` walks them.
 mod common;
-use common::{d, foot_pitch, knee_angle};
+use common::{d, foot_pitch, knee_angle, worst_contact_slide};
 
 use klaw::figure::Landmarks;
 use klaw::generalize::{
@@ -162,19 +162,7 @@ fn nothing_jumps_at_a_phase_boundary() {
 fn stance_contacts_do_not_slide() {
     for (label, _, kin) in walks() {
         let n = (kin.duration() * 1000.0) as usize;
-        let mut prev = figure(&kin, 0.0);
-        let mut worst: f64 = 0.0;
-        for k in 1..=n {
-            let f = figure(&kin, k as f64 / 1000.0);
-            for (a, b) in [(&prev.right, &f.right), (&prev.left, &f.left)] {
-                for (p, q) in [(a.heel, b.heel), (a.mtp, b.mtp), (a.toe, b.toe)] {
-                    if p[1].abs() < 1e-9 && q[1].abs() < 1e-9 {
-                        worst = worst.max(d(p, q));
-                    }
-                }
-            }
-            prev = f;
-        }
+        let worst = worst_contact_slide(n, |t| figure(&kin, t));
         assert!(worst < 1e-3, "{label}: a contact slides {worst} m in 1 ms");
     }
 }

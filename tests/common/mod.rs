@@ -202,3 +202,22 @@ pub fn foot_pitch(l: &klaw::figure::LegPoints) -> f64 {
     let (a, b) = (l.heel, l.mtp);
     -(b[1] - a[1]).atan2(b[0] - a[0])
 }
+
+/// The farthest any foot point on the floor (heel, metatarsal joint, toe within 1e-9 m of it at
+/// both instants) moves between consecutive frames 1 ms apart over `n` ms of `figure(t)`.
+pub fn worst_contact_slide(n: usize, figure: impl Fn(f64) -> klaw::figure::Landmarks) -> f64 {
+    let mut prev = figure(0.0);
+    let mut worst: f64 = 0.0;
+    for k in 1..=n {
+        let f = figure(k as f64 / 1000.0);
+        for (a, b) in [(&prev.right, &f.right), (&prev.left, &f.left)] {
+            for (p, q) in [(a.heel, b.heel), (a.mtp, b.mtp), (a.toe, b.toe)] {
+                if p[1].abs() < 1e-9 && q[1].abs() < 1e-9 {
+                    worst = worst.max(d(p, q));
+                }
+            }
+        }
+        prev = f;
+    }
+    worst
+}
